@@ -1,0 +1,68 @@
+// `archet new bowed-string`: builds the paper's bowed string and writes it as a model file.
+
+#include <iostream>
+#include <memory>
+
+#include "archet/bowed_string.hpp"
+#include "archet/model_file.hpp"
+#include "commands.hpp"
+
+namespace archet::cli {
+
+void add_new_command(CLI::App& app, Action& action) {
+    auto* cmd = app.add_subcommand("new", "Build a model from a template and write it to a file");
+    cmd->require_subcommand(1);
+    auto* bowed = cmd->add_subcommand("bowed-string",
+                                      "The paper's bowed string: chaplet, bridges, bow module");
+    auto o = std::make_shared<BowedStringOptions>();
+    auto output = std::make_shared<std::string>();
+    auto no_gesture = std::make_shared<bool>(false);
+    bowed->add_option("--pitch", o->pitch, "First mode of the string (Hz)")->capture_default_str();
+    bowed->add_option("--masses", o->masses, "Masses in the chaplet, 25-60 (0 = largest stable)")
+        ->capture_default_str();
+    bowed
+        ->add_option("--bow-position", o->bow_position,
+                     "Beta: bow distance from the bridge / string length")
+        ->capture_default_str();
+    bowed
+        ->add_option("--string-damping", o->string_damping,
+                     "Damping of each string link (N·s/m); negative = from --string-t60")
+        ->capture_default_str();
+    bowed
+        ->add_option("--string-t60", o->string_t60,
+                     "First-mode decay from string damping alone (s)")
+        ->capture_default_str();
+    bowed->add_option("--sample-rate", o->sample_rate, "Audio rate level (Hz)")
+        ->capture_default_str();
+    bowed->add_option("--haptic-divider", o->haptic_divider, "Haptic rate = sample rate / divider")
+        ->capture_default_str();
+    bowed->add_option("--tension", o->tension, "String tension (N)")->capture_default_str();
+    bowed->add_option("--density", o->linear_density, "String linear density (kg/m)")
+        ->capture_default_str();
+    bowed->add_option("--mu-s", o->mu_s, "Static friction coefficient")->capture_default_str();
+    bowed->add_option("--mu-d", o->mu_d, "Dynamic friction coefficient (fast sliding)")
+        ->capture_default_str();
+    bowed->add_option("--v0", o->v0, "Velocity scale of the friction curve (m/s)")
+        ->capture_default_str();
+    bowed->add_option("--bow-mass", o->bow_mass, "Bow mass on the sliding axis (kg)")
+        ->capture_default_str();
+    bowed
+        ->add_option("--buffer-stiffness", o->buffer_stiffness,
+                     "Bow-string contact stiffness (N/m)")
+        ->capture_default_str();
+    bowed->add_option("--output-gain", o->output_gain, "Bridge force to full scale (1/N)")
+        ->capture_default_str();
+    bowed->add_flag("--no-gesture", *no_gesture, "Do not embed the steady-bow gesture");
+    bowed->add_option("-o,--output", *output, "Model file to write (.json)")->required();
+    bowed->callback([&action, o, output, no_gesture] {
+        action = [o, output, no_gesture] {
+            o->with_gesture = !*no_gesture;
+            const Model model = build_bowed_string(*o);
+            write_file_atomically(*output, format_model(model));
+            std::cout << "wrote " << *output << ": " << model.description << "\n";
+            return 0;
+        };
+    });
+}
+
+}  // namespace archet::cli

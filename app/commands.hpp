@@ -1,0 +1,17 @@
+#pragma once
+// The `archet` subcommands. Each registers itself on the CLI and runs when chosen.
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace archet::cli {
+
+/// What the chosen subcommand runs; returns the process exit status.
+using Action = std::function<int()>;
+
+void add_new_command(CLI::App& app, Action& action);
+void add_render_command(CLI::App& app, Action& action);
+void add_check_command(CLI::App& app, Action& action);
+void add_bench_command(CLI::App& app, Action& action);
+
+}  // namespace archet::cli

@@ -1,0 +1,41 @@
+#pragma once
+// Writes mono audio to WAV (24-bit PCM) or FLAC through libsndfile. Writes to a temporary
+// file beside the target and renames it on close, so an existing file is never left
+// half-written. Counts samples beyond full scale instead of clipping silently.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+struct sf_private_tag;
+
+namespace archet {
+
+enum class SoundFormat { Wav, Flac };
+
+/// Parses "wav" / "flac"; throws InputError otherwise.
+SoundFormat parse_sound_format(const std::string& text);
+
+class SoundFileWriter {
+  public:
+    SoundFileWriter(std::filesystem::path path, SoundFormat format, int sample_rate);
+    ~SoundFileWriter();
+    SoundFileWriter(const SoundFileWriter&) = delete;
+    SoundFileWriter& operator=(const SoundFileWriter&) = delete;
+
+    void write(const double* samples, std::size_t count);
+    /// Finishes the file and moves it into place.
+    void close();
+
+    std::uint64_t clipped_samples() const { return clipped_; }
+    double peak() const { return peak_; }
+    std::uint64_t frames() const { return frames_; }
+
+  private:
+    std::filesystem::path path_, temp_;
+    sf_private_tag* file_ = nullptr;
+    std::uint64_t clipped_ = 0, frames_ = 0;
+    double peak_ = 0;
+};
+
+}  // namespace archet

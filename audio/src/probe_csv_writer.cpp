@@ -1,0 +1,52 @@
+#include "archet/probe_csv_writer.hpp"
+
+#include <unistd.h>
+
+#include <system_error>
+
+#include "archet/input_error.hpp"
+
+namespace archet {
+
+ProbeCsvWriter::ProbeCsvWriter(std::filesystem::path path, const std::vector<std::string>& columns)
+    : path_(std::move(path)),
+      temp_(path_.string() + ".tmp-" + std::to_string(static_cast<long>(::getpid()))),
+      columns_(columns.size()) {
+    file_ = std::fopen(temp_.c_str(), "w");
+    if (!file_)
+        throw InputError(path_.string(), "cannot write the probe file (is the folder writable?)");
+    std::fputs("time", file_);
+    for (const auto& c : columns) std::fprintf(file_, ",%s", c.c_str());
+    std::fputc('\n', file_);
+}
+
+ProbeCsvWriter::~ProbeCsvWriter() {
+    if (file_) {
+        std::fclose(file_);
+        std::error_code ignored;
+        std::filesystem::remove(temp_, ignored);
+    }
+}
+
+void ProbeCsvWriter::write_row(double time, const double* values) {
+    std::fprintf(file_, "%.9g", time);
+    for (std::size_t i = 0; i < columns_; ++i) std::fprintf(file_, ",%.9g", values[i]);
+    std::fputc('\n', file_);
+}
+
+void ProbeCsvWriter::close() {
+    if (!file_) return;
+    const bool failed = std::ferror(file_) != 0;
+    const bool close_failed = std::fclose(file_) != 0;
+    file_ = nullptr;
+    std::error_code ec;
+    if (failed || close_failed) {
+        std::filesystem::remove(temp_, ec);
+        throw InputError(path_.string(), "could not write the probe file (disk full?)");
+    }
+    std::filesystem::rename(temp_, path_, ec);
+    if (ec)
+        throw InputError(path_.string(), "cannot move the probe file into place: " + ec.message());
+}
+
+}  // namespace archet

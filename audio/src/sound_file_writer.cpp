@@ -1,0 +1,72 @@
+#include "archet/sound_file_writer.hpp"
+
+#include <sndfile.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <system_error>
+
+#include "archet/input_error.hpp"
+
+namespace archet {
+
+SoundFormat parse_sound_format(const std::string& text) {
+    if (text == "wav") return SoundFormat::Wav;
+    if (text == "flac") return SoundFormat::Flac;
+    throw InputError("--format", "\"" + text + "\" is not a sound format; use wav or flac");
+}
+
+SoundFileWriter::SoundFileWriter(std::filesystem::path path, SoundFormat format, int sample_rate)
+    : path_(std::move(path)),
+      temp_(path_.string() + ".tmp-" + std::to_string(static_cast<long>(::getpid()))) {
+    SF_INFO info{};
+    info.samplerate = sample_rate;
+    info.channels = 1;
+    info.format = format == SoundFormat::Wav ? (SF_FORMAT_WAV | SF_FORMAT_PCM_24)
+                                             : (SF_FORMAT_FLAC | SF_FORMAT_PCM_24);
+    file_ = sf_open(temp_.c_str(), SFM_WRITE, &info);
+    if (!file_)
+        throw InputError(path_.string(), std::string("cannot write the sound file: ") +
+                                             sf_strerror(nullptr) + " (is the folder writable?)");
+    // Saturate rather than wrap around when a sample is beyond full scale.
+    sf_command(file_, SFC_SET_CLIPPING, nullptr, SF_TRUE);
+}
+
+SoundFileWriter::~SoundFileWriter() {
+    if (file_) {
+        sf_close(file_);
+        std::error_code ignored;
+        std::filesystem::remove(temp_, ignored);
+    }
+}
+
+void SoundFileWriter::write(const double* samples, std::size_t count) {
+    for (std::size_t i = 0; i < count; ++i) {
+        const double a = std::abs(samples[i]);
+        peak_ = std::max(peak_, a);
+        if (a > 1.0) ++clipped_;
+    }
+    if (sf_write_double(file_, samples, static_cast<sf_count_t>(count)) !=
+        static_cast<sf_count_t>(count))
+        throw InputError(path_.string(), std::string("write failed: ") + sf_strerror(file_) +
+                                             "; the existing file is untouched");
+    frames_ += count;
+}
+
+void SoundFileWriter::close() {
+    if (!file_) return;
+    const int status = sf_close(file_);
+    file_ = nullptr;
+    std::error_code ec;
+    if (status != 0) {
+        std::filesystem::remove(temp_, ec);
+        throw InputError(path_.string(), "could not finish the sound file (disk full?)");
+    }
+    std::filesystem::rename(temp_, path_, ec);
+    if (ec) {
+        std::filesystem::remove(temp_, ec);
+        throw InputError(path_.string(), "cannot move the sound file into place: " + ec.message());
+    }
+}
+
+}  // namespace archet

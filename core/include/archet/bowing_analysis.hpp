@@ -1,0 +1,28 @@
+#pragma once
+// Reads the signature of bowing from the slip velocity (bow minus string at the bowing
+// point): when the bow slips, how often, and for what share of the period. Helmholtz motion
+// is one stick and one slip per period of the string's first mode, the slip lasting about β
+// of the period (physics.md §4).
+
+#include <vector>
+
+namespace archet {
+
+struct BowingAnalysis {
+    int slips = 0;                ///< slip onsets in the window
+    double periods = 0;           ///< window length in periods of the nominal pitch
+    double slips_per_period = 0;  ///< 1 for Helmholtz motion
+    double period = 0;            ///< s, mean time between slip onsets
+    double period_spread = 0;     ///< (max − min) / mean of those intervals
+    double pitch_cents = 0;       ///< 1/period against the nominal pitch
+    double slip_share = 0;        ///< fraction of time slipping
+    bool helmholtz() const;       ///< one slip per period, steady, near the pitch
+};
+
+/// `slip_velocity` sampled at `sample_rate`; analyses samples [first, last). A sample counts
+/// as slipping when |v| exceeds `threshold` (m/s).
+BowingAnalysis analyse_bowing(const std::vector<double>& slip_velocity, double sample_rate,
+                              double pitch, std::size_t first, std::size_t last,
+                              double threshold = 1e-3);
+
+}  // namespace archet

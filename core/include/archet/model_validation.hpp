@@ -1,0 +1,24 @@
+#pragma once
+// Everything a model must satisfy before it is compiled: ids, references, ranges, rate
+// levels, and the scheme's stability bound at every rate level.
+
+#include <string>
+#include <vector>
+
+#include "archet/model.hpp"
+
+namespace archet {
+
+struct ModelProblem {
+    std::string where;    ///< the element at fault, e.g. `link "l3"`
+    std::string message;  ///< what is wrong and what to change
+};
+
+/// All problems found; structural ones first. The stability bound is checked only when
+/// the structure is sound.
+std::vector<ModelProblem> find_model_problems(const Model& model);
+
+/// Throws InputError for the first problem.
+void validate_model(const Model& model);
+
+}  // namespace archet

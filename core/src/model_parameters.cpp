@@ -1,0 +1,122 @@
+#include "archet/model_parameters.hpp"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "archet/input_error.hpp"
+
+namespace archet {
+
+namespace {
+
+struct Field {
+    ParameterInfo info;
+    double* value;
+};
+
+std::vector<Field> mat_fields(Mat& m) {
+    std::vector<Field> f{{{"position", "m", -INFINITY, false}, &m.position}};
+    switch (m.kind) {
+        case MatKind::Mass:
+            f.push_back({{"mass", "kg", 0.0, true}, &m.mass});
+            f.push_back({{"velocity", "m/s", -INFINITY, false}, &m.velocity});
+            break;
+        case MatKind::Oscillator:
+            f.push_back({{"mass", "kg", 0.0, true}, &m.mass});
+            f.push_back({{"velocity", "m/s", -INFINITY, false}, &m.velocity});
+            f.push_back({{"stiffness", "N/m", 0.0, false}, &m.stiffness});
+            f.push_back({{"damping", "N·s/m", 0.0, false}, &m.damping});
+            break;
+        case MatKind::Fixed:
+            break;
+        case MatKind::Gesture:
+            f.push_back({{"position_scale", "m/m", -INFINITY, false}, &m.position_scale});
+            f.push_back({{"force_scale", "N/N", -INFINITY, false}, &m.force_scale});
+            break;
+    }
+    return f;
+}
+
+std::vector<Field> lia_fields(Lia& l) {
+    switch (l.kind) {
+        case LiaKind::Spring:
+            return {{{"stiffness", "N/m", 0.0, false}, &l.stiffness},
+                    {{"length", "m", -INFINITY, false}, &l.length}};
+        case LiaKind::Damper:
+            return {{{"damping", "N·s/m", 0.0, false}, &l.damping}};
+        case LiaKind::SpringDamper:
+            return {{{"stiffness", "N/m", 0.0, false}, &l.stiffness},
+                    {{"damping", "N·s/m", 0.0, false}, &l.damping},
+                    {{"length", "m", -INFINITY, false}, &l.length}};
+        case LiaKind::Buffer:
+            return {{{"stiffness", "N/m", 0.0, false}, &l.stiffness},
+                    {{"damping", "N·s/m", 0.0, false}, &l.damping},
+                    {{"gap", "m", -INFINITY, false}, &l.length}};
+        case LiaKind::BowFriction:
+            return {{{"buffer_stiffness", "N/m", 0.0, true}, &l.stiffness},
+                    {{"buffer_damping", "N·s/m", 0.0, false}, &l.damping},
+                    {{"mu_s", "", 0.0, true}, &l.mu_static},
+                    {{"mu_d", "", 0.0, false}, &l.mu_dynamic},
+                    {{"v0", "m/s", 0.0, true}, &l.v0}};
+    }
+    return {};
+}
+
+std::vector<Field> fields_of(Model& model, const std::string& element) {
+    if (Mat* m = model.find_mat(element)) return mat_fields(*m);
+    if (Lia* l = model.find_lia(element)) return lia_fields(*l);
+    throw InputError(element, "no mass or link has this id");
+}
+
+Field& find_field(std::vector<Field>& fields, const std::string& element, const std::string& name) {
+    for (auto& f : fields)
+        if (f.info.name == name) return f;
+    std::string names;
+    for (const auto& f : fields) names += (names.empty() ? "" : ", ") + f.info.name;
+    throw InputError(element, "has no parameter \"" + name + "\"; its parameters are: " + names);
+}
+
+}  // namespace
+
+std::vector<ParameterInfo> element_parameters(const Model& model, const std::string& element) {
+    std::vector<ParameterInfo> out;
+    Model& m = const_cast<Model&>(model);  // fields_of only reads through these pointers here
+    if (!m.find_mat(element) && !m.find_lia(element)) return out;
+    for (const auto& f : fields_of(m, element)) out.push_back(f.info);
+    return out;
+}
+
+double get_parameter(const Model& model, const std::string& element, const std::string& name) {
+    Model& m = const_cast<Model&>(model);
+    auto fields = fields_of(m, element);
+    return *find_field(fields, element, name).value;
+}
+
+void set_parameter(Model& model, const std::string& element, const std::string& name,
+                   double value) {
+    auto fields = fields_of(model, element);
+    Field& f = find_field(fields, element, name);
+    const std::string where = element + "." + name;
+    if (!std::isfinite(value)) throw InputError(where, "value must be a finite number");
+    if (value < f.info.minimum || (f.info.strictly_positive && value <= f.info.minimum))
+        throw InputError(where, std::string("must be ") +
+                                    (f.info.strictly_positive ? "> " : ">= ") +
+                                    std::to_string(f.info.minimum) + " " + f.info.unit);
+    *f.value = value;
+}
+
+void apply_assignment(Model& model, const std::string& assignment) {
+    const auto eq = assignment.find('=');
+    const auto dot = assignment.rfind('.', eq);
+    if (eq == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 >= eq)
+        throw InputError("--set " + assignment, "expected ID.PARAM=VALUE, e.g. bow.mu_s=0.7");
+    const std::string text = assignment.substr(eq + 1);
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0')
+        throw InputError("--set " + assignment, "\"" + text + "\" is not a number");
+    set_parameter(model, assignment.substr(0, dot), assignment.substr(dot + 1, eq - dot - 1),
+                  value);
+}
+
+}  // namespace archet

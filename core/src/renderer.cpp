@@ -1,0 +1,27 @@
+#include "archet/renderer.hpp"
+
+#include <algorithm>
+
+namespace archet {
+
+void render(Simulation& sim, const RenderOptions& options,
+            const std::function<void(const RenderBlock&)>& sink) {
+    const std::size_t probe_count = options.with_probes ? sim.probe_count() : 0;
+    std::vector<double> audio(options.block_frames);
+    std::vector<double> probes(options.block_frames * probe_count);
+    std::uint64_t done = 0;
+    while (done < options.frames) {
+        const std::size_t frames = static_cast<std::size_t>(
+            std::min<std::uint64_t>(options.block_frames, options.frames - done));
+        for (std::size_t i = 0; i < frames; ++i) {
+            sim.step();
+            audio[i] = sim.output();
+            for (std::size_t p = 0; p < probe_count; ++p)
+                probes[i * probe_count + p] = sim.probe(p);
+        }
+        sink({done, frames, audio.data(), probe_count ? probes.data() : nullptr, probe_count});
+        done += frames;
+    }
+}
+
+}  // namespace archet

@@ -1,0 +1,455 @@
+#include "archet/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace archet {
+
+namespace {
+
+double envelope_at(const std::vector<std::pair<double, double>>& e, double t) {
+    if (t <= e.front().first) return e.front().second;
+    if (t >= e.back().first) return e.back().second;
+    auto it = std::upper_bound(e.begin(), e.end(), t,
+                               [](double v, const auto& p) { return v < p.first; });
+    const auto& b = *it;
+    const auto& a = *(it - 1);
+    return a.second + (t - a.first) / (b.first - a.first) * (b.second - a.second);
+}
+}  // namespace
+
+Simulation::Simulation(CompiledModel model) : model_(std::move(model)) {
+    active_.assign(model_.levels.size(), 0);
+    countdown_.assign(model_.levels.size(), 0);
+    dissipated_.assign(model_.source.lias.size() + model_.source.mats.size(), 0.0);
+    set_gesture_track(model_.source.gesture ? &*model_.source.gesture : nullptr);
+}
+
+void Simulation::set_gesture_track(const Gesture* gesture) {
+    track_ = gesture;
+    // Gesture points start at rest where the gesture starts.
+    for (auto& level : model_.levels)
+        for (auto& g : level.gestures) {
+            const double x = g.position_scale * gesture_axis(g.axis, time());
+            level.x()[g.index] = x;
+            level.x_prev()[g.index] = x;
+        }
+    for (auto& link : model_.cross_links)
+        link.d_prev = link.d_before = position(link.a) - position(link.b);
+}
+
+double Simulation::gesture_axis(GestureAxis axis, double t) const {
+    const GestureSample s = track_ ? track_->at(t) : device_;
+    return axis == GestureAxis::Slide ? s.slide : s.press;
+}
+
+void Simulation::enable_accounting(bool on) {
+    accounting_ = on;
+}
+
+double Simulation::velocity(MatSlot s) const {
+    const auto& lv = model_.levels[s.level];
+    return (lv.x()[s.index] - lv.x_prev()[s.index]) / lv.dt;
+}
+
+void Simulation::step() {
+    // Countdowns rather than tick % divider: a 64-bit division per level costs more than
+    // the whole step of a small model.
+    for (std::size_t l = 0; l < model_.levels.size(); ++l) {
+        active_[l] = countdown_[l] == 0;
+        countdown_[l] = active_[l] ? model_.levels[l].divider - 1 : countdown_[l] - 1;
+    }
+    apply_controls();
+    // Phase 1: every active LIA computes its force from x[n] (and x[n−1]).
+    for (std::size_t l = 0; l < model_.levels.size(); ++l)
+        if (active_[l]) compute_link_forces(model_.levels[l]);
+    compute_cross_link_forces();
+    // Phase 2: every active MAT integrates; the bow modules solve on the prediction.
+    for (std::size_t l = 0; l < model_.levels.size(); ++l)
+        if (active_[l]) integrate(model_.levels[l]);
+    // Phase 3: x[n+1] becomes x[n].
+    for (std::size_t l = 0; l < model_.levels.size(); ++l)
+        if (active_[l]) model_.levels[l].current = (model_.levels[l].current + 1) % 3;
+    ++tick_;
+}
+
+void Simulation::apply_controls() {
+    for (const auto& c : model_.controls) {
+        if (!active_[c.level]) continue;
+        double signal = 0;
+        switch (c.source) {
+            case Control::Source::Envelope:
+                signal = envelope_at(c.envelope, time());
+                break;
+            case Control::Source::Gesture:
+                signal = gesture_axis(c.axis, time());
+                break;
+            case Control::Source::Position:
+                signal = position(c.position_of);
+                break;
+        }
+        set_parameter(c.target, std::clamp(c.offset + c.gain * signal, c.minimum, c.maximum));
+    }
+}
+
+void Simulation::compute_link_forces(CompiledLevel& lv) {
+    const double* x = lv.x();
+    const double* xp = lv.x_prev();
+    double* ext = lv.external.data();
+    for (const auto& l : lv.links) {
+        const double d = x[l.a] - x[l.b];
+        const double dp = xp[l.a] - xp[l.b];
+        double f = l.k * (d - l.length) + l.zdt * (d - dp);
+        if (l.contact) f = (d - l.length > 0.0) ? std::max(f, 0.0) : 0.0;
+        ext[l.a] -= f;
+        ext[l.b] += f;
+    }
+    // The bow's pressure buffer: its force is the normal force of the friction.
+    for (int b : lv.bows) {
+        CompiledBow& bow = model_.bows[b];
+        const double p = x[bow.press] - x[bow.surface];
+        const double pp = xp[bow.press] - xp[bow.surface];
+        bow.normal = p > 0.0 ? std::max(0.0, bow.kb * p + bow.zbdt * (p - pp)) : 0.0;
+        ext[bow.press] -= bow.normal;
+        ext[bow.surface] += bow.normal;
+    }
+}
+
+// Links across rate levels: a link samples its ends at its own ticks. Its force is held over
+// its period on faster MATs (same impulse) and averaged over slower MATs' periods.
+void Simulation::compute_cross_link_forces() {
+    for (auto& l : model_.cross_links) {
+        const bool link_active = active_[l.level];
+        if (link_active) {
+            const double d = position(l.a) - position(l.b);
+            // The damping force of the previous tick has now seen its whole mid-step motion.
+            if (accounting_) dissipated_[l.element] += 0.5 * l.damping_force * (d - l.d_before);
+            const double damping = l.zdt * (d - l.d_prev);
+            double f = l.k * (d - l.length) + damping;
+            const bool acting = !l.contact || (d - l.length > 0.0 && f > 0.0);
+            l.force = acting ? f : 0.0;
+            l.damping_force = acting ? damping : 0.0;
+            l.d_before = l.d_prev;
+            l.d_prev = d;
+        }
+        // Faster (or same-rate) ends get the held force at each of their ticks; slower ends
+        // get it weighted by the link's share of their period, at the link's ticks.
+        if (l.a_held ? active_[l.a.level] : link_active)
+            model_.levels[l.a.level].external[l.a.index] -= l.a_weight * l.force;
+        if (l.b_held ? active_[l.b.level] : link_active)
+            model_.levels[l.b.level].external[l.b.index] += l.b_weight * l.force;
+    }
+}
+
+namespace {
+// The chain links and the integration of every MAT of a level: the bulk of the work, in two
+// loops the compiler vectorises. Built for AVX2 and plain x86-64 and chosen at load time;
+// without FMA contraction both give the same bits. Transverse strings have no rest lengths,
+// so a variant skips them.
+template <bool kWithLength>
+inline void chain_loops(int n, const double* __restrict x, const double* __restrict xp,
+                        double* __restrict xn, const double* __restrict k,
+                        const double* __restrict z, const double* __restrict len,
+                        const double* __restrict c, const double* __restrict ext,
+                        double* __restrict f) {
+    // Chain links j = 0..n (0 and n are padding with zero coefficients).
+    for (int j = 0; j <= n; ++j) {
+        const double d = x[j] - x[j + 1];
+        const double dp = xp[j] - xp[j + 1];
+        f[j] = kWithLength ? k[j] * (d - len[j]) + z[j] * (d - dp) : k[j] * d + z[j] * (d - dp);
+    }
+    for (int s = 1; s <= n; ++s) xn[s] = 2.0 * x[s] - xp[s] + c[s] * (ext[s] + f[s - 1] - f[s]);
+}
+
+__attribute__((target_clones("avx2", "default"))) void integrate_chain(const CompiledLevel& lv,
+                                                                       double* xn) {
+    const int current = lv.current;
+    const double* x = lv.buffer[current].data();
+    const double* xp = lv.buffer[(current + 2) % 3].data();
+    if (lv.has_chain_lengths)
+        chain_loops<true>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(),
+                          lv.chain_length.data(), lv.coeff.data(), lv.external.data(),
+                          const_cast<double*>(lv.chain_force.data()));
+    else
+        chain_loops<false>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(), nullptr,
+                           lv.coeff.data(), lv.external.data(),
+                           const_cast<double*>(lv.chain_force.data()));
+}
+}  // namespace
+
+void Simulation::integrate(CompiledLevel& lv) {
+    const double* x = lv.x();
+    const double* xp = lv.x_prev();
+    double* xn = lv.x_next();
+    const double* c = lv.coeff.data();
+    const double* f = lv.chain_force.data();
+    integrate_chain(lv, xn);
+    // Oscillator grounds: the update is linear in force, so add their share afterwards.
+    for (const auto& g : lv.grounds)
+        xn[g.index] -=
+            c[g.index] * (g.k * (x[g.index] - g.rest) + g.zdt * (x[g.index] - xp[g.index]));
+    for (int b : lv.bows) solve_bow(lv, model_.bows[b]);
+    for (std::size_t w = 0; w < lv.watched.size(); ++w) {
+        const int s = lv.watched[w];
+        lv.watched_force[w] = lv.external[s] + f[s - 1] - f[s];
+    }
+    update_gesture_points(lv);
+    if (accounting_) account(lv);
+    for (int s : lv.touched) lv.external[s] = 0.0;
+}
+
+// The bow–string friction, solved on the predicted motion so that it is stable for any
+// sharpness of the curve, and strictly passive in the scheme's own energy. Units below are
+// displacement per step (u = v·T); c = T²/m.
+//   u−     relative motion bow − string over the last step
+//   ufree  relative motion over the next step without friction
+//   F      friction on the string (−F on the bow): u+ = ufree − F·csum
+// The energy the friction takes over a step is F·(u+ + u−)/2; it must never be negative.
+// Stick: F closest to ufree/csum (u+ = 0) within [0, (ufree + u−)/csum], the passive range,
+//        when |F| ≤ μs·N.
+// Slip:  F = N·μ(|w|)·sign(w) at the mid-step velocity w = (u+ + u−)/(2T); with the
+//        hyperbolic curve μ(q) = μd + (μs − μd)·v0/(v0 + q) this is a quadratic in |w| with
+//        exactly one positive root.
+void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
+    const double* x = lv.x();
+    const double* xp = lv.x_prev();
+    double* xn = lv.x_next();
+    const double cb = lv.coeff[bow.bow], cs = lv.coeff[bow.string];
+    const double csum = cb + cs;
+    const double u_prev = (x[bow.bow] - xp[bow.bow]) - (x[bow.string] - xp[bow.string]);
+    const double u_free = (xn[bow.bow] - x[bow.bow]) - (xn[bow.string] - x[bow.string]);
+    const double n = bow.normal;
+    double f = 0.0;
+    bow.sticking = false;
+    bow.dissipated = 0.0;
+    if (n > 0.0) {
+        const double f_target = u_free / csum;
+        const double f_passive = (u_free + u_prev) / csum;
+        const double f_stick =
+            std::clamp(f_target, std::min(0.0, f_passive), std::max(0.0, f_passive));
+        if (std::abs(f_stick) <= bow.mu_s * n) {
+            f = f_stick;
+            bow.sticking = true;
+            // F·(u+ + u−)/2 with u+ = ufree − F·csum, written so that rounding cannot flip
+            // its sign: F and (F_passive − F) share the sign of F_passive.
+            bow.dissipated = 0.5 * f * csum * (f_passive - f);
+        } else {
+            const double w_free = 0.5 * (u_free + u_prev);
+            const double q_free = std::abs(w_free) / lv.dt;
+            const double alpha = n * csum / (2.0 * lv.dt);
+            const double b = bow.v0 + alpha * bow.mu_d - q_free;
+            const double cq = bow.v0 * (alpha * bow.mu_s - q_free);  // < 0 when slipping
+            const double root = std::sqrt(b * b - 4.0 * cq);
+            const double q = b > 0.0 ? -2.0 * cq / (b + root) : 0.5 * (root - b);
+            const double mu = bow.mu_d + (bow.mu_s - bow.mu_d) * bow.v0 / (bow.v0 + q);
+            f = std::copysign(n * mu, w_free);
+            bow.dissipated = n * mu * q * lv.dt;  // |F|·|w|·T, w the mid-step velocity
+        }
+    }
+    xn[bow.string] += f * cs;
+    xn[bow.bow] -= f * cb;
+    lv.external[bow.string] += f;
+    lv.external[bow.bow] -= f;
+    const double u_next = u_free - f * csum;
+    bow.friction = f;
+    bow.slip_velocity = u_next / lv.dt;
+}
+
+void Simulation::update_gesture_points(CompiledLevel& lv) {
+    if (lv.gestures.empty()) return;
+    double* xn = lv.x_next();
+    const double* xp = lv.x_prev();
+    const double t_next = time() + lv.dt;
+    for (auto& g : lv.gestures) {
+        xn[g.index] = g.position_scale * gesture_axis(g.axis, t_next);
+        // The model's force on the point, and the hand's work over this step in the
+        // scheme's energy: −F·(x[n+1] − x[n−1])/2.
+        g.force = lv.watched_force[g.watched];
+        const double work = -0.5 * g.force * (xn[g.index] - xp[g.index]);
+        g.work += work;
+        g.power = work / lv.dt;
+        hand_work_ += work;
+    }
+}
+
+void Simulation::account(CompiledLevel& lv) {
+    const double* x = lv.x();
+    const double* xp = lv.x_prev();
+    const double* xn = lv.x_next();
+    auto work = [&](double force, int a, int b) {  // damping force times mid-step motion
+        return 0.5 * force * ((xn[a] - xn[b]) - (xp[a] - xp[b]));
+    };
+    const std::size_t lias = model_.source.lias.size();
+    for (int j = 1; j < lv.size; ++j)
+        if (lv.chain_element[j] >= 0)
+            dissipated_[lv.chain_element[j]] +=
+                work(lv.chain_zdt[j] * ((x[j] - x[j + 1]) - (xp[j] - xp[j + 1])), j, j + 1);
+    for (const auto& l : lv.links) {
+        if (l.contact && x[l.a] - x[l.b] - l.length <= 0.0) continue;
+        dissipated_[l.element] += work(l.zdt * ((x[l.a] - x[l.b]) - (xp[l.a] - xp[l.b])), l.a, l.b);
+    }
+    for (const auto& g : lv.grounds)
+        dissipated_[lias + g.element] +=
+            0.5 * g.zdt * (x[g.index] - xp[g.index]) * (xn[g.index] - xp[g.index]);
+    for (int b : lv.bows) {
+        const CompiledBow& bow = model_.bows[b];
+        const double p = x[bow.press] - x[bow.surface], pp = xp[bow.press] - xp[bow.surface];
+        double buffer = 0;
+        if (p > 0.0 && bow.normal > 0.0) buffer = work(bow.zbdt * (p - pp), bow.press, bow.surface);
+        dissipated_[bow.element] += bow.dissipated + buffer;
+    }
+}
+
+void Simulation::set_parameter(const ParameterSlot& s, double v) {
+    using K = ParameterSlot::Kind;
+    CompiledLevel& lv = model_.levels[s.level];
+    switch (s.kind) {
+        case K::Mass:
+            lv.mass[s.index] = v, lv.coeff[s.index] = lv.dt * lv.dt / v;
+            break;
+        case K::ChainK:
+            lv.chain_k[s.index] = v;
+            break;
+        case K::ChainZ:
+            lv.chain_zdt[s.index] = v / lv.dt;
+            break;
+        case K::ChainLength: {
+            const Lia& l = model_.source.lias[lv.chain_element[s.index]];
+            const bool forward = model_.source.mats[lv.element_of[s.index]].id == l.from;
+            lv.chain_length[s.index] = forward ? v : -v;
+            lv.has_chain_lengths = lv.has_chain_lengths || v != 0.0;
+            break;
+        }
+        case K::LinkK:
+            lv.links[s.index].k = v;
+            break;
+        case K::LinkZ:
+            lv.links[s.index].zdt = v / lv.dt;
+            break;
+        case K::LinkLength:
+            lv.links[s.index].length = lv.links[s.index].contact ? -v : v;
+            break;
+        case K::GroundK:
+            lv.grounds[s.index].k = v;
+            break;
+        case K::GroundZ:
+            lv.grounds[s.index].zdt = v / lv.dt;
+            break;
+        case K::CrossK:
+            model_.cross_links[s.index].k = v;
+            break;
+        case K::CrossZ:
+            model_.cross_links[s.index].zdt = v / lv.dt;
+            break;
+        case K::CrossLength:
+            model_.cross_links[s.index].length = model_.cross_links[s.index].contact ? -v : v;
+            break;
+        case K::BowKb:
+            model_.bows[s.index].kb = v;
+            break;
+        case K::BowZb:
+            model_.bows[s.index].zbdt = v / lv.dt;
+            break;
+        case K::BowMuS:
+            model_.bows[s.index].mu_s = v;
+            break;
+        case K::BowMuD:
+            model_.bows[s.index].mu_d = v;
+            break;
+        case K::BowV0:
+            model_.bows[s.index].v0 = v;
+            break;
+        case K::GesturePositionScale:
+            lv.gestures[s.index].position_scale = v;
+            break;
+        case K::GestureForceScale:
+            lv.gestures[s.index].force_scale = v;
+            break;
+        case K::FixedPosition:
+            for (auto& b : lv.buffer) b[s.index] = v;
+            break;
+    }
+}
+
+double Simulation::stored_energy() const {
+    double e = 0;
+    for (const auto& lv : model_.levels) {
+        const double* x = lv.x();
+        const double* xp = lv.x_prev();
+        for (int s = 1; s <= lv.size; ++s) {
+            const double v = (x[s] - xp[s]) / lv.dt;
+            e += 0.5 * lv.mass[s] * v * v;
+        }
+        for (int j = 1; j < lv.size; ++j)
+            e += 0.5 * lv.chain_k[j] * (x[j] - x[j + 1] - lv.chain_length[j]) *
+                 (xp[j] - xp[j + 1] - lv.chain_length[j]);
+        for (const auto& l : lv.links) {
+            const double d = x[l.a] - x[l.b] - l.length, dp = xp[l.a] - xp[l.b] - l.length;
+            if (!l.contact || (d > 0 && dp > 0)) e += 0.5 * l.k * d * dp;
+        }
+        for (const auto& g : lv.grounds)
+            e += 0.5 * g.k * (x[g.index] - g.rest) * (xp[g.index] - g.rest);
+        for (int b : lv.bows) {
+            const auto& bow = model_.bows[b];
+            const double p = x[bow.press] - x[bow.surface], pp = xp[bow.press] - xp[bow.surface];
+            if (p > 0 && pp > 0) e += 0.5 * bow.kb * p * pp;
+        }
+    }
+    for (const auto& l : model_.cross_links) {
+        const double d = position(l.a) - position(l.b) - l.length, dp = l.d_prev - l.length;
+        if (!l.contact || (d > 0 && dp > 0)) e += 0.5 * l.k * d * dp;
+    }
+    return e;
+}
+
+double Simulation::power_in() const {
+    double p = 0;
+    for (const auto& lv : model_.levels)
+        for (const auto& g : lv.gestures) p += g.power;
+    return p;
+}
+
+double Simulation::probe(std::size_t i) const {
+    const CompiledProbe& p = model_.probes[i];
+    switch (p.kind) {
+        case ProbeKind::Position:
+            return position(p.mat);
+        case ProbeKind::Velocity:
+            return velocity(p.mat);
+        case ProbeKind::Force:
+            return model_.levels[p.mat.level].watched_force[p.watched];
+        case ProbeKind::NormalForce:
+            return model_.bows[p.bow].normal;
+        case ProbeKind::FrictionForce:
+            return model_.bows[p.bow].friction;
+        case ProbeKind::SlipVelocity:
+            return model_.bows[p.bow].slip_velocity;
+        case ProbeKind::Energy:
+            return stored_energy();
+        case ProbeKind::PowerIn:
+            return power_in();
+    }
+    return 0;
+}
+
+double Simulation::output() const {
+    double sum = 0;
+    for (const auto& o : model_.outputs) {
+        double v = 0;
+        switch (o.signal) {
+            case Output::Signal::Position:
+                v = position(o.mat);
+                break;
+            case Output::Signal::Velocity:
+                v = velocity(o.mat);
+                break;
+            case Output::Signal::Force:
+                v = model_.levels[o.mat.level].watched_force[o.watched];
+                break;
+        }
+        sum += o.gain * v;
+    }
+    return model_.output_gain * sum;
+}
+
+}  // namespace archet

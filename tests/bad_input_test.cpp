@@ -1,0 +1,102 @@
+// A corpus of bad models, gestures and command lines, run through the real `archet`: each
+// gets a message naming the element and the fix, exit status 2, and no file of the user's is
+// touched.
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "test_support.hpp"
+
+namespace archet {
+namespace {
+
+struct Case {
+    std::string file, expected;
+};
+
+std::vector<Case> corpus(const std::string& folder) {
+    std::vector<Case> cases;
+    std::istringstream lines(test::read_file(test::test_data(folder + "/expected.txt")));
+    std::string line;
+    while (std::getline(lines, line)) {
+        const auto tab = line.find('\t');
+        if (tab != std::string::npos) cases.push_back({line.substr(0, tab), line.substr(tab + 1)});
+    }
+    return cases;
+}
+
+TEST(BadInput, EveryBadModelIsRefusedWithAClearMessageAndStatus2) {
+    const auto cases = corpus("bad-models");
+    ASSERT_GE(cases.size(), 20u);
+    const auto dir = test::temp_dir("bad-models");
+    const auto precious = dir / "precious.wav";
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.file);
+        const std::string model = test::test_data("bad-models/" + c.file).string();
+        const auto check = test::run_archet({"check", model});
+        EXPECT_EQ(check.status, 2);
+        EXPECT_NE((check.out + check.err).find(c.expected), std::string::npos)
+            << check.out << check.err;
+
+        // Rendering it over an existing file leaves that file exactly as it was.
+        { std::ofstream(precious) << "the user's earlier take"; }
+        const auto render = test::run_archet({"render", model, "-o", precious.string()});
+        EXPECT_EQ(render.status, 2);
+        EXPECT_NE(render.err.find(c.expected), std::string::npos) << render.err;
+        EXPECT_EQ(test::read_file(precious), "the user's earlier take");
+        EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 1)
+            << "no temporary left behind";
+    }
+}
+
+TEST(BadInput, EveryBadGestureIsRefused) {
+    const std::string model = test::resource("models/bowed-string-220.json").string();
+    const auto dir = test::temp_dir("bad-gestures");
+    for (const auto& c : corpus("bad-gestures")) {
+        SCOPED_TRACE(c.file);
+        const auto r = test::run_archet({"render", model, "--gesture",
+                                         test::test_data("bad-gestures/" + c.file).string(), "-o",
+                                         (dir / "out.wav").string()});
+        EXPECT_EQ(r.status, 2);
+        EXPECT_NE(r.err.find(c.expected), std::string::npos) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "out.wav"));
+    }
+}
+
+TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
+    const std::string model = test::resource("models/bowed-string-220.json").string();
+    const auto dir = test::temp_dir("bad-commands");
+    const std::string out = (dir / "x.wav").string();
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"render", model, "-o", out, "--set", "s3.mas=1"}, "has no parameter \"mas\""},
+        {{"render", model, "-o", out, "--set", "nothing.mass=1"}, "no mass or link has this id"},
+        {{"render", model, "-o", out, "--set", "s3.mass=-2"}, "s3.mass: must be > 0"},
+        {{"render", model, "-o", out, "--set", "s3.mass"}, "expected ID.PARAM=VALUE"},
+        {{"render", model, "-o", out, "--set", "k3.stiffness=1e12"}, "unstable"},
+        {{"render", model, "-o", out, "--format", "mp3"}, "use wav or flac"},
+        {{"render", model, "-o", out, "--duration", "-1"}, "--duration"},
+        {{"render", model, "-o", (dir / "no/such/folder/x.wav").string()},
+         "is the folder writable"},
+        {{"render", (dir / "missing.json").string(), "-o", out}, "cannot open the file"},
+        {{"render", model}, "--output is required"},
+        {{"new", "bowed-string", "--pitch", "2000", "-o", out}, "at most 11 masses"},
+        {{"new", "bowed-string", "--pitch", "440", "--masses", "60", "-o", out},
+         "60 masses at 440 Hz are unstable"},
+        {{"new", "bowed-string", "--pitch", "-5", "-o", out}, "--pitch"},
+        {{"new", "bowed-string", "--bow-position", "0.7", "-o", out}, "beta must be in (0, 0.5)"},
+        {{"bench"}, "give either a MODEL file or --chain N"},
+        {{"frobnicate"}, "subcommand"},
+    };
+    for (const auto& [arguments, expected] : cases) {
+        SCOPED_TRACE(arguments[0] + " " + expected);
+        const auto r = test::run_archet(arguments);
+        EXPECT_EQ(r.status, 2);
+        EXPECT_NE((r.err + r.out).find(expected), std::string::npos) << r.err << r.out;
+    }
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace archet

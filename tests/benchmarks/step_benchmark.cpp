@@ -1,0 +1,51 @@
+// Cost of step() on the paper's strings and on large chains, and of compiling a large model.
+
+#include <benchmark/benchmark.h>
+
+#include "archet/bowed_chain.hpp"
+#include "archet/bowed_string.hpp"
+#include "archet/compiled_model.hpp"
+#include "archet/model_validation.hpp"
+#include "archet/simulation.hpp"
+
+namespace {
+
+void run_steps(benchmark::State& state, const archet::Model& model) {
+    archet::Simulation sim(archet::compile(model));
+    for (int i = 0; i < 9600; ++i) sim.step();  // past the bow's landing
+    for (auto _ : state) {
+        sim.step();
+        benchmark::DoNotOptimize(sim.output());
+    }
+    state.counters["ns_per_mass"] = benchmark::Counter(
+        static_cast<double>(state.iterations()) * static_cast<double>(model.mats.size()),
+        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
+void BM_BowedString(benchmark::State& state) {
+    archet::BowedStringOptions o;
+    o.pitch = static_cast<double>(state.range(0));
+    run_steps(state, archet::build_bowed_string(o));
+}
+BENCHMARK(BM_BowedString)->Arg(110)->Arg(220)->Arg(440)->Arg(880);
+
+void BM_BowedChain(benchmark::State& state) {
+    run_steps(state, archet::build_bowed_chain(static_cast<int>(state.range(0))));
+}
+BENCHMARK(BM_BowedChain)->Arg(60)->Arg(1000)->Arg(10000);
+
+void BM_Compile(benchmark::State& state) {
+    const archet::Model model = archet::build_bowed_chain(static_cast<int>(state.range(0)));
+    for (auto _ : state) benchmark::DoNotOptimize(archet::compile(model));
+}
+BENCHMARK(BM_Compile)->Arg(5000)->Unit(benchmark::kMillisecond);
+
+void BM_Validate(benchmark::State& state) {
+    const archet::Model model = archet::build_bowed_chain(static_cast<int>(state.range(0)));
+    for (auto _ : state) archet::validate_model(model);
+}
+BENCHMARK(BM_Validate)->Arg(5000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,131 @@
+// The command line as a user runs it: build a string, check it, render it with probes,
+// deterministically, and every option's help shows its default and unit.
+
+#include <gtest/gtest.h>
+#include <sndfile.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "test_support.hpp"
+
+namespace archet {
+namespace {
+
+TEST(Cli, NewCheckRenderAsInTheReadme) {
+    const auto dir = test::temp_dir("cli");
+    const std::string model = (dir / "cello.json").string();
+    auto r = test::run_archet(
+        {"new", "bowed-string", "--pitch", "98", "--bow-position", "0.1", "-o", model});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("tuned to 98 Hz"), std::string::npos) << r.out;
+
+    r = test::run_archet({"check", model});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("problems   none"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("98.000000 Hz"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("margin"), std::string::npos) << r.out;
+
+    const std::string wav = (dir / "cello.wav").string(), csv = (dir / "cello.csv").string();
+    r = test::run_archet({"render", model, "-o", wav, "--probes", csv, "--duration", "1.5"});
+    ASSERT_EQ(r.status, 0) << r.err;
+
+    SF_INFO info{};
+    SNDFILE* f = sf_open(wav.c_str(), SFM_READ, &info);
+    ASSERT_NE(f, nullptr);
+    EXPECT_EQ(info.samplerate, 48000);
+    EXPECT_EQ(info.channels, 1);
+    EXPECT_EQ(info.frames, 72000);
+    std::vector<double> audio(info.frames);
+    sf_read_double(f, audio.data(), info.frames);
+    sf_close(f);
+    double rms = 0;
+    for (std::size_t i = 36000; i < audio.size(); ++i) rms += audio[i] * audio[i];
+    EXPECT_GT(std::sqrt(rms / 36000), 0.01) << "the bowed string sounds";
+
+    std::istringstream lines(test::read_file(csv));
+    std::string header, row;
+    std::getline(lines, header);
+    EXPECT_EQ(header,
+              "time,bow_point_x,bow_point_v,bow_v,slip_v,normal_force,friction_force,bridge_force,"
+              "hand_force_slide,"
+              "hand_force_press,energy,power_in");
+    int rows = 0;
+    while (std::getline(lines, row)) ++rows;
+    EXPECT_EQ(rows, 72000) << "one row per audio-rate sample";
+}
+
+TEST(Cli, RenderingIsDeterministicToTheByte) {
+    const auto dir = test::temp_dir("determinism");
+    const std::string model = test::resource("models/bowed-string-440.json").string();
+    const std::string gesture = test::resource("gestures/detache.json").string();
+    for (const char* name : {"a", "b"}) {
+        const auto r =
+            test::run_archet({"render", model, "--gesture", gesture, "-o",
+                              (dir / (std::string(name) + ".flac")).string(), "--format", "flac",
+                              "--probes", (dir / (std::string(name) + ".csv")).string()});
+        ASSERT_EQ(r.status, 0) << r.err;
+    }
+    EXPECT_EQ(test::read_file(dir / "a.flac"), test::read_file(dir / "b.flac"));
+    EXPECT_EQ(test::read_file(dir / "a.csv"), test::read_file(dir / "b.csv"));
+    EXPECT_GT(test::read_file(dir / "a.flac").size(), 10000u);
+}
+
+TEST(Cli, SetAndSampleRateChangeTheRender) {
+    const auto dir = test::temp_dir("set");
+    const std::string model = test::resource("models/bowed-string-220.json").string();
+    auto r = test::run_archet({"render", model, "-o", (dir / "a.wav").string(), "--sample-rate",
+                               "96000", "--set", "friction.mu_s=0.9", "--set", "k3.damping=0.001",
+                               "--duration", "0.5"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    SF_INFO info{};
+    SNDFILE* f = sf_open((dir / "a.wav").c_str(), SFM_READ, &info);
+    ASSERT_NE(f, nullptr);
+    sf_close(f);
+    EXPECT_EQ(info.samplerate, 96000);
+    EXPECT_EQ(info.frames, 48000);
+}
+
+TEST(Cli, ClippingIsReportedNotSilent) {
+    const auto dir = test::temp_dir("clip");
+    auto text = test::read_file(test::resource("models/bowed-string-220.json"));
+    const auto at = text.find("\"output_gain\": ");
+    const auto end = text.find(',', at);
+    text.replace(at, end - at, "\"output_gain\": 500.0");
+    const auto loud = dir / "loud.json";
+    { std::ofstream(loud) << text; }
+    const auto r = test::run_archet(
+        {"render", loud.string(), "-o", (dir / "loud.wav").string(), "--duration", "0.5"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("exceeded full scale"), std::string::npos) << r.err;
+}
+
+TEST(Cli, EveryOptionShowsItsDefaultAndUnit) {
+    auto r = test::run_archet({"new", "bowed-string", "--help"});
+    EXPECT_EQ(r.status, 0);
+    for (const char* s : {"--pitch", "(Hz)", "220", "--string-damping", "N·s/m", "--bow-position",
+                          "0.12", "--masses"})
+        EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+    r = test::run_archet({"render", "--help"});
+    for (const char* s : {"--gesture", "--duration", "--probes", "--format", "wav", "--sample-rate",
+                          "--set", "(Hz"})
+        EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+    r = test::run_archet({"bench", "--help"});
+    for (const char* s : {"--chain", "--seconds", "2", "--json"})
+        EXPECT_NE(r.out.find(s), std::string::npos) << s;
+    r = test::run_archet({"--version"});
+    EXPECT_EQ(r.status, 0);
+    EXPECT_NE(r.out.find("archet 0."), std::string::npos);
+}
+
+TEST(Cli, BenchReportsJsonWithTheDocumentedKeys) {
+    const auto r = test::run_archet({"bench", "--chain", "200", "--seconds", "0.05", "--json"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    for (const char* key :
+         {"\"ns_per_sample\"", "\"realtime_load\"", "\"masses\": 207", "\"links\": 204"})
+        EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+}
+
+}  // namespace
+}  // namespace archet

@@ -1,0 +1,118 @@
+#include "test_support.hpp"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace archet::test {
+
+std::filesystem::path source_dir() {
+    return ARCHET_SOURCE_DIR;
+}
+std::filesystem::path resource(const std::string& relative) {
+    return source_dir() / "resources" / relative;
+}
+std::filesystem::path test_data(const std::string& relative) {
+    return source_dir() / "tests" / "data" / relative;
+}
+
+std::filesystem::path temp_dir(const std::string& name) {
+    auto dir = std::filesystem::temp_directory_path() /
+               ("archet-test-" + name + "-" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+namespace {
+std::string quote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+}  // namespace
+
+std::string read_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+CommandResult run_archet(const std::vector<std::string>& arguments) {
+    const auto dir = temp_dir("run");
+    std::string command = quote(ARCHET_BINARY);
+    for (const auto& a : arguments) command += " " + quote(a);
+    command += " >" + quote((dir / "out").string()) + " 2>" + quote((dir / "err").string()) +
+               " </dev/null";
+    const int raw = std::system(command.c_str());
+    CommandResult r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+    r.out = read_file(dir / "out");
+    r.err = read_file(dir / "err");
+    std::filesystem::remove_all(dir);
+    return r;
+}
+
+double zero_crossing_frequency(const std::vector<double>& x, double fs) {
+    double first = -1, last = -1;
+    int crossings = 0;
+    for (std::size_t i = 1; i < x.size(); ++i) {
+        if (x[i - 1] < 0 && x[i] >= 0) {
+            const double t = (static_cast<double>(i - 1) + (-x[i - 1]) / (x[i] - x[i - 1])) / fs;
+            if (first < 0)
+                first = t;
+            else
+                ++crossings;
+            last = t;
+        }
+    }
+    return crossings > 0 ? crossings / (last - first) : 0.0;
+}
+
+double sinusoid_frequency(const std::vector<double>& x, double fs) {
+    double cross = 0, square = 0;
+    for (std::size_t n = 1; n + 1 < x.size(); ++n)
+        cross += x[n] * (x[n + 1] + x[n - 1]), square += x[n] * x[n];
+    return std::acos(cross / (2 * square)) * fs / (2 * std::acos(-1.0));
+}
+
+Mat mass(const std::string& id, double m, double position, const std::string& rate) {
+    Mat x;
+    x.id = id, x.kind = MatKind::Mass, x.mass = m, x.position = position, x.rate = rate;
+    return x;
+}
+
+Mat fixed(const std::string& id, double position, const std::string& rate) {
+    Mat x;
+    x.id = id, x.kind = MatKind::Fixed, x.position = position, x.rate = rate;
+    return x;
+}
+
+Lia spring_damper(const std::string& id, const std::string& from, const std::string& to, double k,
+                  double z, const std::string& rate) {
+    Lia l;
+    l.id = id, l.kind = LiaKind::SpringDamper, l.from = from, l.to = to, l.stiffness = k,
+    l.damping = z, l.rate = rate;
+    return l;
+}
+
+Model chain(int n, double m, double k, double z, double fs) {
+    Model model;
+    model.name = "chain";
+    model.sample_rate = fs;
+    model.mats.push_back(fixed("end_a"));
+    for (int i = 1; i <= n; ++i) model.mats.push_back(mass("m" + std::to_string(i), m));
+    model.mats.push_back(fixed("end_b"));
+    for (int i = 0; i <= n; ++i)
+        model.lias.push_back(spring_damper("l" + std::to_string(i),
+                                           i == 0 ? "end_a" : "m" + std::to_string(i),
+                                           i == n ? "end_b" : "m" + std::to_string(i + 1), k, z));
+    return model;
+}
+
+}  // namespace archet::test
