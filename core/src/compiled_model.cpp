@@ -97,6 +97,7 @@ CompiledModel compile(const Model& model, double sample_rate) {
         lv.coeff.assign(storage, 0.0);
         lv.mass.assign(storage, 0.0);
         lv.external.assign(storage, 0.0);
+        lv.held.assign(storage, 0.0);
         lv.chain_k.assign(storage, 0.0);
         lv.chain_zdt.assign(storage, 0.0);
         lv.chain_length.assign(storage, 0.0);

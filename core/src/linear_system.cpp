@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <queue>
+#include <unordered_map>
 
 namespace archet {
 
@@ -21,10 +22,12 @@ LinearSystem assemble_linear_system(const Model& model, const std::string& rate_
     sys.rate = level->id;
     sys.dt = level->divider / model.sample_rate;
 
-    std::map<std::string, int> index;
+    std::unordered_map<std::string, const Mat*> mats;
+    for (const auto& m : model.mats) mats.emplace(m.id, &m);
+    std::unordered_map<std::string, int> index;
     auto dof_of = [&](const std::string& id) -> int {
-        const Mat* m = model.find_mat(id);
-        if (!m || !has_inertia(*m)) return -1;
+        const auto found = mats.find(id);
+        if (found == mats.end() || !has_inertia(*found->second)) return -1;
         auto [it, added] = index.emplace(id, static_cast<int>(sys.dofs.size()));
         if (added) sys.dofs.push_back(id);
         return it->second;
@@ -55,7 +58,7 @@ LinearSystem assemble_linear_system(const Model& model, const std::string& rate_
 
     const int n = sys.size();
     sys.mass.resize(n);
-    for (int i = 0; i < n; ++i) sys.mass[i] = model.find_mat(sys.dofs[i])->mass;
+    for (int i = 0; i < n; ++i) sys.mass[i] = mats.at(sys.dofs[i])->mass;
     sys.stiffness.resize(n, n);
     sys.damping.resize(n, n);
     sys.stiffness.setFromTriplets(k.begin(), k.end());

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 
+#include "archet/denormal_guard.hpp"
+
 namespace archet {
 
 void render(Simulation& sim, const RenderOptions& options,
             const std::function<void(const RenderBlock&)>& sink) {
+    const DenormalGuard no_denormals;
     const std::size_t probe_count = options.with_probes ? sim.probe_count() : 0;
     std::vector<double> audio(options.block_frames);
     std::vector<double> probes(options.block_frames * probe_count);

@@ -59,7 +59,7 @@ void Simulation::step() {
         active_[l] = countdown_[l] == 0;
         countdown_[l] = active_[l] ? model_.levels[l].divider - 1 : countdown_[l] - 1;
     }
-    apply_controls();
+    if (!model_.controls.empty()) apply_controls();
     // Phase 1: every active LIA computes its force from x[n] (and x[n−1]).
     for (std::size_t l = 0; l < model_.levels.size(); ++l)
         if (active_[l]) compute_link_forces(model_.levels[l]);
@@ -118,26 +118,34 @@ void Simulation::compute_link_forces(CompiledLevel& lv) {
 // Links across rate levels: a link samples its ends at its own ticks. Its force is held over
 // its period on faster MATs (same impulse) and averaged over slower MATs' periods.
 void Simulation::compute_cross_link_forces() {
+    bool any_ticked = false;
     for (auto& l : model_.cross_links) {
-        const bool link_active = active_[l.level];
-        if (link_active) {
-            const double d = position(l.a) - position(l.b);
-            // The damping force of the previous tick has now seen its whole mid-step motion.
-            if (accounting_) dissipated_[l.element] += 0.5 * l.damping_force * (d - l.d_before);
-            const double damping = l.zdt * (d - l.d_prev);
-            double f = l.k * (d - l.length) + damping;
-            const bool acting = !l.contact || (d - l.length > 0.0 && f > 0.0);
-            l.force = acting ? f : 0.0;
-            l.damping_force = acting ? damping : 0.0;
-            l.d_before = l.d_prev;
-            l.d_prev = d;
-        }
-        // Faster (or same-rate) ends get the held force at each of their ticks; slower ends
-        // get it weighted by the link's share of their period, at the link's ticks.
-        if (l.a_held ? active_[l.a.level] : link_active)
-            model_.levels[l.a.level].external[l.a.index] -= l.a_weight * l.force;
-        if (l.b_held ? active_[l.b.level] : link_active)
-            model_.levels[l.b.level].external[l.b.index] += l.b_weight * l.force;
+        if (!active_[l.level]) continue;
+        any_ticked = true;
+        const double d = position(l.a) - position(l.b);
+        // The damping force of the previous tick has now seen its whole mid-step motion.
+        if (accounting_) dissipated_[l.element] += 0.5 * l.damping_force * (d - l.d_before);
+        const double damping = l.zdt * (d - l.d_prev);
+        const double f = l.k * (d - l.length) + damping;
+        const bool acting = !l.contact || (d - l.length > 0.0 && f > 0.0);
+        l.force = acting ? f : 0.0;
+        l.damping_force = acting ? damping : 0.0;
+        l.d_before = l.d_prev;
+        l.d_prev = d;
+        // A slower end gets the force weighted by the link's share of its period.
+        if (!l.a_held) model_.levels[l.a.level].external[l.a.index] -= l.a_weight * l.force;
+        if (!l.b_held) model_.levels[l.b.level].external[l.b.index] += l.b_weight * l.force;
+    }
+    if (!any_ticked) return;
+    // Faster (or same-rate) ends get the force held at each of their ticks until the link's
+    // next tick: rebuild those sums now, so that the steps in between cost nothing.
+    for (const auto& l : model_.cross_links) {
+        if (l.a_held) model_.levels[l.a.level].held[l.a.index] = 0.0;
+        if (l.b_held) model_.levels[l.b.level].held[l.b.index] = 0.0;
+    }
+    for (const auto& l : model_.cross_links) {
+        if (l.a_held) model_.levels[l.a.level].held[l.a.index] -= l.force;
+        if (l.b_held) model_.levels[l.b.level].held[l.b.index] += l.force;
     }
 }
 
@@ -150,15 +158,14 @@ template <bool kWithLength>
 inline void chain_loops(int n, const double* __restrict x, const double* __restrict xp,
                         double* __restrict xn, const double* __restrict k,
                         const double* __restrict z, const double* __restrict len,
-                        const double* __restrict c, const double* __restrict ext,
-                        double* __restrict f) {
+                        const double* __restrict c, double* __restrict f) {
     // Chain links j = 0..n (0 and n are padding with zero coefficients).
     for (int j = 0; j <= n; ++j) {
         const double d = x[j] - x[j + 1];
         const double dp = xp[j] - xp[j + 1];
         f[j] = kWithLength ? k[j] * (d - len[j]) + z[j] * (d - dp) : k[j] * d + z[j] * (d - dp);
     }
-    for (int s = 1; s <= n; ++s) xn[s] = 2.0 * x[s] - xp[s] + c[s] * (ext[s] + f[s - 1] - f[s]);
+    for (int s = 1; s <= n; ++s) xn[s] = 2.0 * x[s] - xp[s] + c[s] * (f[s - 1] - f[s]);
 }
 
 __attribute__((target_clones("avx2", "default"))) void integrate_chain(const CompiledLevel& lv,
@@ -168,12 +175,11 @@ __attribute__((target_clones("avx2", "default"))) void integrate_chain(const Com
     const double* xp = lv.buffer[(current + 2) % 3].data();
     if (lv.has_chain_lengths)
         chain_loops<true>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(),
-                          lv.chain_length.data(), lv.coeff.data(), lv.external.data(),
+                          lv.chain_length.data(), lv.coeff.data(),
                           const_cast<double*>(lv.chain_force.data()));
     else
         chain_loops<false>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(), nullptr,
-                           lv.coeff.data(), lv.external.data(),
-                           const_cast<double*>(lv.chain_force.data()));
+                           lv.coeff.data(), const_cast<double*>(lv.chain_force.data()));
 }
 }  // namespace
 
@@ -184,16 +190,21 @@ void Simulation::integrate(CompiledLevel& lv) {
     const double* c = lv.coeff.data();
     const double* f = lv.chain_force.data();
     integrate_chain(lv, xn);
-    // Oscillator grounds: the update is linear in force, so add their share afterwards.
+    // The update is linear in force, so the other forces add their share afterwards, only
+    // where there are any: the other links' (`external`), held forces of slower links, and
+    // oscillator grounds'.
+    const double* ext = lv.external.data();
+    const double* held = lv.held.data();
+    for (int s : lv.touched) xn[s] += c[s] * (ext[s] + held[s]);
     for (const auto& g : lv.grounds)
         xn[g.index] -=
             c[g.index] * (g.k * (x[g.index] - g.rest) + g.zdt * (x[g.index] - xp[g.index]));
     for (int b : lv.bows) solve_bow(lv, model_.bows[b]);
     for (std::size_t w = 0; w < lv.watched.size(); ++w) {
         const int s = lv.watched[w];
-        lv.watched_force[w] = lv.external[s] + f[s - 1] - f[s];
+        lv.watched_force[w] = ext[s] + held[s] + f[s - 1] - f[s];
     }
-    update_gesture_points(lv);
+    if (!lv.gestures.empty()) update_gesture_points(lv);
     if (accounting_) account(lv);
     for (int s : lv.touched) lv.external[s] = 0.0;
 }
@@ -256,7 +267,6 @@ void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
 }
 
 void Simulation::update_gesture_points(CompiledLevel& lv) {
-    if (lv.gestures.empty()) return;
     double* xn = lv.x_next();
     const double* xp = lv.x_prev();
     const double t_next = time() + lv.dt;

@@ -80,6 +80,7 @@ struct CompiledLevel {
     std::vector<double> coeff;      ///< T² / m, zero for immovable MATs
     std::vector<double> mass;       ///< kg, zero for immovable MATs
     std::vector<double> external;   ///< forces from non-chain links, N
+    std::vector<double> held;       ///< forces of slower links, held between their ticks, N
     std::vector<double> chain_k, chain_zdt, chain_length;  ///< link j joins storage j, j+1
     bool has_chain_lengths = false;                        ///< any non-zero chain_length
     std::vector<double> chain_force;  ///< scratch: force of each chain link this step

@@ -24,7 +24,8 @@ struct RenderOptions {
     std::size_t block_frames = 4096;
 };
 
-/// Steps `simulation` options.frames times, calling `sink` after each block.
+/// Steps `simulation` options.frames times, calling `sink` after each block. Denormals are
+/// flushed to zero while it runs (see DenormalGuard).
 void render(Simulation& simulation, const RenderOptions& options,
             const std::function<void(const RenderBlock&)>& sink);
 

@@ -22,10 +22,12 @@ struct StabilityReport {
     static constexpr double kLimit = 4.0;
 };
 
-StabilityReport analyse_stability(const LinearSystem& system);
+/// With `exact` false, a Gershgorin row-sum bound that already proves stability is reported
+/// instead of the eigenvalue (cheap for huge models); the eigenvalue is computed otherwise.
+StabilityReport analyse_stability(const LinearSystem& system, bool exact = true);
 
 /// One report per rate level of the model.
-std::vector<StabilityReport> analyse_stability(const Model& model);
+std::vector<StabilityReport> analyse_stability(const Model& model, bool exact = true);
 
 /// Largest eigenvalue of a symmetric sparse matrix (dense below a few hundred rows, else
 /// Lanczos with full re-orthogonalisation plus its residual bound, an upper estimate).
