@@ -18,6 +18,13 @@ void add_new_command(CLI::App& app, Action& action) {
     auto output = std::make_shared<std::string>();
     auto no_gesture = std::make_shared<bool>(false);
     bowed->add_option("--pitch", o->pitch, "First mode of the string (Hz)")->capture_default_str();
+    auto tuning = std::make_shared<std::string>("homogeneous");
+    bowed
+        ->add_option(
+            "--tuning", *tuning,
+            "homogeneous (equal masses, flat partials) or harmonic (first N partials on k·f0)")
+        ->check(CLI::IsMember({"homogeneous", "harmonic"}))
+        ->capture_default_str();
     bowed->add_option("--masses", o->masses, "Masses in the chaplet, 25-60 (0 = largest stable)")
         ->capture_default_str();
     bowed
@@ -54,9 +61,10 @@ void add_new_command(CLI::App& app, Action& action) {
         ->capture_default_str();
     bowed->add_flag("--no-gesture", *no_gesture, "Do not embed the steady-bow gesture");
     bowed->add_option("-o,--output", *output, "Model file to write (.json)")->required();
-    bowed->callback([&action, o, output, no_gesture] {
-        action = [o, output, no_gesture] {
+    bowed->callback([&action, o, output, no_gesture, tuning] {
+        action = [o, output, no_gesture, tuning] {
             o->with_gesture = !*no_gesture;
+            o->tuning = *tuning == "harmonic" ? Tuning::Harmonic : Tuning::Homogeneous;
             const Model model = build_bowed_string(*o);
             write_file_atomically(*output, format_model(model));
             std::cout << "wrote " << *output << ": " << model.description << "\n";

@@ -13,5 +13,7 @@ void add_new_command(CLI::App& app, Action& action);
 void add_render_command(CLI::App& app, Action& action);
 void add_check_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
+void add_modes_command(CLI::App& app, Action& action);
+void add_bowing_command(CLI::App& app, Action& action);
 
 }  // namespace archet::cli

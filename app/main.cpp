@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
     archet::cli::add_new_command(app, action);
     archet::cli::add_render_command(app, action);
     archet::cli::add_check_command(app, action);
+    archet::cli::add_modes_command(app, action);
+    archet::cli::add_bowing_command(app, action);
     archet::cli::add_bench_command(app, action);
     try {
         app.parse(argc, argv);

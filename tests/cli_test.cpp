@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "test_support.hpp"
@@ -125,6 +126,30 @@ TEST(Cli, BenchReportsJsonWithTheDocumentedKeys) {
     for (const char* key :
          {"\"ns_per_sample\"", "\"realtime_load\"", "\"masses\": 207", "\"links\": 204"})
         EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
+}
+
+}  // namespace
+}  // namespace archet
+
+namespace archet {
+namespace {
+
+TEST(Cli, BowingComparesAttacksSideBySide) {
+    const auto r = test::run_archet(
+        {"bowing", test::resource("models/bowed-string-220.json").string(),
+         test::resource("models/bowed-string-220-harmonic.json").string(), "--json"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_EQ(j.size(), 2u);
+    EXPECT_EQ(j[1]["model"], "bowed-string-220-harmonic");
+    EXPECT_TRUE(j[0]["helmholtz_motion"].get<bool>());
+    EXPECT_TRUE(j[1]["helmholtz_motion"].get<bool>());
+    EXPECT_LT(j[1]["attack"].get<double>(), j[0]["attack"].get<double>());
+    const auto text = test::run_archet(
+        {"bowing", test::resource("models/bowed-string-880-harmonic.json").string()});
+    EXPECT_EQ(text.status, 0);
+    EXPECT_NE(text.out.find("never"), std::string::npos)
+        << "no Helmholtz motion, said plainly: " << text.out;
 }
 
 }  // namespace

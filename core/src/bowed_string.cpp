@@ -5,8 +5,10 @@
 #include <sstream>
 
 #include "archet/discrete_modes.hpp"
+#include "archet/harmonic_chain.hpp"
 #include "archet/input_error.hpp"
 #include "archet/linear_system.hpp"
+#include "archet/modal_analysis.hpp"
 #include "archet/model_validation.hpp"
 #include "archet/stability.hpp"
 
@@ -28,11 +30,15 @@ std::string mass_id(int i) {
     return "s" + std::to_string(i);
 }
 
-// The string alone: bridges and chain, link stiffness k and damping z.
-Model string_model(const BowedStringOptions& o, int n, double k, double z) {
-    const double length = std::sqrt(o.tension / o.linear_density) / (2.0 * o.pitch);
-    const double string_mass = o.linear_density * length;
-    const double m = string_mass / n;
+double string_length(const BowedStringOptions& o) {
+    return std::sqrt(o.tension / o.linear_density) / (2.0 * o.pitch);
+}
+
+// The string alone: bridges and the chain of `profile`, each link damped in proportion to its
+// stiffness (z = ratio·k) so that damping stays proportional and the modes keep their shapes.
+Model string_model(const BowedStringOptions& o, const ChainProfile& profile, double damping_ratio) {
+    const int n = static_cast<int>(profile.masses.size());
+    const double string_mass = o.linear_density * string_length(o);
     const double bridge_mass = o.bridge_mass_ratio * string_mass;
     const double omega_b = 2.0 * std::numbers::pi * o.bridge_frequency;
     Model model;
@@ -50,7 +56,7 @@ Model string_model(const BowedStringOptions& o, int n, double k, double z) {
     model.mats.push_back(bridge("bridge", 0.0));
     for (int i = 1; i <= n; ++i) {
         Mat s;
-        s.id = mass_id(i), s.kind = MatKind::Mass, s.rate = "audio", s.mass = m;
+        s.id = mass_id(i), s.kind = MatKind::Mass, s.rate = "audio", s.mass = profile.masses[i - 1];
         s.display = {{40.0 * i, 0.0}};
         model.mats.push_back(s);
     }
@@ -58,47 +64,82 @@ Model string_model(const BowedStringOptions& o, int n, double k, double z) {
     for (int i = 0; i <= n; ++i) {
         Lia l;
         l.id = "k" + std::to_string(i);
-        l.kind = z > 0 ? LiaKind::SpringDamper : LiaKind::Spring;
+        l.kind = damping_ratio > 0 ? LiaKind::SpringDamper : LiaKind::Spring;
         l.rate = "audio";
         l.from = i == 0 ? "bridge" : mass_id(i);
         l.to = i == n ? "nut" : mass_id(i + 1);
-        l.stiffness = k, l.damping = z;
+        l.stiffness = profile.springs[i];
+        l.damping = damping_ratio * profile.springs[i];
         model.lias.push_back(l);
     }
     return model;
 }
 
-// The string's first mode: the one nearest the pitch. (The two bridges add their own modes
-// far below it, one of them raised by the string's stiffness between them.)
-double first_mode(const Model& m, double pitch) {
-    double best = 0;
-    for (const auto& mode : discrete_modes(assemble_linear_system(m, "audio")))
-        if (std::abs(mode.frequency - pitch) < std::abs(best - pitch)) best = mode.frequency;
-    return best;
+// z/k for the string's links: from --string-damping (per link, or its mean for a
+// non-homogeneous chain), else so that the first mode alone decays in string_t60, since
+// stiffness-proportional damping makes mode 1 decay at σ = (z/2k)·ω1².
+double damping_ratio(const BowedStringOptions& o, const ChainProfile& profile) {
+    double mean_k = 0;
+    for (double k : profile.springs) mean_k += k / profile.springs.size();
+    if (o.string_damping >= 0.0) return o.string_damping / mean_k;
+    const double omega = 2.0 * std::numbers::pi * o.pitch;
+    return 2.0 * std::log(1000.0) / (o.string_t60 * omega * omega);
 }
 
-// Link stiffness (and damping) that put the string's first discrete mode on the pitch.
-Model tuned_string(const BowedStringOptions& o, int n) {
-    const double length = std::sqrt(o.tension / o.linear_density) / (2.0 * o.pitch);
-    const double m = o.linear_density * length / n;
+// Homogeneous chaplet: equal masses and links, link stiffness refined until the string's
+// first mode (the one nearest the pitch: the bridges add their own far below) is the pitch.
+Model homogeneous_string(const BowedStringOptions& o, int n) {
+    const double m = o.linear_density * string_length(o) / n;
     const double dt = 1.0 / o.sample_rate;
     // Fixed–fixed discrete chain: sin(Ω1·T/2) = √(K·T²/m)·sin(π/(2(N+1))).
     const double ratio =
         std::sin(std::numbers::pi * o.pitch * dt) / std::sin(std::numbers::pi / (2.0 * (n + 1)));
-    double k = m / (dt * dt) * ratio * ratio;
-    auto damping_for = [&](double stiffness) {
-        if (o.string_damping >= 0.0) return o.string_damping;
-        // Damping proportional to stiffness: mode 1 decays at σ = (z/2K)·ω1².
-        const double omega = 2.0 * std::numbers::pi * o.pitch;
-        return 2.0 * stiffness * std::log(1000.0) / (o.string_t60 * omega * omega);
-    };
-    Model model = string_model(o, n, k, damping_for(k));
+    ChainProfile profile{std::vector<double>(n, m),
+                         std::vector<double>(n + 1, m / (dt * dt) * ratio * ratio)};
+    Model model = string_model(o, profile, damping_ratio(o, profile));
     for (int iteration = 0; iteration < 30; ++iteration) {
-        const double f = first_mode(model, o.pitch);
-        if (f <= 0.0) break;
-        if (std::abs(f / o.pitch - 1.0) < 1e-13) break;
-        k *= (o.pitch / f) * (o.pitch / f);
-        model = string_model(o, n, k, damping_for(k));
+        double f = 0;
+        for (const auto& mode : discrete_modes(assemble_linear_system(model, "audio")))
+            if (std::abs(mode.frequency - o.pitch) < std::abs(f - o.pitch)) f = mode.frequency;
+        if (f <= 0.0 || std::abs(f / o.pitch - 1.0) < 1e-13) break;
+        for (double& k : profile.springs) k *= (o.pitch / f) * (o.pitch / f);
+        model = string_model(o, profile, damping_ratio(o, profile));
+    }
+    return model;
+}
+
+// Harmonic chaplet: masses and links from the inverse eigenvalue problem so that its first
+// n partials fall on k·f0. The targets are corrected for what the fixed-end solution leaves
+// out (heavy but movable bridges, damping) until the simulated partials are harmonic.
+Model harmonic_string(const BowedStringOptions& o, int n) {
+    const double string_mass = o.linear_density * string_length(o);
+    std::vector<double> targets;
+    for (int k = 1; k <= n; ++k) targets.push_back(k * o.pitch);
+    Model model;
+    for (int iteration = 0; iteration < 40; ++iteration) {
+        ChainProfile profile;
+        try {
+            profile =
+                chain_with_eigenvalues(prewarped_eigenvalues(targets, o.sample_rate), string_mass);
+        } catch (const std::domain_error& e) {
+            throw InputError("--tuning", std::string("no harmonic chaplet found (") + e.what() +
+                                             "); try fewer masses");
+        }
+        model = string_model(o, profile, damping_ratio(o, profile));
+        const ModalAnalysis modes = analyse_modes(assemble_linear_system(model, "audio"), model);
+        double worst = 0;
+        int k = 0;
+        for (const auto& mode : modes.modes) {
+            if (mode.support || k >= n) continue;
+            const double wanted = (k + 1) * o.pitch;
+            worst = std::max(worst, std::abs(1200.0 * std::log2(mode.frequency / wanted)));
+            targets[k] *= wanted / mode.frequency;
+            ++k;
+        }
+        if (k < n)
+            throw InputError("--tuning", "the harmonic chaplet lost partials; try fewer masses");
+        if (worst < 1e-4) break;
+        if (targets.back() >= o.sample_rate / 2) break;  // the stability check below says why
     }
     return model;
 }
@@ -134,13 +175,14 @@ void add_bow(Model& model, const BowedStringOptions& o, int n) {
 }
 
 Model assemble(const BowedStringOptions& o, int n) {
-    Model model = tuned_string(o, n);
+    Model model = o.tuning == Tuning::Harmonic ? harmonic_string(o, n) : homogeneous_string(o, n);
     add_bow(model, o, n);
     std::ostringstream name, description;
-    name << "bowed-string-" << fmt(o.pitch);
+    name << "bowed-string-" << fmt(o.pitch) << (o.tuning == Tuning::Harmonic ? "-harmonic" : "");
     const int bowed = std::clamp(static_cast<int>(std::lround(o.bow_position * (n + 1))), 1, n / 2);
-    description << "Homogeneous chaplet of " << n << " masses tuned to " << fmt(o.pitch)
-                << " Hz, bowed at mass " << bowed
+    description << (o.tuning == Tuning::Harmonic ? "Harmonic chaplet of "
+                                                 : "Homogeneous chaplet of ")
+                << n << " masses tuned to " << fmt(o.pitch) << " Hz, bowed at mass " << bowed
                 << " (beta = " << fmt(static_cast<double>(bowed) / (n + 1))
                 << "), heavy damped bridges, sound from the bridge force.";
     model.name = name.str();
@@ -231,21 +273,40 @@ int max_stable_masses(double pitch, double sample_rate) {
     return best;
 }
 
+int max_harmonic_masses(double pitch, double sample_rate) {
+    // Partial N must stay below fs/2: N·f0 < fs/2.
+    const int n = static_cast<int>(std::ceil(sample_rate / 2.0 / pitch)) - 1;
+    return std::max(n, 0);
+}
+
 Model build_bowed_string(const BowedStringOptions& o) {
     check_options(o);
-    const int limit = max_stable_masses(o.pitch, o.sample_rate);
+    const bool harmonic = o.tuning == Tuning::Harmonic;
+    const int limit = harmonic ? max_harmonic_masses(o.pitch, o.sample_rate)
+                               : max_stable_masses(o.pitch, o.sample_rate);
     auto explain = [&](const std::string& what) {
-        return what + ": a homogeneous chain of N masses tuned to " + fmt(o.pitch) +
-               " Hz puts its highest mode near " + "(N+1)·" + fmt(o.pitch) +
-               " Hz, and the explicit scheme needs every mode below fs/π (ω·T < 2); at " +
-               fmt(o.sample_rate) + " Hz that allows at most " + std::to_string(limit) +
+        const std::string why =
+            harmonic ? " Hz needs its N-th partial N·" + fmt(o.pitch) +
+                           " Hz below fs/2 = " + fmt(o.sample_rate / 2) + " Hz"
+                     : " Hz puts its highest mode near (N+1)·" + fmt(o.pitch) +
+                           " Hz, and the explicit scheme needs every mode below fs/π (ω·T < 2)";
+        return what + ": a " + (harmonic ? "harmonic" : "homogeneous") +
+               " chain of N masses tuned to " + fmt(o.pitch) + why + "; at " + fmt(o.sample_rate) +
+               " Hz that allows at most " + std::to_string(limit) +
                " masses. Lower the pitch or raise --sample-rate.";
     };
     if (o.masses > 0) {
+        if (o.masses > limit)
+            throw InputError("--masses",
+                             explain(std::to_string(o.masses) + " masses at " + fmt(o.pitch) +
+                                     (harmonic ? " Hz reach fs/2" : " Hz are unstable")));
         Model m = assemble(o, o.masses);
         if (stability_use(m) >= 1.0)
-            throw InputError("--masses", explain(std::to_string(o.masses) + " masses at " +
-                                                 fmt(o.pitch) + " Hz are unstable"));
+            throw InputError("--masses",
+                             std::to_string(o.masses) + " masses at " + fmt(o.pitch) +
+                                 " Hz are unstable once damped (largest normalised eigenvalue " +
+                                 fmt(4 * stability_use(m)) +
+                                 " of 4); use fewer masses or less damping");
         validate_model(m);
         return m;
     }
@@ -255,7 +316,13 @@ Model build_bowed_string(const BowedStringOptions& o) {
                                             fmt(o.pitch) + " Hz"));
     // The largest count that keeps a reserve; the smallest stable one otherwise.
     for (int n = std::min(kMaxMasses, limit); n >= kMinMasses; --n) {
-        Model m = assemble(o, n);
+        Model m;
+        try {
+            m = assemble(o, n);
+        } catch (const InputError&) {
+            if (n == kMinMasses) throw;
+            continue;  // a harmonic chain this long cannot be tuned at this rate; try a shorter one
+        }
         if (stability_use(m) <= 1.0 - kPreferredMargin || n == kMinMasses) {
             if (stability_use(m) >= 1.0) break;
             validate_model(m);

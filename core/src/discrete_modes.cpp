@@ -8,20 +8,25 @@
 
 namespace archet {
 
+Eigen::MatrixXd update_matrix(const LinearSystem& sys) {
+    const int n = sys.size();
+    const double dt = sys.dt;
+    const Eigen::MatrixXd inv_m = sys.mass.cwiseInverse().asDiagonal();
+    const Eigen::MatrixXd k = Eigen::MatrixXd(sys.stiffness) * (dt * dt);
+    const Eigen::MatrixXd z = Eigen::MatrixXd(sys.damping) * dt;
+    Eigen::MatrixXd step = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    step.topLeftCorner(n, n) = 2.0 * Eigen::MatrixXd::Identity(n, n) - inv_m * (k + z);
+    step.topRightCorner(n, n) = inv_m * z - Eigen::MatrixXd::Identity(n, n);
+    step.bottomLeftCorner(n, n) = Eigen::MatrixXd::Identity(n, n);
+    return step;
+}
+
 std::vector<DiscreteMode> discrete_modes(const LinearSystem& sys) {
     const int n = sys.size();
     std::vector<DiscreteMode> modes;
     if (n == 0) return modes;
     const double dt = sys.dt;
-    const Eigen::MatrixXd inv_m = sys.mass.cwiseInverse().asDiagonal();
-    const Eigen::MatrixXd k = Eigen::MatrixXd(sys.stiffness) * (dt * dt);
-    const Eigen::MatrixXd z = Eigen::MatrixXd(sys.damping) * dt;
-    // Damper force uses x[n] − x[n−1]: x+ = (2I − M⁻¹(K+Z)) x + (M⁻¹Z − I) x−.
-    Eigen::MatrixXd step = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-    step.topLeftCorner(n, n) = 2.0 * Eigen::MatrixXd::Identity(n, n) - inv_m * (k + z);
-    step.topRightCorner(n, n) = inv_m * z - Eigen::MatrixXd::Identity(n, n);
-    step.bottomLeftCorner(n, n) = Eigen::MatrixXd::Identity(n, n);
-    Eigen::EigenSolver<Eigen::MatrixXd> solver(step, false);
+    Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), false);
     const double fs = 1.0 / dt;
     for (const auto& root : solver.eigenvalues()) {
         if (root.imag() <= 0.0) continue;  // one of each conjugate pair

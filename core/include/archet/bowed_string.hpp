@@ -11,8 +11,13 @@
 
 namespace archet {
 
+/// Homogeneous: equal masses and links (inharmonic, the partials go flat). Harmonic: masses
+/// and links from the inverse eigenvalue problem, first N partials on k·f0.
+enum class Tuning { Homogeneous, Harmonic };
+
 struct BowedStringOptions {
-    double pitch = 220.0;             ///< Hz, first mode of the string
+    double pitch = 220.0;  ///< Hz, first mode of the string
+    Tuning tuning = Tuning::Homogeneous;
     int masses = 0;                   ///< 25–60; 0 picks the largest stable count
     double bow_position = 0.12;       ///< β, bow distance from the bridge / string length
     double string_damping = -1.0;     ///< N·s/m per string link; < 0 picks it from string_t60
@@ -52,6 +57,9 @@ void add_bow_module(Model& model, const BowedStringOptions& options,
 /// The largest number of masses a homogeneous chain can have at this pitch and rate
 /// (ω_max·T < 2), ignoring bridges and damping.
 int max_stable_masses(double pitch, double sample_rate);
+
+/// The largest number of masses of a harmonic chain: its N-th partial N·f0 below fs/2.
+int max_harmonic_masses(double pitch, double sample_rate);
 
 /// A clean steady stroke: press lands, the bow accelerates to `speed`, holds, and lifts.
 Gesture steady_bow_gesture(double speed = 0.1, double press = 0.0015, double duration = 3.0);

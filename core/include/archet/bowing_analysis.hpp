@@ -25,4 +25,20 @@ BowingAnalysis analyse_bowing(const std::vector<double>& slip_velocity, double s
                               double pitch, std::size_t first, std::size_t last,
                               double threshold = 1e-3);
 
+/// The attack of a stroke (the paper's Fig. 2): from the bow's first contact to the slip
+/// after which every period holds exactly one slip, each interval within `tolerance` of the
+/// steady period, until the bow lifts (at least `settle` periods of it).
+struct AttackAnalysis {
+    double contact = -1;    ///< s, first sample with normal force
+    double helmholtz = -1;  ///< s, start of steady Helmholtz motion (−1: never)
+    double period = 0;      ///< s, the steady period reached
+    bool reached() const { return helmholtz >= 0; }
+    double attack() const { return helmholtz - contact; }  ///< s
+};
+
+AttackAnalysis analyse_attack(const std::vector<double>& slip_velocity,
+                              const std::vector<double>& normal_force, double sample_rate,
+                              double pitch, int settle = 10, double tolerance = 0.01,
+                              double threshold = 1e-3);
+
 }  // namespace archet

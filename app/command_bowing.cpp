@@ -1,0 +1,131 @@
+// `archet bowing`: plays one or more models with a gesture and reports how they speak: the
+// bow's first contact, the time to steady Helmholtz motion (the paper's Fig. 2), slips per
+// period, pitch against the first mode, and slip share. For comparing strings side by side.
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "archet/bowing_analysis.hpp"
+#include "archet/compiled_model.hpp"
+#include "archet/denormal_guard.hpp"
+#include "archet/input_error.hpp"
+#include "archet/modal_analysis.hpp"
+#include "archet/model_file.hpp"
+#include "archet/simulation.hpp"
+#include "commands.hpp"
+#include "model_loading.hpp"
+
+namespace archet::cli {
+
+namespace {
+
+struct BowingArguments {
+    std::vector<std::string> models;
+    std::string gesture;
+    std::vector<std::string> set;
+    bool json = false;
+};
+
+struct Report {
+    std::string name;
+    double pitch = 0;
+    AttackAnalysis attack;
+    BowingAnalysis steady;
+};
+
+Report play(const std::string& path, const BowingArguments& a) {
+    const Model model = load_validated_model(path, a.set);
+    std::optional<Gesture> gesture;
+    if (!a.gesture.empty())
+        gesture = load_gesture_file(a.gesture);
+    else if (model.gesture)
+        gesture = model.gesture;
+    if (!gesture) throw InputError(path, "has no gesture of its own; give one with --gesture");
+    Simulation sim(compile(model));
+    if (sim.model().bows.empty()) throw InputError(path, "has no bow_friction link to analyse");
+    sim.set_gesture_track(&*gesture);
+
+    Report r;
+    r.name = model.name;
+    r.pitch = analyse_modes(model).fundamental;
+    const double fs = sim.sample_rate();
+    std::vector<double> slip, normal;
+    const auto frames = static_cast<std::size_t>(gesture->duration() * fs);
+    {
+        const DenormalGuard no_denormals;
+        for (std::size_t i = 0; i < frames; ++i) {
+            sim.step();
+            slip.push_back(sim.model().bows[0].slip_velocity);
+            normal.push_back(sim.model().bows[0].normal);
+        }
+    }
+    r.attack = analyse_attack(slip, normal, fs, r.pitch);
+    // The steady part: from Helmholtz onset (or half a second after contact) to the last
+    // contact, less a few periods for the lift.
+    std::size_t last = normal.size();
+    while (last > 0 && !(normal[last - 1] > 0)) --last;
+    last =
+        last > static_cast<std::size_t>(0.05 * fs) ? last - static_cast<std::size_t>(0.05 * fs) : 0;
+    const double start =
+        r.attack.reached() ? r.attack.helmholtz : std::max(0.0, r.attack.contact) + 0.5;
+    r.steady = analyse_bowing(slip, fs, r.pitch, static_cast<std::size_t>(start * fs), last);
+    return r;
+}
+
+int run_bowing(const BowingArguments& a) {
+    std::vector<Report> reports;
+    for (const auto& m : a.models) reports.push_back(play(m, a));
+    if (a.json) {
+        nlohmann::ordered_json out = nlohmann::ordered_json::array();
+        for (const auto& r : reports) {
+            const bool settled = r.attack.reached() && r.steady.helmholtz();
+            out.push_back(
+                {{"model", r.name},
+                 {"pitch", r.pitch},
+                 {"contact", r.attack.contact},
+                 {"helmholtz", settled ? nlohmann::ordered_json(r.attack.helmholtz) : nullptr},
+                 {"attack", settled ? nlohmann::ordered_json(r.attack.attack()) : nullptr},
+                 {"slips_per_period", r.steady.slips_per_period},
+                 {"pitch_cents", r.steady.pitch_cents},
+                 {"slip_share", r.steady.slip_share},
+                 {"helmholtz_motion", r.steady.helmholtz()}});
+        }
+        std::cout << out.dump(2) << "\n";
+        return 0;
+    }
+    std::printf("%-30s %10s %9s %10s %12s %8s %10s %s\n", "model", "f1 Hz", "contact s",
+                "attack ms", "slips/period", "cents", "slip share", "Helmholtz");
+    for (const auto& r : reports) {
+        std::printf("%-30s %10.3f %9.4f ", r.name.c_str(), r.pitch, r.attack.contact);
+        if (r.attack.reached() && r.steady.helmholtz())
+            std::printf("%10.1f", 1e3 * r.attack.attack());
+        else
+            std::printf("%10s", "never");
+        std::printf(" %12.3f %+8.1f %10.3f %s\n", r.steady.slips_per_period, r.steady.pitch_cents,
+                    r.steady.slip_share, r.steady.helmholtz() ? "yes" : "no");
+    }
+    return 0;
+}
+
+}  // namespace
+
+void add_bowing_command(CLI::App& app, Action& action) {
+    auto a = std::make_shared<BowingArguments>();
+    auto* cmd = app.add_subcommand(
+        "bowing",
+        "Play models with a gesture; report attack time to Helmholtz motion, slips, pitch");
+    cmd->add_option("models", a->models, "Model files (.json) to compare")->required();
+    cmd->add_option("--gesture", a->gesture, "Gesture file (default: each model's own gesture)");
+    cmd->add_option("--set", a->set,
+                    "Override a parameter in every model: ID.PARAM=VALUE (repeatable)");
+    cmd->add_flag(
+        "--json", a->json,
+        "Print JSON: contact, helmholtz, attack (s), slips_per_period, pitch_cents, slip_share");
+    cmd->callback([&action, a] { action = [a] { return run_bowing(*a); }; });
+}
+
+}  // namespace archet::cli
