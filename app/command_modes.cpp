@@ -30,9 +30,7 @@ std::vector<std::pair<std::string, std::string>> shape_columns(const Model& mode
     for (const auto& p : model.probes) {
         const bool on_mat = p.kind == ProbeKind::Position || p.kind == ProbeKind::Velocity ||
                             p.kind == ProbeKind::Force;
-        if (on_mat &&
-            std::find(modes.dofs.begin(), modes.dofs.end(), p.element) != modes.dofs.end())
-            columns.emplace_back(p.id, p.element);
+        if (on_mat && modes.has_shape_at(p.element)) columns.emplace_back(p.id, p.element);
     }
     return columns;
 }

@@ -25,6 +25,13 @@ void add_new_command(CLI::App& app, Action& action) {
             "homogeneous (equal masses, flat partials) or harmonic (first N partials on k·f0)")
         ->check(CLI::IsMember({"homogeneous", "harmonic"}))
         ->capture_default_str();
+    auto structure = std::make_shared<std::string>("chain");
+    bowed
+        ->add_option("--structure", *structure,
+                     "chain (masses and links) or modal (its exact modal equivalent: one "
+                     "oscillator per mode)")
+        ->check(CLI::IsMember({"chain", "modal"}))
+        ->capture_default_str();
     bowed->add_option("--masses", o->masses, "Masses in the chaplet, 25-60 (0 = largest stable)")
         ->capture_default_str();
     bowed
@@ -61,8 +68,9 @@ void add_new_command(CLI::App& app, Action& action) {
         ->capture_default_str();
     bowed->add_flag("--no-gesture", *no_gesture, "Do not embed the steady-bow gesture");
     bowed->add_option("-o,--output", *output, "Model file to write (.json)")->required();
-    bowed->callback([&action, o, output, no_gesture, tuning] {
-        action = [o, output, no_gesture, tuning] {
+    bowed->callback([&action, o, output, no_gesture, tuning, structure] {
+        action = [o, output, no_gesture, tuning, structure] {
+            o->structure = *structure == "modal" ? Structure::Modal : Structure::Chain;
             o->with_gesture = !*no_gesture;
             o->tuning = *tuning == "harmonic" ? Tuning::Harmonic : Tuning::Homogeneous;
             const Model model = build_bowed_string(*o);

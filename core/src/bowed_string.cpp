@@ -1,5 +1,7 @@
 #include "archet/bowed_string.hpp"
 
+#include <Eigen/Dense>
+#include <cctype>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -144,8 +146,10 @@ Model harmonic_string(const BowedStringOptions& o, int n) {
     return model;
 }
 
+int bowed_mass(const BowedStringOptions& o, int n);
+
 void add_bow(Model& model, const BowedStringOptions& o, int n) {
-    const int bowed = std::clamp(static_cast<int>(std::lround(o.bow_position * (n + 1))), 1, n / 2);
+    const int bowed = bowed_mass(o, n);
     const std::string string_mass = mass_id(bowed);
     add_bow_module(model, o, string_mass);
     const double bx = 40.0 * bowed;  // editor layout: the bow above its string mass
@@ -174,19 +178,79 @@ void add_bow(Model& model, const BowedStringOptions& o, int n) {
     model.output_gain = o.output_gain;
 }
 
+// The chaplet's exact modal equivalent. The free chain (masses s1..sN and the links between
+// them) decomposes into modes φ_k with M⁻¹K·φ_k = λ_k·φ_k; its damping is proportional to its
+// stiffness, so each mode is an independent damped oscillator (modal mass φᵀMφ, stiffness
+// λ·φᵀMφ, damping ratio·λ·φᵀMφ) under the same scheme, and x = Σ φ_k·q_k holds exactly. The
+// end links to the bridges and the bow act on modal points that read x at s1, sN and the
+// bowing mass.
+void make_modal(Model& model, int n, int bowed, double ratio) {
+    Eigen::VectorXd mass(n);
+    Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < n; ++i) mass[i] = model.find_mat(mass_id(i + 1))->mass;
+    for (int i = 1; i < n; ++i) {  // link k_i joins s_i and s_(i+1)
+        const double ki = model.find_lia("k" + std::to_string(i))->stiffness;
+        k(i - 1, i - 1) += ki, k(i, i) += ki, k(i - 1, i) -= ki, k(i, i - 1) -= ki;
+    }
+    const Eigen::VectorXd scale = mass.cwiseSqrt().cwiseInverse();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(scale.asDiagonal() * k *
+                                                          scale.asDiagonal());
+
+    const Mat nut = *model.find_mat("nut");
+    const Lia end_a = *model.find_lia("k0"), end_b = *model.find_lia("k" + std::to_string(n));
+    std::vector<Mat> mats{*model.find_mat("bridge")};
+    std::vector<std::vector<double>> shapes(n);
+    for (int mode = 0; mode < n; ++mode) {
+        Eigen::VectorXd phi = scale.asDiagonal() * solver.eigenvectors().col(mode);
+        phi /= phi.cwiseAbs().maxCoeff();
+        const double modal_mass = phi.dot(mass.asDiagonal() * phi);
+        const double lambda = std::max(0.0, solver.eigenvalues()[mode]);  // the rigid mode: 0
+        Mat m;
+        m.id = "mode" + std::to_string(mode + 1), m.kind = MatKind::Oscillator, m.rate = "audio";
+        m.mass = modal_mass, m.stiffness = lambda * modal_mass,
+        m.damping = ratio * lambda * modal_mass;
+        m.display = {{40.0 * (mode + 1), 120.0}};
+        mats.push_back(m);
+        for (int i = 0; i < n; ++i) shapes[i].push_back(phi[i]);
+    }
+    for (int i : {1, bowed, n}) {
+        Mat p;
+        p.id = mass_id(i), p.kind = MatKind::ModalPoint, p.rate = "audio";
+        for (int mode = 0; mode < n; ++mode) p.modes.push_back("mode" + std::to_string(mode + 1));
+        p.weights = shapes[i - 1];
+        p.display = {{40.0 * i, 0.0}};
+        mats.push_back(p);
+    }
+    mats.push_back(nut);
+    model.mats = mats;
+    model.lias = {end_a, end_b};
+}
+
+int bowed_mass(const BowedStringOptions& o, int n) {
+    return std::clamp(static_cast<int>(std::lround(o.bow_position * (n + 1))), 1, n / 2);
+}
+
 Model assemble(const BowedStringOptions& o, int n) {
     Model model = o.tuning == Tuning::Harmonic ? harmonic_string(o, n) : homogeneous_string(o, n);
+    const int bowed = bowed_mass(o, n);
+    if (o.structure == Structure::Modal) {
+        const Lia& link = *model.find_lia("k0");  // every link has damping = ratio·stiffness
+        make_modal(model, n, bowed, link.damping / link.stiffness);
+    }
     add_bow(model, o, n);
     std::ostringstream name, description;
-    name << "bowed-string-" << fmt(o.pitch) << (o.tuning == Tuning::Harmonic ? "-harmonic" : "");
-    const int bowed = std::clamp(static_cast<int>(std::lround(o.bow_position * (n + 1))), 1, n / 2);
-    description << (o.tuning == Tuning::Harmonic ? "Harmonic chaplet of "
-                                                 : "Homogeneous chaplet of ")
-                << n << " masses tuned to " << fmt(o.pitch) << " Hz, bowed at mass " << bowed
+    const bool harmonic = o.tuning == Tuning::Harmonic, modal = o.structure == Structure::Modal;
+    name << "bowed-string-" << fmt(o.pitch) << (harmonic ? "-harmonic" : "")
+         << (modal ? "-modal" : "");
+    if (modal) description << "Modal model (" << n << " modes) of the ";
+    description << (harmonic ? "harmonic" : "homogeneous") << " chaplet of " << n
+                << " masses tuned to " << fmt(o.pitch) << " Hz, bowed at mass " << bowed
                 << " (beta = " << fmt(static_cast<double>(bowed) / (n + 1))
                 << "), heavy damped bridges, sound from the bridge force.";
+    std::string text = description.str();
+    text[0] = static_cast<char>(std::toupper(text[0]));
     model.name = name.str();
-    model.description = description.str();
+    model.description = text;
     if (o.with_gesture) model.gesture = steady_bow_gesture();
     return model;
 }

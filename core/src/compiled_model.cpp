@@ -30,6 +30,9 @@ std::vector<int> order_level(const Model& model, const std::set<std::string>& le
         if (!level.count(l.rate) || !chainable(l.kind)) continue;
         const int a = mat_index.at(l.from), b = mat_index.at(l.to);
         if (!level.count(model.mats[a].rate) || !level.count(model.mats[b].rate)) continue;
+        // A modal point's force goes to its modes, not through the chain loop.
+        if (model.mats[a].kind == MatKind::ModalPoint || model.mats[b].kind == MatKind::ModalPoint)
+            continue;
         adjacent[a].push_back({b, li});
         adjacent[b].push_back({a, li});
     }
@@ -104,6 +107,7 @@ CompiledModel compile(const Model& model, double sample_rate) {
         lv.chain_force.assign(storage, 0.0);
         lv.chain_element.assign(storage, -1);
         lv.element_of.assign(storage, -1);
+        lv.modal_point_of.assign(storage, -1);
         for (int k = 0; k < lv.size; ++k) {
             const int s = k + 1;
             const Mat& m = model.mats[order[k]];
@@ -138,6 +142,23 @@ CompiledModel compile(const Model& model, double sample_rate) {
     }
 
     auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
+    for (const auto& m : model.mats) {
+        if (m.kind != MatKind::ModalPoint) continue;
+        const MatSlot p = slot(m.id);
+        CompiledLevel& lv = c.levels[p.level];
+        CompiledModalPoint point;
+        point.index = p.index;
+        point.weights = m.weights;
+        for (std::size_t k = 0; k < m.modes.size(); ++k) {
+            const int mode = slot(m.modes[k]).index;
+            point.modes.push_back(mode);
+            point.coeff += m.weights[k] * m.weights[k] * lv.coeff[mode];
+            lv.x()[p.index] += m.weights[k] * lv.x()[mode];
+            lv.x_prev()[p.index] += m.weights[k] * lv.x_prev()[mode];
+        }
+        lv.modal_point_of[p.index] = static_cast<int>(lv.modal_points.size());
+        lv.modal_points.push_back(std::move(point));
+    }
     auto touch = [&](MatSlot s) { c.levels[s.level].touched.push_back(s.index); };
     for (int li = 0; li < static_cast<int>(model.lias.size()); ++li) {
         const Lia& l = model.lias[li];
@@ -187,6 +208,10 @@ CompiledModel compile(const Model& model, double sample_rate) {
         w.push_back(s.index);
         return static_cast<int>(w.size() - 1);
     };
+    for (auto& bow : c.bows) {
+        bow.bow_point = c.levels[bow.level].modal_point_of[bow.bow];
+        bow.string_point = c.levels[bow.level].modal_point_of[bow.string];
+    }
     for (const auto& p : model.probes) {
         CompiledProbe cp;
         cp.id = p.id;

@@ -35,26 +35,43 @@ LinearSystem assemble_linear_system(const Model& model, const std::string& rate_
     for (const auto& m : model.mats)
         if (m.rate == level->id) dof_of(m.id);
 
+    // A MAT as a combination of DOFs: itself, nothing (ground), or for a modal point the
+    // modes it reads, weighted by their shapes there.
+    using Combination = std::vector<std::pair<int, double>>;
+    auto combination = [&](const std::string& id) -> Combination {
+        const auto found = mats.find(id);
+        if (found == mats.end()) return {};
+        const Mat& m = *found->second;
+        if (m.kind != MatKind::ModalPoint) {
+            const int d = dof_of(id);
+            return d >= 0 ? Combination{{d, 1.0}} : Combination{};
+        }
+        Combination c;
+        for (std::size_t i = 0; i < m.modes.size() && i < m.weights.size(); ++i)
+            if (const int d = dof_of(m.modes[i]); d >= 0) c.emplace_back(d, m.weights[i]);
+        return c;
+    };
     std::vector<Eigen::Triplet<double>> k, z;
-    auto couple = [&](int a, int b, double stiff, double damp) {
+    // A link acting on d = v·x adds value·v·vᵀ, v = combination(a) − combination(b).
+    auto couple = [&](const Combination& a, const Combination& b, double stiff, double damp) {
+        Combination v = a;
+        for (auto [d, w] : b) v.emplace_back(d, -w);
         for (auto [list, value] : {std::pair{&k, stiff}, std::pair{&z, damp}}) {
             if (value == 0.0) continue;
-            if (a >= 0) list->emplace_back(a, a, value);
-            if (b >= 0) list->emplace_back(b, b, value);
-            if (a >= 0 && b >= 0)
-                list->emplace_back(a, b, -value), list->emplace_back(b, a, -value);
+            for (auto [i, wi] : v)
+                for (auto [j, wj] : v) list->emplace_back(i, j, value * wi * wj);
         }
     };
     for (const auto& l : model.lias) {
         if (l.rate != level->id) continue;
         if (l.kind == LiaKind::BowFriction)
-            couple(dof_of(l.press), dof_of(l.surface), l.stiffness, l.damping);
+            couple(combination(l.press), combination(l.surface), l.stiffness, l.damping);
         else
-            couple(dof_of(l.from), dof_of(l.to), l.stiffness, l.damping);
+            couple(combination(l.from), combination(l.to), l.stiffness, l.damping);
     }
     for (const auto& m : model.mats)
         if (m.kind == MatKind::Oscillator && m.rate == level->id)
-            couple(dof_of(m.id), -1, m.stiffness, m.damping);
+            couple(combination(m.id), {}, m.stiffness, m.damping);
 
     const int n = sys.size();
     sys.mass.resize(n);

@@ -6,6 +6,7 @@
 #include <complex>
 #include <limits>
 #include <numbers>
+#include <set>
 
 #include "archet/discrete_modes.hpp"
 #include "archet/input_error.hpp"
@@ -14,7 +15,16 @@ namespace archet {
 
 double ModalAnalysis::shape_at(const ModeInfo& mode, const std::string& id) const {
     const auto it = std::find(dofs.begin(), dofs.end(), id);
-    return it == dofs.end() ? 0.0 : mode.shape[it - dofs.begin()];
+    if (it != dofs.end()) return mode.shape[it - dofs.begin()];
+    const auto point = points.find(id);
+    if (point == points.end()) return 0.0;
+    double x = 0;
+    for (auto [dof, weight] : point->second) x += weight * mode.shape[dof];
+    return x;
+}
+
+bool ModalAnalysis::has_shape_at(const std::string& id) const {
+    return points.count(id) || std::find(dofs.begin(), dofs.end(), id) != dofs.end();
 }
 
 ModalAnalysis analyse_modes(const Model& model) {
@@ -43,10 +53,25 @@ ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
     result.rate = sys.rate;
     result.sample_rate = 1.0 / dt;
     result.dofs = sys.dofs;
+    // Supports are oscillators standing on their own (bridges); the oscillators a modal point
+    // reads are the string's modes.
+    std::set<std::string> string_modes;
+    for (const auto& m : model.mats)
+        if (m.kind == MatKind::ModalPoint) string_modes.insert(m.modes.begin(), m.modes.end());
+    for (const auto& m : model.mats) {
+        if (m.kind != MatKind::ModalPoint) continue;
+        std::vector<std::pair<int, double>> reads;
+        for (std::size_t k = 0; k < m.modes.size() && k < m.weights.size(); ++k) {
+            const auto it = std::find(sys.dofs.begin(), sys.dofs.end(), m.modes[k]);
+            if (it != sys.dofs.end())
+                reads.emplace_back(static_cast<int>(it - sys.dofs.begin()), m.weights[k]);
+        }
+        if (!reads.empty()) result.points[m.id] = std::move(reads);
+    }
     std::vector<bool> is_oscillator(n, false);
     for (int i = 0; i < n; ++i) {
         const Mat* m = model.find_mat(sys.dofs[i]);
-        is_oscillator[i] = m && m->kind == MatKind::Oscillator;
+        is_oscillator[i] = m && m->kind == MatKind::Oscillator && !string_modes.count(m->id);
     }
     for (int r = 0; r < 2 * n; ++r) {
         const std::complex<double> root = solver.eigenvalues()[r];

@@ -38,6 +38,8 @@ const char* to_string(MatKind k) {
             return "oscillator";
         case MatKind::Gesture:
             return "gesture";
+        case MatKind::ModalPoint:
+            return "modal_point";
     }
     return "?";
 }

@@ -61,11 +61,12 @@ Mat read_mat(const Json& item, std::size_t index) {
     JsonObjectReader r(item, element_where("mass", item, index));
     Mat m;
     m.id = r.text("id");
-    m.kind = parse_enum(r.text("type"),
-                        {MatKind::Mass, MatKind::Fixed, MatKind::Oscillator, MatKind::Gesture},
-                        r.where(), "mass type");
+    m.kind = parse_enum(
+        r.text("type"),
+        {MatKind::Mass, MatKind::Fixed, MatKind::Oscillator, MatKind::Gesture, MatKind::ModalPoint},
+        r.where(), "mass type");
     m.rate = r.text("rate", "audio");
-    m.position = r.number("position", 0.0);
+    if (m.kind != MatKind::ModalPoint) m.position = r.number("position", 0.0);
     switch (m.kind) {
         case MatKind::Mass:
             m.mass = r.number("mass");
@@ -85,6 +86,20 @@ Mat read_mat(const Json& item, std::size_t index) {
             m.position_scale = r.number("position_scale", 1.0);
             m.force_scale = r.number("force_scale", 1.0);
             break;
+        case MatKind::ModalPoint: {
+            const Json& modes = r.array("modes");
+            const Json& weights = r.array("weights");
+            for (const auto& id : modes) {
+                if (!id.is_string())
+                    throw InputError(r.where(), "\"modes\" must list mass ids (strings)");
+                m.modes.push_back(id.get<std::string>());
+            }
+            for (const auto& w : weights) {
+                if (!w.is_number()) throw InputError(r.where(), "\"weights\" must be numbers");
+                m.weights.push_back(w.get<double>());
+            }
+            break;
+        }
     }
     m.display = read_display(r);
     r.finish();
@@ -293,8 +308,8 @@ std::string format_model(const Model& m) {
 
     Json mats = Json::array();
     for (const auto& e : m.mats) {
-        Json j{
-            {"id", e.id}, {"type", to_string(e.kind)}, {"rate", e.rate}, {"position", e.position}};
+        Json j{{"id", e.id}, {"type", to_string(e.kind)}, {"rate", e.rate}};
+        if (e.kind != MatKind::ModalPoint) j["position"] = e.position;
         switch (e.kind) {
             case MatKind::Mass:
                 j["mass"] = e.mass, j["velocity"] = e.velocity;
@@ -308,6 +323,9 @@ std::string format_model(const Model& m) {
             case MatKind::Gesture:
                 j["axis"] = to_string(e.axis);
                 j["position_scale"] = e.position_scale, j["force_scale"] = e.force_scale;
+                break;
+            case MatKind::ModalPoint:
+                j["modes"] = e.modes, j["weights"] = e.weights;
                 break;
         }
         if (e.display) j["display"] = write_display(e.display);

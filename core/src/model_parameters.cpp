@@ -15,6 +15,7 @@ struct Field {
 };
 
 std::vector<Field> mat_fields(Mat& m) {
+    if (m.kind == MatKind::ModalPoint) return {};  // its position follows its modes
     std::vector<Field> f{{{"position", "m", -INFINITY, false}, &m.position}};
     switch (m.kind) {
         case MatKind::Mass:
@@ -32,6 +33,8 @@ std::vector<Field> mat_fields(Mat& m) {
         case MatKind::Gesture:
             f.push_back({{"position_scale", "m/m", -INFINITY, false}, &m.position_scale});
             f.push_back({{"force_scale", "N/N", -INFINITY, false}, &m.force_scale});
+            break;
+        case MatKind::ModalPoint:
             break;
     }
     return f;

@@ -116,8 +116,31 @@ class Checker {
             non_negative(where, "stiffness", m.stiffness, "N/m");
             non_negative(where, "damping", m.damping, "N·s/m");
         }
+        if (m.kind == MatKind::ModalPoint) check_modal_point(where, m);
         if (m.kind == MatKind::Gesture && m.position_scale == 0.0)
             add(where, "position_scale must not be 0 (the device could not move it)");
+    }
+
+    // A modal point reads modal oscillators (masses with inertia) of its own rate level.
+    void check_modal_point(const std::string& where, const Mat& m) {
+        if (m.modes.empty()) add(where, "a modal point needs at least one mode in \"modes\"");
+        if (m.modes.size() != m.weights.size())
+            add(where, "has " + std::to_string(m.modes.size()) + " modes but " +
+                           std::to_string(m.weights.size()) +
+                           " weights; give one weight (mode shape value) per mode");
+        for (double w : m.weights)
+            if (!std::isfinite(w)) add(where, "has a non-finite weight");
+        for (const auto& id : m.modes) {
+            const Mat* mode = mat_ref(where, "mode", id);
+            if (!mode) continue;
+            if (mode->kind != MatKind::Mass && mode->kind != MatKind::Oscillator)
+                add(where, "mode \"" + id + "\" is a " + to_string(mode->kind) +
+                               "; modes must be masses or oscillators (with inertia)");
+            else if (mode->rate != m.rate)
+                add(where, "mode \"" + id + "\" runs at rate \"" + mode->rate +
+                               "\", the point at \"" + m.rate +
+                               "\"; a modal point and its modes share one rate level");
+        }
     }
 
     const Mat* mat_ref(const std::string& where, const std::string& role, const std::string& id) {
@@ -178,7 +201,8 @@ class Checker {
         if (distinct.size() != 4)
             add(where, "bow, string, press and surface must be four different masses");
         auto movable = [](const Mat* m) {
-            return m && (m->kind == MatKind::Mass || m->kind == MatKind::Oscillator);
+            return m && (m->kind == MatKind::Mass || m->kind == MatKind::Oscillator ||
+                         m->kind == MatKind::ModalPoint);
         };
         if (ends[0] && ends[1] && !movable(ends[0]) && !movable(ends[1]))
             add(where, "the bow and the string cannot both be immovable; make one of them a mass");

@@ -199,6 +199,15 @@ void Simulation::integrate(CompiledLevel& lv) {
     for (const auto& g : lv.grounds)
         xn[g.index] -=
             c[g.index] * (g.k * (x[g.index] - g.rest) + g.zdt * (x[g.index] - xp[g.index]));
+    if (!lv.modal_points.empty()) {
+        for (const auto& p : lv.modal_points) {
+            const double force = ext[p.index] + held[p.index];
+            if (force == 0.0) continue;
+            for (std::size_t k = 0; k < p.modes.size(); ++k)
+                xn[p.modes[k]] += c[p.modes[k]] * p.weights[k] * force;
+        }
+        update_modal_points(lv);
+    }
     for (int b : lv.bows) solve_bow(lv, model_.bows[b]);
     for (std::size_t w = 0; w < lv.watched.size(); ++w) {
         const int s = lv.watched[w];
@@ -225,7 +234,10 @@ void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
     const double* x = lv.x();
     const double* xp = lv.x_prev();
     double* xn = lv.x_next();
-    const double cb = lv.coeff[bow.bow], cs = lv.coeff[bow.string];
+    // How far each side moves per newton over the step: T²/m, or its modes' for a modal point.
+    const double cb = bow.bow_point < 0 ? lv.coeff[bow.bow] : lv.modal_points[bow.bow_point].coeff;
+    const double cs =
+        bow.string_point < 0 ? lv.coeff[bow.string] : lv.modal_points[bow.string_point].coeff;
     const double csum = cb + cs;
     const double u_prev = (x[bow.bow] - xp[bow.bow]) - (x[bow.string] - xp[bow.string]);
     const double u_free = (xn[bow.bow] - x[bow.bow]) - (xn[bow.string] - x[bow.string]);
@@ -257,13 +269,36 @@ void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
             bow.dissipated = n * mu * q * lv.dt;  // |F|·|w|·T, w the mid-step velocity
         }
     }
-    xn[bow.string] += f * cs;
-    xn[bow.bow] -= f * cb;
+    if (bow.string_point < 0)
+        xn[bow.string] += f * cs;
+    else
+        apply_modal_force(lv, bow.string_point, f);
+    if (bow.bow_point < 0)
+        xn[bow.bow] -= f * cb;
+    else
+        apply_modal_force(lv, bow.bow_point, -f);
     lv.external[bow.string] += f;
     lv.external[bow.bow] -= f;
     const double u_next = u_free - f * csum;
     bow.friction = f;
     bow.slip_velocity = u_next / lv.dt;
+}
+
+void Simulation::update_modal_points(CompiledLevel& lv) {
+    double* xn = lv.x_next();
+    for (const auto& p : lv.modal_points) {
+        double x = 0;
+        for (std::size_t k = 0; k < p.modes.size(); ++k) x += p.weights[k] * xn[p.modes[k]];
+        xn[p.index] = x;
+    }
+}
+
+void Simulation::apply_modal_force(CompiledLevel& lv, int point, double force) {
+    double* xn = lv.x_next();
+    const auto& p = lv.modal_points[point];
+    for (std::size_t k = 0; k < p.modes.size(); ++k)
+        xn[p.modes[k]] += lv.coeff[p.modes[k]] * p.weights[k] * force;
+    update_modal_points(lv);  // every point of the body moves with its modes
 }
 
 void Simulation::update_gesture_points(CompiledLevel& lv) {
@@ -316,6 +351,11 @@ void Simulation::set_parameter(const ParameterSlot& s, double v) {
     switch (s.kind) {
         case K::Mass:
             lv.mass[s.index] = v, lv.coeff[s.index] = lv.dt * lv.dt / v;
+            for (auto& point : lv.modal_points) {  // a point's response follows its modes'
+                point.coeff = 0;
+                for (std::size_t k = 0; k < point.modes.size(); ++k)
+                    point.coeff += point.weights[k] * point.weights[k] * lv.coeff[point.modes[k]];
+            }
             break;
         case K::ChainK:
             lv.chain_k[s.index] = v;

@@ -15,9 +15,15 @@ namespace archet {
 /// and links from the inverse eigenvalue problem, first N partials on k·f0.
 enum class Tuning { Homogeneous, Harmonic };
 
+/// Chain: the chaplet of masses and links. Modal: its exact modal equivalent, one damped
+/// oscillator per mode of the free chain, with modal points (equivalent MATs) at its two ends
+/// and the bowing point, so the same bridges and bow attach to it.
+enum class Structure { Chain, Modal };
+
 struct BowedStringOptions {
     double pitch = 220.0;  ///< Hz, first mode of the string
     Tuning tuning = Tuning::Homogeneous;
+    Structure structure = Structure::Chain;
     int masses = 0;                   ///< 25–60; 0 picks the largest stable count
     double bow_position = 0.12;       ///< β, bow distance from the bridge / string length
     double string_damping = -1.0;     ///< N·s/m per string link; < 0 picks it from string_t60

@@ -56,10 +56,18 @@ struct CompiledGesturePoint {
     double force = 0, work = 0, power = 0;
 };
 
+struct CompiledModalPoint {  ///< x = Σ weight·x(mode); a force F on it moves each mode by weight·F
+    int index = 0;           ///< storage index of the point
+    std::vector<int> modes;  ///< storage indices of its modes, same level
+    std::vector<double> weights;
+    double coeff = 0;  ///< Σ weight²·T²/m: its displacement per newton over a step
+};
+
 struct CompiledBow {
     int level = 0;
     int bow = 0, string = 0, press = 0, surface = 0;
-    double kb = 0, zbdt = 0;  ///< pressure buffer
+    int bow_point = -1, string_point = -1;  ///< modal point of the bow / string MAT, or −1
+    double kb = 0, zbdt = 0;                ///< pressure buffer
     double mu_s = 0, mu_d = 0, v0 = 0;
     int element = -1;
     // State of the last step:
@@ -88,9 +96,11 @@ struct CompiledLevel {
     std::vector<CompiledLink> links;
     std::vector<CompiledGround> grounds;
     std::vector<CompiledGesturePoint> gestures;
-    std::vector<int> bows;     ///< indices into CompiledModel::bows
-    std::vector<int> touched;  ///< storage indices whose `external` must be cleared
-    std::vector<int> watched;  ///< storage indices whose total link force is kept
+    std::vector<int> bows;  ///< indices into CompiledModel::bows
+    std::vector<CompiledModalPoint> modal_points;
+    std::vector<int> modal_point_of;  ///< storage index → index into modal_points, or −1
+    std::vector<int> touched;         ///< storage indices whose `external` must be cleared
+    std::vector<int> watched;         ///< storage indices whose total link force is kept
     std::vector<double> watched_force;
     std::vector<int> element_of;  ///< storage index → index into Model::mats (−1 pad)
 

@@ -4,6 +4,7 @@
 // is classed as a partial of the string or a mode of its supports (most of its kinetic
 // energy in oscillator MATs, the bridges), and partials are measured against n·f1.
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,11 @@ struct ModalAnalysis {
     std::vector<std::string> dofs;  ///< MAT ids
     std::vector<ModeInfo> modes;    ///< by frequency
     double fundamental = 0;         ///< f1, Hz (0 when no string mode)
-    /// Shape value of mode m at MAT `id` (0 when the MAT is not a DOF).
+    /// Modal points: their position as weights on DOFs.
+    std::map<std::string, std::vector<std::pair<int, double>>> points;
+    /// Shape value of a mode at MAT `id`: a DOF, or a modal point reading DOFs (0 otherwise).
     double shape_at(const ModeInfo& mode, const std::string& id) const;
+    bool has_shape_at(const std::string& id) const;
 };
 
 /// Largest system analysed: the update matrix is dense, 2·DOFs square.

@@ -21,6 +21,7 @@ enum class MatKind {
     Fixed,       ///< never moves
     Oscillator,  ///< inertia with a spring and damper to ground (the paper's bridges)
     Gesture,     ///< position imposed from a device axis; the force on it is fed back
+    ModalPoint,  ///< no inertia of its own: x = Σ weight_k·x(mode_k); its force goes to the modes
 };
 
 enum class GestureAxis { Slide, Press };
@@ -37,6 +38,8 @@ struct Mat {
     GestureAxis axis = GestureAxis::Slide;  ///< device axis (Gesture)
     double position_scale = 1.0;            ///< model metres per device metre (Gesture)
     double force_scale = 1.0;               ///< device newtons per model newton (Gesture)
+    std::vector<std::string> modes;         ///< the modal oscillators it reads (ModalPoint)
+    std::vector<double> weights;            ///< the mode shapes at this point (ModalPoint)
     std::optional<std::pair<double, double>> display;  ///< editor position
 };
 

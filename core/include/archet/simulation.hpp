@@ -65,6 +65,10 @@ class Simulation {
     void integrate(CompiledLevel& level);
     void solve_bow(CompiledLevel& level, CompiledBow& bow);
     void update_gesture_points(CompiledLevel& level);
+    void update_modal_points(CompiledLevel& level);
+    /// Adds the motion a force on a modal point causes over this step, to its modes and so to
+    /// every point of its body.
+    void apply_modal_force(CompiledLevel& level, int point, double force);
     void account(CompiledLevel& level);
     double gesture_axis(GestureAxis axis, double t) const;
 
