@@ -15,5 +15,6 @@ void add_check_command(CLI::App& app, Action& action);
 void add_bench_command(CLI::App& app, Action& action);
 void add_modes_command(CLI::App& app, Action& action);
 void add_bowing_command(CLI::App& app, Action& action);
+void add_engine_command(CLI::App& app, Action& action);
 
 }  // namespace archet::cli

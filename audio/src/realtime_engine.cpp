@@ -1,0 +1,379 @@
+#include "archet/realtime_engine.hpp"
+
+#include <pthread.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <iostream>
+#include <memory>
+#include <thread>
+
+#include "archet/compiled_model.hpp"
+#include "archet/denormal_guard.hpp"
+#include "archet/input_error.hpp"
+#include "archet/ipc/shared_segment.hpp"
+#include "archet/model_file.hpp"
+#include "archet/model_parameters.hpp"
+#include "archet/model_validation.hpp"
+#include "archet/realtime_allocations.hpp"
+#include "archet/simulation.hpp"
+
+namespace archet {
+
+namespace {
+
+using namespace ipc;
+
+// Everything the real-time thread needs of a model, built by the control thread.
+struct LoadedModel {
+    Model model;
+    CompiledModel resolver;  ///< names → slots, on the control thread
+    std::unique_ptr<Simulation> simulation;
+    std::vector<MatSlot> shape;  ///< MATs of the fastest level, in model order
+    std::uint32_t sequence = 0;
+};
+
+// Work the control thread hands to the real-time thread.
+struct RealtimeCommand {
+    enum Kind : std::uint32_t { SetParameter, Gesture, Play, Stop } kind;
+    ParameterSlot slot;
+    double value, slide, press;
+};
+
+std::int64_t now_ns() {
+    timespec t{};
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+}
+
+void copy_text(char (&to)[kTextSize], const std::string& from) {
+    const std::size_t n = std::min(from.size(), kTextSize - 1);
+    std::memcpy(to, from.data(), n);
+    to[n] = '\0';
+}
+
+class Engine {
+  public:
+    Engine(SharedSegment segment, const EngineOptions& options)
+        : segment_(std::move(segment)),
+          options_(options),
+          commands_(segment_.commands()),
+          probes_(segment_.probes()),
+          shapes_(segment_.shapes()),
+          status_(segment_.status()),
+          to_realtime_(1024) {}
+
+    int run() {
+        auto& header = segment_.header();
+        header.engine_pid.store(static_cast<std::int32_t>(::getpid()));
+        const std::string scheduling = request_realtime_resources();
+        realtime_ = std::thread([this] { realtime_loop(); });
+        header.engine_state.store(static_cast<std::uint32_t>(EngineState::Ready));
+        publish(StatusKind::Heartbeat, 0, scheduling);
+        auto last_status = std::chrono::steady_clock::now();
+        int status = 0;
+        while (!quit_.load()) {
+            header.engine_heartbeat.fetch_add(1);
+            if (studio_gone()) {
+                // Nobody will read or unlink the segment: silence, clean up, leave.
+                segment_.unlink();
+                break;
+            }
+            CommandFrame command;
+            while (commands_.try_pop(command)) handle(command);
+            collect_retired();
+            if (blown_.exchange(false)) recover_from_blowup();
+            if (std::chrono::steady_clock::now() - last_status > std::chrono::milliseconds(50)) {
+                publish(StatusKind::Heartbeat, 0, current_name_);
+                last_status = std::chrono::steady_clock::now();
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+        header.engine_state.store(static_cast<std::uint32_t>(EngineState::Exiting));
+        stop_realtime_.store(true);
+        realtime_.join();
+        collect_retired();
+        delete pending_.exchange(nullptr);
+        delete running_model_;
+        return status;
+    }
+
+  private:
+    // ---- control thread ------------------------------------------------------------------
+
+    bool studio_gone() {
+        const auto pid = segment_.header().studio_pid;
+        return pid <= 0 || (::kill(pid, 0) != 0 && errno == ESRCH);
+    }
+
+    std::string request_realtime_resources() {
+        std::string said;
+        if (::mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
+            said += "memory not locked (" + std::string(std::strerror(errno)) + "); ";
+        else
+            said += "memory locked; ";
+        return said;
+    }
+
+    void publish(StatusKind kind, std::uint32_t sequence, const std::string& text) {
+        StatusFrame f{};
+        f.kind = static_cast<std::uint32_t>(kind);
+        f.sequence = sequence;
+        f.tick = tick_.load();
+        f.blocks = blocks_.load();
+        f.xruns = xruns_.load();
+        f.dropped = probes_.dropped();
+        f.load = static_cast<double>(worst_load_ppm_.exchange(0)) * 1e-6;
+        f.energy = energy_.load();
+        f.realtime_allocations = realtime_allocations();
+        copy_text(f.text, text);
+        status_.try_push(f);
+    }
+
+    void fail(const CommandFrame& c, const std::string& message) {
+        publish(StatusKind::Error, c.sequence, message);
+    }
+
+    void handle(const CommandFrame& c) {
+        if (std::memchr(c.text, '\0', kTextSize) == nullptr)
+            return fail(c, "command text is not NUL-terminated");
+        const std::string text(c.text);
+        switch (static_cast<Opcode>(c.opcode)) {
+            case Opcode::LoadModel:
+                return load(c, text);
+            case Opcode::SetParameter:
+                return set_parameter(c, text);
+            case Opcode::Play:
+                return send({RealtimeCommand::Play, {}, 0, 0, 0}, c);
+            case Opcode::Stop:
+                return send({RealtimeCommand::Stop, {}, 0, 0, 0}, c);
+            case Opcode::Gesture:
+                if (!std::isfinite(c.slide) || !std::isfinite(c.press) || std::abs(c.slide) > 100 ||
+                    std::abs(c.press) > 100)
+                    return fail(c, "gesture positions must be finite and within ±100 m");
+                return send({RealtimeCommand::Gesture, {}, 0, c.slide, c.press}, c);
+            case Opcode::Quit:
+                quit_.store(true);
+                return;
+        }
+        fail(c, "unknown opcode " + std::to_string(c.opcode));
+    }
+
+    void send(const RealtimeCommand& r, const CommandFrame& c) {
+        if (!to_realtime_.ring().try_push(r))
+            fail(c, "the real-time thread is behind; command dropped");
+    }
+
+    // Compiles a validated model into what the real-time thread runs: off the real-time path.
+    static std::unique_ptr<LoadedModel> prepare(const Model& model, std::uint32_t sequence) {
+        auto loaded = std::make_unique<LoadedModel>();
+        loaded->model = model;
+        loaded->resolver = compile(model);
+        loaded->simulation = std::make_unique<Simulation>(loaded->resolver);
+        loaded->simulation->set_gesture_track(nullptr);  // live: the device or the pad plays it
+        for (const auto& m : model.mats) {
+            const MatSlot slot = loaded->resolver.mat_slots.at(m.id);
+            if (slot.level == 0 && loaded->shape.size() < kMaxShapePoints)
+                loaded->shape.push_back(slot);
+        }
+        loaded->sequence = sequence;
+        return loaded;
+    }
+
+    void load(const CommandFrame& c, const std::string& path) {
+        try {
+            Model model = load_model_file(path);
+            validate_model(model);
+            if (model.probes.size() > kMaxProbes)
+                throw InputError(path, "has " + std::to_string(model.probes.size()) +
+                                           " probes; the engine streams at most " +
+                                           std::to_string(kMaxProbes));
+            auto loaded = prepare(model, c.sequence);
+            current_resolver_ = loaded->resolver;
+            current_model_ = std::move(model);
+            current_name_ = current_model_.name;
+            delete pending_.exchange(loaded.release());  // an unclaimed older one is dropped
+        } catch (const std::exception& e) {
+            fail(c, e.what());
+        }
+    }
+
+    void set_parameter(const CommandFrame& c, const std::string& name) {
+        try {
+            if (current_name_.empty()) throw InputError(name, "no model is loaded");
+            const auto dot = name.rfind('.');
+            if (dot == std::string::npos || dot == 0 || dot + 1 == name.size())
+                throw InputError(name, "expected ELEMENT.PARAMETER");
+            const std::string element = name.substr(0, dot), parameter = name.substr(dot + 1);
+            Model check = current_model_;
+            set_parameter_checked(check, element, parameter, c.value);
+            const ParameterSlot slot = current_resolver_.resolve_parameter(element, parameter);
+            current_model_ = std::move(check);
+            send({RealtimeCommand::SetParameter, slot, c.value, 0, 0}, c);
+        } catch (const std::exception& e) {
+            fail(c, e.what());
+        }
+    }
+
+    static void set_parameter_checked(Model& model, const std::string& element,
+                                      const std::string& parameter, double value) {
+        archet::set_parameter(model, element, parameter, value);  // names and range
+        validate_model(model);                                    // and stability
+    }
+
+    // Deletes what the real-time thread let go of, and answers each model swap it made.
+    void collect_retired() {
+        delete retired_.exchange(nullptr, std::memory_order_acq_rel);
+        const std::uint64_t swaps = swaps_.load(std::memory_order_acquire);
+        if (swaps != swaps_answered_) {
+            swaps_answered_ = swaps;
+            publish(StatusKind::ModelLoaded, swapped_sequence_.load(), current_name_);
+        }
+        const int scheduling = scheduling_.load();
+        if (scheduling >= 0 && !scheduling_reported_) {
+            scheduling_reported_ = true;
+            publish(StatusKind::Heartbeat, 0,
+                    scheduling
+                        ? "real-time scheduling granted"
+                        : "real-time scheduling not permitted (give the user an rtprio limit or "
+                          "CAP_SYS_NICE); running at normal priority");
+        }
+    }
+
+    void recover_from_blowup() {
+        // The real-time thread muted the model; a fresh copy replaces it.
+        delete pending_.exchange(prepare(current_model_, 0).release());
+        publish(StatusKind::Blowup, 0, "numerical blow-up: output muted and the model reset");
+    }
+
+    // ---- real-time thread ----------------------------------------------------------------
+
+    void realtime_loop() {
+        sched_param param{};
+        param.sched_priority = 70;
+        scheduling_.store(pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0 ? 1 : 0);
+        const DenormalGuard no_denormals;
+        const RealtimeThreadMark counted_if_it_allocates;
+        double sample_rate = 48000;
+        std::int64_t period = static_cast<std::int64_t>(1e9 * options_.block_frames / sample_rate);
+        std::int64_t deadline = now_ns();
+        bool playing = false;
+        std::uint64_t block_count = 0;
+        while (!stop_realtime_.load(std::memory_order_relaxed)) {
+            deadline += period;
+            timespec t{static_cast<time_t>(deadline / 1'000'000'000),
+                       static_cast<long>(deadline % 1'000'000'000)};
+            while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &t, nullptr) == EINTR) {
+            }
+            const std::int64_t start = now_ns();
+            if (start - deadline > period) {  // missed a whole block: count it and catch up
+                xruns_.fetch_add(1, std::memory_order_relaxed);
+                deadline = start;
+            }
+            // A new model at a block boundary; the old one goes back for deletion.
+            if (!retired_.load(std::memory_order_acquire)) {
+                if (LoadedModel* next = pending_.exchange(nullptr, std::memory_order_acq_rel)) {
+                    retired_.store(running_model_, std::memory_order_release);
+                    running_model_ = next;
+                    muted_ = false;
+                    sample_rate = next->simulation->sample_rate();
+                    period = static_cast<std::int64_t>(1e9 * options_.block_frames / sample_rate);
+                    swapped_sequence_.store(next->sequence);
+                    swaps_.fetch_add(1, std::memory_order_release);
+                }
+            }
+            RealtimeCommand r;
+            while (to_realtime_.ring().try_pop(r)) {
+                if (r.kind == RealtimeCommand::Play)
+                    playing = true;
+                else if (r.kind == RealtimeCommand::Stop)
+                    playing = false;
+                else if (running_model_ && r.kind == RealtimeCommand::SetParameter)
+                    running_model_->simulation->set_parameter(r.slot, r.value);
+                else if (running_model_ && r.kind == RealtimeCommand::Gesture)
+                    running_model_->simulation->set_device_position({r.slide, r.press});
+            }
+            if (playing && running_model_ && !muted_) run_block(*running_model_, block_count);
+            const double load = static_cast<double>(now_ns() - start) / static_cast<double>(period);
+            const auto ppm = static_cast<std::uint64_t>(load * 1e6);
+            if (ppm > worst_load_ppm_.load(std::memory_order_relaxed))
+                worst_load_ppm_.store(ppm, std::memory_order_relaxed);
+            blocks_.fetch_add(1, std::memory_order_relaxed);
+            ++block_count;
+        }
+    }
+
+    void run_block(LoadedModel& m, std::uint64_t block_count) {
+        Simulation& sim = *m.simulation;
+        const std::size_t probes = sim.probe_count();
+        for (int i = 0; i < options_.block_frames; ++i) {
+            sim.step();
+            ProbeFrame f;
+            f.tick = sim.tick();
+            f.count = static_cast<std::uint32_t>(probes);
+            f.reserved = 0;
+            for (std::size_t p = 0; p < probes; ++p) f.values[p] = sim.probe(p);
+            f.output = sim.output();
+            if (!std::isfinite(f.output)) {  // mute within this block; control resets the model
+                muted_ = true;
+                blown_.store(true);
+                return;
+            }
+            probes_.try_push(f);
+        }
+        tick_.store(sim.tick(), std::memory_order_relaxed);
+        energy_.store(sim.stored_energy(), std::memory_order_relaxed);
+        if (block_count % static_cast<std::uint64_t>(options_.shape_every) == 0) {
+            ShapeFrame s;
+            s.tick = sim.tick();
+            s.count = static_cast<std::uint32_t>(m.shape.size());
+            s.reserved = 0;
+            for (std::size_t i = 0; i < m.shape.size(); ++i)
+                s.positions[i] = static_cast<float>(sim.position(m.shape[i]));
+            shapes_.try_push(s);
+        }
+    }
+
+    SharedSegment segment_;
+    EngineOptions options_;
+    SpscRing<CommandFrame> commands_;
+    SpscRing<ProbeFrame> probes_;
+    SpscRing<ShapeFrame> shapes_;
+    SpscRing<StatusFrame> status_;
+    LocalRing<RealtimeCommand> to_realtime_;
+    std::thread realtime_;
+    std::atomic<bool> quit_{false}, stop_realtime_{false}, blown_{false};
+    std::atomic<LoadedModel*> pending_{nullptr}, retired_{nullptr};
+    std::atomic<std::uint32_t> swapped_sequence_{0};
+    std::atomic<std::uint64_t> swaps_{0};
+    std::uint64_t swaps_answered_ = 0;  ///< control thread
+    std::atomic<int> scheduling_{-1};   ///< −1 unknown, 0 denied, 1 granted
+    bool scheduling_reported_ = false;
+    LoadedModel* running_model_ = nullptr;  ///< owned by the real-time thread while it runs
+    bool muted_ = false;                    ///< real-time thread only
+    std::atomic<std::uint64_t> tick_{0}, blocks_{0}, xruns_{0}, worst_load_ppm_{0};
+    std::atomic<double> energy_{0};
+    // Control thread's view of the model, for names and checks.
+    Model current_model_;
+    CompiledModel current_resolver_;
+    std::string current_name_;
+};
+
+}  // namespace
+
+int run_engine(const EngineOptions& options) {
+    if (options.block_frames < 1 || options.block_frames > 8192)
+        throw InputError("--block", "must be 1 to 8192 frames");
+    ipc::SharedSegment segment = ipc::SharedSegment::attach(options.segment);
+    Engine engine(std::move(segment), options);
+    return engine.run();
+}
+
+}  // namespace archet

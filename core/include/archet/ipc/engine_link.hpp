@@ -1,0 +1,71 @@
+#pragma once
+// The studio's side of the engine: creates the shared segment, starts `archet engine` on it,
+// sends commands and reads what the engine publishes. Liveness both ways: the studio's
+// heartbeat counts up on every `heartbeat()`, and the engine's is watched to tell an engine
+// that stopped answering from one that exited.
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <string>
+
+#include "archet/ipc/shared_segment.hpp"
+
+namespace archet::ipc {
+
+struct EngineLinkOptions {
+    std::string archet_binary;  ///< the `archet` executable
+    int block_frames = 64;
+    std::uint32_t probe_capacity = 1u << 16;
+    std::chrono::milliseconds unresponsive_after{300};
+};
+
+class EngineLink {
+  public:
+    explicit EngineLink(EngineLinkOptions options);
+    ~EngineLink();  ///< asks the engine to quit, waits a little, then kills it
+    EngineLink(const EngineLink&) = delete;
+    EngineLink& operator=(const EngineLink&) = delete;
+
+    /// Spawns the engine; throws when it cannot.
+    void start();
+    pid_t engine_pid() const { return pid_; }
+    const std::string& segment_name() const { return segment_.name(); }
+
+    /// Command helpers; each returns its sequence number (0 when the ring was full).
+    std::uint32_t load_model(const std::string& path);
+    std::uint32_t set_parameter(const std::string& element_dot_parameter, double value);
+    std::uint32_t play();
+    std::uint32_t stop();
+    std::uint32_t gesture(double slide, double press);
+    std::uint32_t quit();
+    std::uint32_t send(CommandFrame frame);
+
+    SpscRing<ProbeFrame> probes() { return segment_.probes(); }
+    SpscRing<ShapeFrame> shapes() { return segment_.shapes(); }
+    SpscRing<StatusFrame> status() { return segment_.status(); }
+    SegmentHeader& header() { return segment_.header(); }
+
+    /// The studio is alive: call it from the GUI's timer.
+    void heartbeat() { segment_.header().studio_heartbeat.fetch_add(1); }
+
+    enum class Liveness { Starting, Running, Unresponsive, Exited };
+    /// Exited: the process is gone (its status in exit_status()). Unresponsive: alive but its
+    /// heartbeat has not moved for `unresponsive_after`.
+    Liveness liveness();
+    int exit_status() const { return exit_status_; }
+
+  private:
+    EngineLinkOptions options_;
+    SharedSegment segment_;
+    pid_t pid_ = -1;
+    bool reaped_ = false;
+    int exit_status_ = -1;
+    std::uint32_t next_sequence_ = 1;
+    std::uint64_t last_heartbeat_ = 0;
+    std::chrono::steady_clock::time_point last_change_;
+};
+
+const char* to_string(EngineLink::Liveness);
+
+}  // namespace archet::ipc

@@ -1,0 +1,141 @@
+#pragma once
+// The one description of the memory the studio and the engine share. Plain data only, no
+// pointers (each process maps it at its own address): a versioned header with the offsets of
+// the rings that follow it. The studio creates and sizes the segment; the engine checks every
+// field before trusting any of it (validate_layout).
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+
+namespace archet::ipc {
+
+inline constexpr std::uint32_t kMagic = 0x54454843;  // "CHET" little-endian
+inline constexpr std::uint16_t kProtocolVersion = 1;
+inline constexpr std::uint16_t kMinimumCompatibleVersion = 1;
+
+inline constexpr std::size_t kMaxProbes = 16;        ///< probe values per probe frame
+inline constexpr std::size_t kMaxShapePoints = 512;  ///< string positions per shape frame
+inline constexpr std::size_t kTextSize = 256;        ///< paths, ids and messages, NUL-terminated
+
+/// Where a ring lives in the segment and what it carries.
+struct RingDescriptor {
+    std::uint64_t offset;      ///< from the segment start, to its RingControl
+    std::uint32_t frame_size;  ///< bytes per frame
+    std::uint32_t capacity;    ///< frames, a power of two
+};
+
+/// Indices of one single-producer/single-consumer ring, each on its own cache line.
+/// Monotonic 64-bit counts: `written − read` frames are waiting.
+struct RingControl {
+    alignas(64) std::atomic<std::uint64_t> written;
+    alignas(64) std::atomic<std::uint64_t> read;
+    alignas(64) std::atomic<std::uint64_t> dropped;  ///< frames the producer gave up on: ring full
+};
+
+enum class EngineState : std::uint32_t {
+    Starting = 0,
+    Ready = 1,
+    Running = 2,
+    Exiting = 3,
+    Failed = 4
+};
+
+struct SegmentHeader {
+    std::uint32_t magic;
+    std::uint16_t protocol_version;
+    std::uint16_t minimum_compatible_version;
+    std::uint32_t header_size;
+    std::uint32_t reserved;
+    std::uint64_t segment_size;
+    std::int32_t studio_pid;  ///< the owner, who created the segment
+    std::atomic<std::int32_t> engine_pid;
+    alignas(64) std::atomic<std::uint64_t> studio_heartbeat;  ///< counts up while the studio lives
+    alignas(64) std::atomic<std::uint64_t> engine_heartbeat;  ///< counts up while the engine lives
+    std::atomic<std::uint32_t> engine_state;                  ///< an EngineState
+    RingDescriptor commands;                                  ///< studio → engine: CommandFrame
+    RingDescriptor probes;  ///< engine → studio: ProbeFrame, one per audio sample
+    RingDescriptor shapes;  ///< engine → studio: ShapeFrame, the string's positions
+    RingDescriptor status;  ///< engine → studio: StatusFrame
+};
+
+// ---- Frames --------------------------------------------------------------------------------
+
+/// Commands, studio → engine. Each names its payload; the engine validates every field.
+enum class Opcode : std::uint32_t {
+    LoadModel = 1,     ///< text: a model file path; compiled off the real-time thread, swapped in
+    SetParameter = 2,  ///< text: "ELEMENT.PARAM", value
+    Play = 3,          ///< start the simulation clock
+    Stop = 4,          ///< stop it (silence, forces to zero)
+    Gesture = 5,       ///< slide, press: the pad's device position (m)
+    Quit = 6,          ///< leave cleanly
+};
+
+struct CommandFrame {
+    std::uint32_t opcode;    ///< an Opcode
+    std::uint32_t sequence;  ///< echoed in status frames that answer it
+    double value;
+    double slide, press;
+    char text[kTextSize];
+};
+
+struct ProbeFrame {
+    std::uint64_t tick;   ///< master clock tick of the sample
+    std::uint32_t count;  ///< probe values used
+    std::uint32_t reserved;
+    double values[kMaxProbes];
+    double output;  ///< the model's audio output
+};
+
+struct ShapeFrame {
+    std::uint64_t tick;
+    std::uint32_t count;  ///< positions used (MATs of the fastest level, in model order)
+    std::uint32_t reserved;
+    float positions[kMaxShapePoints];
+};
+
+enum class StatusKind : std::uint32_t { Heartbeat = 1, ModelLoaded = 2, Error = 3, Blowup = 4 };
+
+struct StatusFrame {
+    std::uint32_t kind;      ///< a StatusKind
+    std::uint32_t sequence;  ///< of the command answered, 0 otherwise
+    std::uint64_t tick;
+    std::uint64_t blocks;   ///< audio blocks processed
+    std::uint64_t xruns;    ///< blocks that missed their deadline
+    std::uint64_t dropped;  ///< probe frames dropped because the studio read too slowly
+    double load;            ///< worst fraction of the block period used lately
+    double energy;          ///< J stored in the model
+    std::uint64_t realtime_allocations;  ///< made on the real-time thread: must stay 0
+    char text[kTextSize];                ///< model name, or what went wrong
+};
+
+static_assert(std::atomic<std::uint64_t>::is_always_lock_free,
+              "rings need lock-free 64-bit atomics");
+static_assert(std::atomic<std::uint32_t>::is_always_lock_free);
+static_assert(sizeof(RingControl) == 192);
+static_assert(alignof(SegmentHeader) == 64);
+static_assert(sizeof(CommandFrame) == 288);
+static_assert(offsetof(SegmentHeader, commands) % 8 == 0);
+
+/// The plain (non-atomic) fields of a header: what a layout is planned as, and what a reader
+/// copies out of a segment before judging it.
+struct Layout {
+    std::uint32_t magic = 0;
+    std::uint16_t protocol_version = 0;
+    std::uint16_t minimum_compatible_version = 0;
+    std::uint32_t header_size = 0;
+    std::uint64_t segment_size = 0;
+    RingDescriptor commands{}, probes{}, shapes{}, status{};
+};
+
+/// Sizes and offsets for a new segment with the given ring capacities.
+Layout plan_layout(std::uint32_t command_capacity, std::uint32_t probe_capacity,
+                   std::uint32_t shape_capacity, std::uint32_t status_capacity);
+
+/// Copies the plain fields out of a (possibly hostile) mapped header.
+Layout read_layout(const SegmentHeader& header);
+
+/// What a reader found wrong with a layout, or nullptr when it is sound.
+const char* validate_layout(const Layout& layout, std::uint64_t mapped_size);
+
+}  // namespace archet::ipc

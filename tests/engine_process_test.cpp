@@ -1,0 +1,225 @@
+// The real-time engine as a real second process on shared memory: handshake, load a model,
+// play it from the pad's gesture, receive probe frames and string shapes, change parameters,
+// refuse bad commands and bad segments, and liveness both ways.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fcntl.h>
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <thread>
+
+#include "archet/ipc/engine_link.hpp"
+#include "test_support.hpp"
+
+namespace archet::ipc {
+namespace {
+
+using namespace std::chrono_literals;
+
+EngineLinkOptions options() {
+    EngineLinkOptions o;
+    o.archet_binary = ARCHET_BINARY;
+    return o;
+}
+
+bool wait_for(const std::function<bool()>& done, std::chrono::milliseconds limit) {
+    const auto end = std::chrono::steady_clock::now() + limit;
+    while (std::chrono::steady_clock::now() < end) {
+        if (done()) return true;
+        std::this_thread::sleep_for(2ms);
+    }
+    return done();
+}
+
+// Reads status frames until one of `kind` answers `sequence` (errors are collected).
+bool wait_status(EngineLink& link, StatusKind kind, std::uint32_t sequence,
+                 std::vector<std::string>& errors) {
+    auto status = link.status();
+    return wait_for(
+        [&] {
+            StatusFrame f;
+            while (status.try_pop(f)) {
+                if (f.kind == static_cast<std::uint32_t>(StatusKind::Error))
+                    errors.push_back(f.text);
+                if (f.kind == static_cast<std::uint32_t>(kind) && f.sequence == sequence)
+                    return true;
+            }
+            return false;
+        },
+        5000ms);
+}
+
+TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
+    EngineLink link(options());
+    link.start();
+    ASSERT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 5000ms));
+    EXPECT_EQ(link.header().engine_pid.load(), link.engine_pid());
+
+    std::vector<std::string> errors;
+    const auto loaded = link.load_model(test::resource("models/bowed-string-220.json").string());
+    ASSERT_TRUE(wait_status(link, StatusKind::ModelLoaded, loaded, errors))
+        << (errors.empty() ? "" : errors[0]);
+    link.play();
+
+    // Bow it from the pad: press, then a steady stroke at 0.1 m/s.
+    auto probes = link.probes();
+    std::uint64_t frames = 0, last_tick = 0;
+    double max_friction = 0;
+    bool ordered = true, finite = true;
+    const auto start = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - start < 1200ms) {
+        const double t =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        link.gesture(0.1 * std::max(0.0, t - 0.05), std::min(0.0015, t * 0.05));
+        link.heartbeat();
+        ProbeFrame f;
+        while (probes.try_pop(f)) {
+            if (frames > 0 && f.tick != last_tick + 1) ordered = false;
+            last_tick = f.tick, ++frames;
+            for (std::uint32_t p = 0; p < f.count; ++p)
+                finite = finite && std::isfinite(f.values[p]);
+            max_friction = std::max(max_friction, std::abs(f.values[5]));  // friction_force
+            EXPECT_EQ(f.count, 11u);
+        }
+        std::this_thread::sleep_for(5ms);
+    }
+    EXPECT_GT(frames, 30000u) << "about 48 000 frames a second in real time";
+    EXPECT_LT(frames, 70000u);
+    EXPECT_TRUE(ordered) << "no frame lost while the reader keeps up";
+    EXPECT_TRUE(finite);
+    EXPECT_GT(max_friction, 0.01) << "the pad's gesture bowed the string";
+
+    auto shapes = link.shapes();
+    ShapeFrame shape;
+    ASSERT_TRUE(wait_for([&] { return shapes.try_pop(shape); }, 1000ms));
+    EXPECT_EQ(shape.count, 65u) << "every MAT of the audio level";
+
+    // A parameter change takes effect: no bow force once the pressure axis is inverted.
+    link.set_parameter("hand_press.position_scale", -1.0);
+    double late_normal = 1;
+    wait_for(
+        [&] {
+            ProbeFrame f;
+            while (probes.try_pop(f)) late_normal = f.values[4];
+            link.heartbeat();
+            return late_normal == 0.0;
+        },
+        3000ms);
+    EXPECT_EQ(late_normal, 0.0);
+
+    // Bad commands are answered with errors and change nothing.
+    errors.clear();
+    link.set_parameter("nothing.mass", 1);
+    link.set_parameter("k3.stiffness", 1e12);
+    link.load_model("/no/such/model.json");
+    CommandFrame garbage{};
+    std::memset(&garbage, 'x', sizeof garbage);
+    link.send(garbage);
+    const auto last = link.gesture(std::nan(""), 0);
+    wait_status(link, StatusKind::Error, last, errors);
+    ASSERT_EQ(errors.size(), 5u);
+    EXPECT_NE(errors[0].find("no mass or link has this id"), std::string::npos) << errors[0];
+    EXPECT_NE(errors[1].find("unstable"), std::string::npos) << errors[1];
+    EXPECT_NE(errors[2].find("cannot open"), std::string::npos) << errors[2];
+    EXPECT_NE(errors[3].find("not NUL-terminated"), std::string::npos) << errors[3];
+    EXPECT_NE(errors[4].find("finite"), std::string::npos) << errors[4];
+    EXPECT_EQ(link.liveness(), EngineLink::Liveness::Running);
+
+    // Through all of it (a model swapped in, parameters, gestures, play) the real-time thread
+    // never allocated.
+    auto status = link.status();
+    StatusFrame latest{};
+    ASSERT_TRUE(wait_for(
+        [&] {
+            StatusFrame f;
+            bool fresh = false;
+            while (status.try_pop(f))
+                if (f.kind == static_cast<std::uint32_t>(StatusKind::Heartbeat))
+                    latest = f, fresh = true;
+            return fresh;
+        },
+        1000ms));
+    EXPECT_GT(latest.blocks, 500u);
+    EXPECT_EQ(latest.realtime_allocations, 0u);
+
+    link.quit();
+    ASSERT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Exited; }, 2000ms));
+    EXPECT_EQ(link.exit_status(), 0);
+}
+
+TEST(EngineProcess, StudioTellsUnresponsiveFromExited) {
+    EngineLink link(options());
+    link.start();
+    ASSERT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 5000ms));
+    ::kill(link.engine_pid(), SIGSTOP);
+    EXPECT_TRUE(
+        wait_for([&] { return link.liveness() == EngineLink::Liveness::Unresponsive; }, 2000ms));
+    ::kill(link.engine_pid(), SIGCONT);
+    EXPECT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 2000ms));
+    ::kill(link.engine_pid(), SIGKILL);
+    EXPECT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Exited; }, 1000ms));
+}
+
+TEST(EngineProcess, EngineExitsWithinASecondWhenTheStudioDies) {
+    int pipe_fds[2];
+    ASSERT_EQ(::pipe(pipe_fds), 0);
+    const pid_t studio = ::fork();
+    ASSERT_GE(studio, 0);
+    if (studio == 0) {  // a studio that starts an engine and then crashes
+        EngineLink link(options());
+        link.start();
+        const pid_t engine = link.engine_pid();
+        char name[64] = {};
+        std::strncpy(name, link.segment_name().c_str(), sizeof name - 1);
+        if (::write(pipe_fds[1], &engine, sizeof engine) < 0 ||
+            ::write(pipe_fds[1], name, sizeof name) < 0)
+            ::_exit(1);
+        while (link.liveness() != EngineLink::Liveness::Running) ::usleep(1000);
+        ::_exit(0);  // no destructor: no quit, no unlink
+    }
+    pid_t engine = -1;
+    char name[64] = {};
+    ASSERT_EQ(::read(pipe_fds[0], &engine, sizeof engine), static_cast<ssize_t>(sizeof engine));
+    ASSERT_EQ(::read(pipe_fds[0], name, sizeof name), static_cast<ssize_t>(sizeof name));
+    ::waitpid(studio, nullptr, 0);
+    const auto died = std::chrono::steady_clock::now();
+    // Exited: gone, or a zombie waiting for whoever adopted it to reap it.
+    auto exited = [&] {
+        if (::kill(engine, 0) != 0 && errno == ESRCH) return true;
+        const std::string stat = test::read_file("/proc/" + std::to_string(engine) + "/stat");
+        const auto close = stat.rfind(')');
+        return close != std::string::npos && close + 2 < stat.size() && stat[close + 2] == 'Z';
+    };
+    const bool gone = wait_for(exited, 3000ms);
+    const auto took = std::chrono::steady_clock::now() - died;
+    ASSERT_TRUE(gone) << "the orphaned engine kept running";
+    EXPECT_LT(took, 1000ms);
+    const int fd = ::shm_open(name, O_RDONLY, 0);
+    EXPECT_LT(fd, 0) << "the engine removed the dead studio's segment";
+    if (fd >= 0) ::close(fd), ::shm_unlink(name);
+}
+
+TEST(EngineProcess, RefusesAMissingOrCorruptSegment) {
+    auto r = test::run_archet({"engine", "--shm", "/archet-does-not-exist"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("cannot open"), std::string::npos) << r.err;
+    SharedSegment segment = SharedSegment::create(plan_layout(8, 8, 2, 8));
+    segment.header().probes.frame_size = 7;  // a hostile or mismatched studio
+    r = test::run_archet({"engine", "--shm", segment.name()});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("frame size"), std::string::npos) << r.err;
+    segment.header().probes.frame_size = sizeof(ProbeFrame);
+    segment.header().magic = 0;
+    r = test::run_archet({"engine", "--shm", segment.name()});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("bad magic"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace archet::ipc
