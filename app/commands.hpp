@@ -16,5 +16,7 @@ void add_bench_command(CLI::App& app, Action& action);
 void add_modes_command(CLI::App& app, Action& action);
 void add_bowing_command(CLI::App& app, Action& action);
 void add_engine_command(CLI::App& app, Action& action);
+void add_play_command(CLI::App& app, Action& action);
+void add_devices_command(CLI::App& app, Action& action);
 
 }  // namespace archet::cli

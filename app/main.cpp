@@ -23,6 +23,8 @@ int main(int argc, char** argv) {
     archet::cli::add_bowing_command(app, action);
     archet::cli::add_bench_command(app, action);
     archet::cli::add_engine_command(app, action);
+    archet::cli::add_play_command(app, action);
+    archet::cli::add_devices_command(app, action);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -7,7 +7,8 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev nlohmann-json3-dev libcli11-dev libsndfile1-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  qt6-base-dev libqcustomplot-dev librtaudio-dev
+  qt6-base-dev libqcustomplot-dev
+  libjack-jackd2-dev librtaudio-dev jackd2
 )
 
 missing=()

@@ -180,7 +180,8 @@ TEST(EngineProcess, EngineExitsWithinASecondWhenTheStudioDies) {
         if (::write(pipe_fds[1], &engine, sizeof engine) < 0 ||
             ::write(pipe_fds[1], name, sizeof name) < 0)
             ::_exit(1);
-        while (link.liveness() != EngineLink::Liveness::Running) ::usleep(1000);
+        for (int i = 0; i < 5000 && link.liveness() != EngineLink::Liveness::Running; ++i)
+            ::usleep(1000);
         ::_exit(0);  // no destructor: no quit, no unlink
     }
     pid_t engine = -1;

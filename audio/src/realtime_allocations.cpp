@@ -67,6 +67,9 @@ RealtimeThreadMark::RealtimeThreadMark() {
 RealtimeThreadMark::~RealtimeThreadMark() {
     realtime_thread = false;
 }
+void mark_realtime_thread() {
+    realtime_thread = true;
+}
 std::uint64_t realtime_allocations() {
     return counted.load(std::memory_order_relaxed);
 }

@@ -6,6 +6,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -22,6 +23,7 @@
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
 #include "archet/model_validation.hpp"
+#include "archet/output_limiter.hpp"
 #include "archet/realtime_allocations.hpp"
 #include "archet/simulation.hpp"
 
@@ -47,19 +49,13 @@ struct RealtimeCommand {
     double value, slide, press;
 };
 
-std::int64_t now_ns() {
-    timespec t{};
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
-}
-
 void copy_text(char (&to)[kTextSize], const std::string& from) {
     const std::size_t n = std::min(from.size(), kTextSize - 1);
     std::memcpy(to, from.data(), n);
     to[n] = '\0';
 }
 
-class Engine {
+class Engine final : public AudioRenderer {
   public:
     Engine(SharedSegment segment, const EngineOptions& options)
         : segment_(std::move(segment)),
@@ -70,15 +66,24 @@ class Engine {
           status_(segment_.status()),
           to_realtime_(1024) {}
 
+    ~Engine() override {
+        if (output_) output_->stop();
+    }
+
     int run() {
         auto& header = segment_.header();
         header.engine_pid.store(static_cast<std::int32_t>(::getpid()));
-        const std::string scheduling = request_realtime_resources();
-        realtime_ = std::thread([this] { realtime_loop(); });
+        std::string said = request_realtime_resources();
+        std::string warning;
+        output_ = open_audio_output(options_.audio, &warning);
+        limiter_ = std::make_unique<OutputLimiter>(output_->sample_rate());
+        said +=
+            output_->description() + ", " + std::to_string(output_->buffer_frames()) + " frames";
+        if (!warning.empty()) said = warning + "; " + said;
+        output_->start(*this);
         header.engine_state.store(static_cast<std::uint32_t>(EngineState::Ready));
-        publish(StatusKind::Heartbeat, 0, scheduling);
+        publish(StatusKind::Heartbeat, 0, said);
         auto last_status = std::chrono::steady_clock::now();
-        int status = 0;
         while (!quit_.load()) {
             header.engine_heartbeat.fetch_add(1);
             if (studio_gone()) {
@@ -97,12 +102,43 @@ class Engine {
             std::this_thread::sleep_for(std::chrono::milliseconds(2));
         }
         header.engine_state.store(static_cast<std::uint32_t>(EngineState::Exiting));
-        stop_realtime_.store(true);
-        realtime_.join();
+        output_->stop();
         collect_retired();
         delete pending_.exchange(nullptr);
         delete running_model_;
-        return status;
+        running_model_ = nullptr;
+        return 0;
+    }
+
+    // ---- real-time thread: the device's callback ----------------------------------------
+
+    void render(float* out, int frames, int channels) override {
+        // A new model at a block boundary; the old one goes back for deletion.
+        if (!retired_.load(std::memory_order_acquire)) {
+            if (LoadedModel* next = pending_.exchange(nullptr, std::memory_order_acq_rel)) {
+                retired_.store(running_model_, std::memory_order_release);
+                running_model_ = next;
+                muted_ = false;
+                swapped_sequence_.store(next->sequence);
+                swaps_.fetch_add(1, std::memory_order_release);
+            }
+        }
+        RealtimeCommand r;
+        while (to_realtime_.ring().try_pop(r)) {
+            if (r.kind == RealtimeCommand::Play)
+                playing_ = true;
+            else if (r.kind == RealtimeCommand::Stop)
+                playing_ = false;
+            else if (running_model_ && r.kind == RealtimeCommand::SetParameter)
+                running_model_->simulation->set_parameter(r.slot, r.value);
+            else if (running_model_ && r.kind == RealtimeCommand::Gesture)
+                running_model_->simulation->set_device_position({r.slide, r.press});
+        }
+        if (playing_ && running_model_ && !muted_)
+            run_block(*running_model_, out, frames, channels);
+        else
+            std::fill(out, out + static_cast<std::ptrdiff_t>(frames) * channels, 0.0f);
+        blocks_.fetch_add(1, std::memory_order_relaxed);
     }
 
   private:
@@ -128,9 +164,11 @@ class Engine {
         f.sequence = sequence;
         f.tick = tick_.load();
         f.blocks = blocks_.load();
-        f.xruns = xruns_.load();
+        const AudioStats audio = output_ ? output_->stats() : AudioStats{};
+        f.xruns = audio.xruns;
         f.dropped = probes_.dropped();
-        f.load = static_cast<double>(worst_load_ppm_.exchange(0)) * 1e-6;
+        f.load =
+            audio.callback_budget_us > 0 ? audio.worst_callback_us / audio.callback_budget_us : 0;
         f.energy = energy_.load();
         f.realtime_allocations = realtime_allocations();
         copy_text(f.text, text);
@@ -172,10 +210,11 @@ class Engine {
     }
 
     // Compiles a validated model into what the real-time thread runs: off the real-time path.
-    static std::unique_ptr<LoadedModel> prepare(const Model& model, std::uint32_t sequence) {
+    std::unique_ptr<LoadedModel> prepare(const Model& model, std::uint32_t sequence) const {
         auto loaded = std::make_unique<LoadedModel>();
         loaded->model = model;
-        loaded->resolver = compile(model);
+        loaded->resolver =
+            compile(model, output_->sample_rate());  // the device's clock is the master
         loaded->simulation = std::make_unique<Simulation>(loaded->resolver);
         loaded->simulation->set_gesture_track(nullptr);  // live: the device or the pad plays it
         for (const auto& m : model.mats) {
@@ -236,15 +275,6 @@ class Engine {
             swaps_answered_ = swaps;
             publish(StatusKind::ModelLoaded, swapped_sequence_.load(), current_name_);
         }
-        const int scheduling = scheduling_.load();
-        if (scheduling >= 0 && !scheduling_reported_) {
-            scheduling_reported_ = true;
-            publish(StatusKind::Heartbeat, 0,
-                    scheduling
-                        ? "real-time scheduling granted"
-                        : "real-time scheduling not permitted (give the user an rtprio limit or "
-                          "CAP_SYS_NICE); running at normal priority");
-        }
     }
 
     void recover_from_blowup() {
@@ -255,65 +285,11 @@ class Engine {
 
     // ---- real-time thread ----------------------------------------------------------------
 
-    void realtime_loop() {
-        sched_param param{};
-        param.sched_priority = 70;
-        scheduling_.store(pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0 ? 1 : 0);
+    void run_block(LoadedModel& m, float* out, int frames, int channels) {
         const DenormalGuard no_denormals;
-        const RealtimeThreadMark counted_if_it_allocates;
-        double sample_rate = 48000;
-        std::int64_t period = static_cast<std::int64_t>(1e9 * options_.block_frames / sample_rate);
-        std::int64_t deadline = now_ns();
-        bool playing = false;
-        std::uint64_t block_count = 0;
-        while (!stop_realtime_.load(std::memory_order_relaxed)) {
-            deadline += period;
-            timespec t{static_cast<time_t>(deadline / 1'000'000'000),
-                       static_cast<long>(deadline % 1'000'000'000)};
-            while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &t, nullptr) == EINTR) {
-            }
-            const std::int64_t start = now_ns();
-            if (start - deadline > period) {  // missed a whole block: count it and catch up
-                xruns_.fetch_add(1, std::memory_order_relaxed);
-                deadline = start;
-            }
-            // A new model at a block boundary; the old one goes back for deletion.
-            if (!retired_.load(std::memory_order_acquire)) {
-                if (LoadedModel* next = pending_.exchange(nullptr, std::memory_order_acq_rel)) {
-                    retired_.store(running_model_, std::memory_order_release);
-                    running_model_ = next;
-                    muted_ = false;
-                    sample_rate = next->simulation->sample_rate();
-                    period = static_cast<std::int64_t>(1e9 * options_.block_frames / sample_rate);
-                    swapped_sequence_.store(next->sequence);
-                    swaps_.fetch_add(1, std::memory_order_release);
-                }
-            }
-            RealtimeCommand r;
-            while (to_realtime_.ring().try_pop(r)) {
-                if (r.kind == RealtimeCommand::Play)
-                    playing = true;
-                else if (r.kind == RealtimeCommand::Stop)
-                    playing = false;
-                else if (running_model_ && r.kind == RealtimeCommand::SetParameter)
-                    running_model_->simulation->set_parameter(r.slot, r.value);
-                else if (running_model_ && r.kind == RealtimeCommand::Gesture)
-                    running_model_->simulation->set_device_position({r.slide, r.press});
-            }
-            if (playing && running_model_ && !muted_) run_block(*running_model_, block_count);
-            const double load = static_cast<double>(now_ns() - start) / static_cast<double>(period);
-            const auto ppm = static_cast<std::uint64_t>(load * 1e6);
-            if (ppm > worst_load_ppm_.load(std::memory_order_relaxed))
-                worst_load_ppm_.store(ppm, std::memory_order_relaxed);
-            blocks_.fetch_add(1, std::memory_order_relaxed);
-            ++block_count;
-        }
-    }
-
-    void run_block(LoadedModel& m, std::uint64_t block_count) {
         Simulation& sim = *m.simulation;
         const std::size_t probes = sim.probe_count();
-        for (int i = 0; i < options_.block_frames; ++i) {
+        for (int i = 0; i < frames; ++i) {
             sim.step();
             ProbeFrame f;
             f.tick = sim.tick();
@@ -324,13 +300,18 @@ class Engine {
             if (!std::isfinite(f.output)) {  // mute within this block; control resets the model
                 muted_ = true;
                 blown_.store(true);
+                std::fill(out + static_cast<std::ptrdiff_t>(i) * channels,
+                          out + static_cast<std::ptrdiff_t>(frames) * channels, 0.0f);
                 return;
             }
+            const float y = limiter_->process(f.output);
+            for (int c = 0; c < channels; ++c) out[i * channels + c] = y;
             probes_.try_push(f);
         }
         tick_.store(sim.tick(), std::memory_order_relaxed);
         energy_.store(sim.stored_energy(), std::memory_order_relaxed);
-        if (block_count % static_cast<std::uint64_t>(options_.shape_every) == 0) {
+        if (++shape_countdown_ >= options_.shape_every) {
+            shape_countdown_ = 0;
             ShapeFrame s;
             s.tick = sim.tick();
             s.count = static_cast<std::uint32_t>(m.shape.size());
@@ -348,17 +329,17 @@ class Engine {
     SpscRing<ShapeFrame> shapes_;
     SpscRing<StatusFrame> status_;
     LocalRing<RealtimeCommand> to_realtime_;
-    std::thread realtime_;
-    std::atomic<bool> quit_{false}, stop_realtime_{false}, blown_{false};
+    std::unique_ptr<AudioOutput> output_;
+    std::unique_ptr<OutputLimiter> limiter_;
+    std::atomic<bool> quit_{false}, blown_{false};
     std::atomic<LoadedModel*> pending_{nullptr}, retired_{nullptr};
     std::atomic<std::uint32_t> swapped_sequence_{0};
     std::atomic<std::uint64_t> swaps_{0};
-    std::uint64_t swaps_answered_ = 0;  ///< control thread
-    std::atomic<int> scheduling_{-1};   ///< −1 unknown, 0 denied, 1 granted
-    bool scheduling_reported_ = false;
+    std::uint64_t swaps_answered_ = 0;      ///< control thread
     LoadedModel* running_model_ = nullptr;  ///< owned by the real-time thread while it runs
-    bool muted_ = false;                    ///< real-time thread only
-    std::atomic<std::uint64_t> tick_{0}, blocks_{0}, xruns_{0}, worst_load_ppm_{0};
+    bool muted_ = false, playing_ = false;  ///< real-time thread only
+    int shape_countdown_ = 0;               ///< real-time thread only
+    std::atomic<std::uint64_t> tick_{0}, blocks_{0};
     std::atomic<double> energy_{0};
     // Control thread's view of the model, for names and checks.
     Model current_model_;
@@ -369,8 +350,6 @@ class Engine {
 }  // namespace
 
 int run_engine(const EngineOptions& options) {
-    if (options.block_frames < 1 || options.block_frames > 8192)
-        throw InputError("--block", "must be 1 to 8192 frames");
     ipc::SharedSegment segment = ipc::SharedSegment::attach(options.segment);
     Engine engine(std::move(segment), options);
     return engine.run();

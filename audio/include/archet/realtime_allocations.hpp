@@ -16,6 +16,9 @@ class RealtimeThreadMark {
     RealtimeThreadMark& operator=(const RealtimeThreadMark&) = delete;
 };
 
+/// Marks the calling thread real-time for good (audio callbacks whose thread the driver owns).
+void mark_realtime_thread();
+
 /// Allocations made so far on threads while they were marked real-time.
 std::uint64_t realtime_allocations();
 

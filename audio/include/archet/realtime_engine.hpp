@@ -3,19 +3,21 @@
 // studio created and runs two threads:
 //  - control (this thread): validates and answers commands, loads and compiles models off the
 //    real-time path, resolves parameter names, watches the studio's liveness, publishes status;
-//  - real-time: wakes at absolute block deadlines of the master clock (a null sink clocked in
-//    real time; audio devices come next), swaps in a new model at a block boundary, applies
-//    parameter changes, steps the simulation and publishes probe and shape frames. It does not
-//    allocate, lock, log or do I/O.
+//  - real-time: the audio device's callback (or the null sink's clock), once per block: swaps
+//    in a new model at a block boundary, applies parameter changes, steps the simulation,
+//    writes the limited output and publishes probe and shape frames. It does not allocate,
+//    lock, log or do I/O.
 
 #include <string>
+
+#include "archet/audio_output.hpp"
 
 namespace archet {
 
 struct EngineOptions {
-    std::string segment;    ///< shared-memory name, from the studio
-    int block_frames = 64;  ///< frames per real-time block
-    int shape_every = 8;    ///< blocks between string-shape frames
+    std::string segment;  ///< shared-memory name, from the studio
+    AudioConfig audio;    ///< where the sound goes (null sink by default)
+    int shape_every = 8;  ///< blocks between string-shape frames
 };
 
 /// Runs until told to quit or the studio dies. Returns the exit status (0 normal; 2 when the

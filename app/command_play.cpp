@@ -1,0 +1,167 @@
+// `archet play`: plays a model live, without the studio: the gesture file (or the model's own)
+// drives the device axes, the sound goes to an audio device or the null sink, and --stats
+// reports how the real-time thread kept up.
+
+#include <time.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <thread>
+
+#include "archet/audio_output.hpp"
+#include "archet/compiled_model.hpp"
+#include "archet/denormal_guard.hpp"
+#include "archet/input_error.hpp"
+#include "archet/model_file.hpp"
+#include "archet/output_limiter.hpp"
+#include "archet/realtime_allocations.hpp"
+#include "archet/simulation.hpp"
+#include "commands.hpp"
+#include "model_loading.hpp"
+
+namespace archet::cli {
+
+namespace {
+
+struct PlayArguments {
+    std::string model, gesture;
+    AudioConfig audio;
+    double duration = 0;
+    bool stats = false;
+};
+
+std::int64_t now_ns() {
+    timespec t{};
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+}
+
+// The real-time side of `play`: steps the model a block at a time into the device's buffer.
+class Player final : public AudioRenderer {
+  public:
+    Player(Simulation& sim, double budget_ns, int haptic_divider)
+        : sim_(sim),
+          limiter_(sim.sample_rate()),
+          budget_ns_(budget_ns),
+          haptic_divider_(haptic_divider) {}
+
+    void render(float* out, int frames, int channels) override {
+        const DenormalGuard no_denormals;
+        const std::int64_t start = now_ns();
+        const std::uint64_t first = sim_.tick();
+        for (int i = 0; i < frames; ++i) {
+            sim_.step();
+            const float y = limiter_.process(sim_.output());
+            for (int c = 0; c < channels; ++c) out[i * channels + c] = y;
+        }
+        // Ticks of the haptic level (the gesture link) in this block, and whether the block was
+        // late: rendering it took longer than it lasts.
+        const std::uint64_t ticks = (sim_.tick() + haptic_divider_ - 1) / haptic_divider_ -
+                                    (first + haptic_divider_ - 1) / haptic_divider_;
+        haptic_ticks_.fetch_add(ticks, std::memory_order_relaxed);
+        if (static_cast<double>(now_ns() - start) > budget_ns_)
+            haptic_late_.fetch_add(ticks, std::memory_order_relaxed);
+    }
+
+    std::uint64_t haptic_ticks() const { return haptic_ticks_.load(); }
+    std::uint64_t haptic_late_ticks() const { return haptic_late_.load(); }
+    const OutputLimiter& limiter() const { return limiter_; }
+
+  private:
+    Simulation& sim_;
+    OutputLimiter limiter_;
+    double budget_ns_;
+    std::uint64_t haptic_divider_;
+    std::atomic<std::uint64_t> haptic_ticks_{0}, haptic_late_{0};
+};
+
+int run_play(const PlayArguments& a) {
+    if (a.duration < 0 || !std::isfinite(a.duration))
+        throw InputError("--duration", "must be positive seconds");
+    const Model model = load_validated_model(a.model, {});
+    std::optional<Gesture> gesture;
+    if (!a.gesture.empty())
+        gesture = load_gesture_file(a.gesture);
+    else if (model.gesture)
+        gesture = model.gesture;
+
+    std::string warning;
+    auto output = open_audio_output(a.audio, &warning);
+    if (!warning.empty()) std::cerr << "archet: warning: " << warning << "\n";
+    // The device's clock is the master clock: the model runs at its rate.
+    Simulation sim(compile(model, output->sample_rate()));
+    sim.set_gesture_track(gesture ? &*gesture : nullptr);
+    int haptic_divider = 1;
+    for (const auto& level : sim.model().levels)
+        if (!level.gestures.empty()) haptic_divider = std::max(haptic_divider, level.divider);
+    Player player(sim, 1e9 * output->buffer_frames() / output->sample_rate(), haptic_divider);
+    const double duration =
+        a.duration > 0 ? a.duration : (gesture ? gesture->duration() + 0.5 : 5.0);
+    std::cerr << "archet: playing " << model.name << " on " << output->description() << ", "
+              << output->buffer_frames() << " frames at " << output->sample_rate() << " Hz for "
+              << duration << " s\n";
+    const std::uint64_t allocations_before = realtime_allocations();
+    output->start(player);
+    std::this_thread::sleep_for(std::chrono::duration<double>(duration));
+    output->stop();
+    if (a.stats) {
+        const AudioStats s = output->stats();
+        const nlohmann::ordered_json stats{
+            {"callbacks", s.callbacks},
+            {"xruns", s.xruns},
+            {"worst_callback_us", s.worst_callback_us},
+            {"callback_budget_us", s.callback_budget_us},
+            {"haptic_ticks", player.haptic_ticks()},
+            {"haptic_late_ticks", player.haptic_late_ticks()},
+            {"realtime_allocations", realtime_allocations() - allocations_before},
+            {"limited_samples", player.limiter().limited()},
+            {"output", output->description()}};
+        std::cout << stats.dump() << "\n";
+    }
+    return 0;
+}
+
+}  // namespace
+
+void add_play_command(CLI::App& app, Action& action) {
+    auto a = std::make_shared<PlayArguments>();
+    auto* cmd = app.add_subcommand(
+        "play", "Play a model live, without the studio (gesture file as the device)");
+    cmd->add_option("model", a->model, "Model file (.json)")->required();
+    cmd->add_option("--audio", a->audio.api, "Audio output: jack, alsa, pulse or null")
+        ->capture_default_str();
+    cmd->add_option("--device", a->audio.device,
+                    "Device index of that API (-1: its default; see archet devices)")
+        ->capture_default_str();
+    cmd->add_option("--buffer", a->audio.buffer_frames, "Frames per audio block")
+        ->capture_default_str();
+    cmd->add_option("--rate", a->audio.sample_rate, "Audio rate (Hz); the model runs at it")
+        ->capture_default_str();
+    cmd->add_option("--gesture", a->gesture,
+                    "Gesture file playing the device axes (default: the model's)");
+    cmd->add_option("--duration", a->duration,
+                    "Seconds to play (default: gesture + 0.5 s, or 5 s)");
+    cmd->add_flag("--stats", a->stats,
+                  "Print JSON at the end: callbacks, xruns, worst_callback_us, callback_budget_us, "
+                  "haptic_ticks, "
+                  "haptic_late_ticks");
+    cmd->callback([&action, a] { action = [a] { return run_play(*a); }; });
+}
+
+void add_devices_command(CLI::App& app, Action& action) {
+    auto* cmd = app.add_subcommand("devices", "List the audio output devices Archet can play to");
+    cmd->callback([&action] {
+        action = [] {
+            for (const auto& line : list_audio_devices()) std::cout << line << "\n";
+            return 0;
+        };
+    });
+}
+
+}  // namespace archet::cli

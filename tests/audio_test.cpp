@@ -1,0 +1,104 @@
+// Live audio: `archet play` on the null sink, and on a real JACK server running its dummy
+// driver at 64-frame buffers for a minute with no xrun. Skips itself where jackd is missing.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "test_support.hpp"
+
+extern char** environ;
+
+namespace archet {
+namespace {
+
+nlohmann::json last_json_line(const std::string& out) {
+    const auto start = out.rfind('{');
+    return nlohmann::json::parse(out.substr(start));
+}
+
+TEST(Audio, PlaysIntoTheNullSinkInRealTimeWithoutAllocating) {
+    const auto r =
+        test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
+                          "--audio", "null", "--duration", "1.5", "--stats"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto s = last_json_line(r.out);
+    EXPECT_NEAR(s["callbacks"].get<double>(), 1.5 * 48000 / 64, 60);
+    EXPECT_EQ(s["xruns"].get<int>(), 0);
+    EXPECT_EQ(s["realtime_allocations"].get<int>(), 0);
+    EXPECT_NEAR(s["haptic_ticks"].get<double>(), 1.5 * 3000, 100) << "the gesture link at 3 kHz";
+    EXPECT_LT(s["worst_callback_us"].get<double>(), s["callback_budget_us"].get<double>());
+    for (const char* key : {"callbacks", "xruns", "worst_callback_us", "callback_budget_us",
+                            "haptic_ticks", "haptic_late_ticks"})
+        EXPECT_TRUE(s.contains(key)) << key;
+}
+
+TEST(Audio, AnUnknownApiIsRefusedAndAMissingDeviceFallsBackToTheNullSink) {
+    auto r = test::run_archet(
+        {"play", test::resource("models/bowed-string-220.json").string(), "--audio", "oss"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("use jack, alsa, pulse or null"), std::string::npos) << r.err;
+    ::setenv("JACK_DEFAULT_SERVER", "archet-no-such-server", 1);
+    r = test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
+                          "--audio", "jack", "--duration", "0.3", "--stats"});
+    ::unsetenv("JACK_DEFAULT_SERVER");
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("playing into a null sink instead"), std::string::npos) << r.err;
+    EXPECT_NE(last_json_line(r.out)["output"].get<std::string>().find("null sink"),
+              std::string::npos);
+}
+
+class JackServer : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        if (::access("/usr/bin/jackd", X_OK) != 0)
+            GTEST_SKIP() << "jackd is not installed (Debian package jackd2)";
+        name_ = "archet-test-" + std::to_string(::getpid());
+        std::vector<std::string> args{"/usr/bin/jackd", "-n", name_, "-d", "dummy", "-r",
+                                      "48000",          "-p", "64"};
+        std::vector<char*> argv;
+        for (auto& a : args) argv.push_back(a.data());
+        argv.push_back(nullptr);
+        ASSERT_EQ(::posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+        ::setenv("JACK_DEFAULT_SERVER", name_.c_str(), 1);
+        // Up when it lists its ports.
+        for (int i = 0; i < 100; ++i) {
+            const auto r = test::run_archet({"devices"});
+            if (r.out.find("jack 0: system") != std::string::npos) return;
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        }
+        FAIL() << "jackd did not start";
+    }
+    void TearDown() override {
+        ::unsetenv("JACK_DEFAULT_SERVER");
+        if (pid_ > 0) {
+            ::kill(pid_, SIGTERM);
+            ::waitpid(pid_, nullptr, 0);
+        }
+    }
+    std::string name_;
+    pid_t pid_ = -1;
+};
+
+TEST_F(JackServer, SixtyMassStringAt64FramesForAMinuteWithoutXruns) {
+    const auto r =
+        test::run_archet({"play", test::resource("models/bowed-string-110.json").string(),
+                          "--audio", "jack", "--buffer", "64", "--duration", "60", "--gesture",
+                          test::resource("gestures/detache.json").string(), "--stats"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto s = last_json_line(r.out);
+    EXPECT_NE(s["output"].get<std::string>().find("jack"), std::string::npos) << r.err;
+    EXPECT_NEAR(s["callbacks"].get<double>(), 60.0 * 48000 / 64, 750);
+    EXPECT_EQ(s["xruns"].get<int>(), 0);
+    EXPECT_EQ(s["haptic_late_ticks"].get<int>(), 0);
+    EXPECT_EQ(s["realtime_allocations"].get<int>(), 0);
+}
+
+}  // namespace
+}  // namespace archet
