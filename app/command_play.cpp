@@ -22,6 +22,7 @@
 #include "archet/output_limiter.hpp"
 #include "archet/realtime_allocations.hpp"
 #include "archet/simulation.hpp"
+#include "audio_options.hpp"
 #include "commands.hpp"
 #include "model_loading.hpp"
 
@@ -134,15 +135,7 @@ void add_play_command(CLI::App& app, Action& action) {
     auto* cmd = app.add_subcommand(
         "play", "Play a model live, without the studio (gesture file as the device)");
     cmd->add_option("model", a->model, "Model file (.json)")->required();
-    cmd->add_option("--audio", a->audio.api, "Audio output: jack, alsa, pulse or null")
-        ->capture_default_str();
-    cmd->add_option("--device", a->audio.device,
-                    "Device index of that API (-1: its default; see archet devices)")
-        ->capture_default_str();
-    cmd->add_option("--buffer", a->audio.buffer_frames, "Frames per audio block")
-        ->capture_default_str();
-    cmd->add_option("--rate", a->audio.sample_rate, "Audio rate (Hz); the model runs at it")
-        ->capture_default_str();
+    add_audio_options(*cmd, a->audio);
     cmd->add_option("--gesture", a->gesture,
                     "Gesture file playing the device axes (default: the model's)");
     cmd->add_option("--duration", a->duration,
