@@ -17,10 +17,12 @@
 #include "archet/audio_output.hpp"
 #include "archet/compiled_model.hpp"
 #include "archet/denormal_guard.hpp"
+#include "archet/haptic_link.hpp"
 #include "archet/input_error.hpp"
 #include "archet/model_file.hpp"
 #include "archet/output_limiter.hpp"
 #include "archet/realtime_allocations.hpp"
+#include "archet/simulated_hand.hpp"
 #include "archet/simulation.hpp"
 #include "audio_options.hpp"
 #include "commands.hpp"
@@ -31,7 +33,7 @@ namespace archet::cli {
 namespace {
 
 struct PlayArguments {
-    std::string model, gesture;
+    std::string model, gesture, haptic = "none";
     AudioConfig audio;
     double duration = 0;
     bool stats = false;
@@ -46,17 +48,30 @@ std::int64_t now_ns() {
 // The real-time side of `play`: steps the model a block at a time into the device's buffer.
 class Player final : public AudioRenderer {
   public:
-    Player(Simulation& sim, double budget_ns, int haptic_divider)
+    Player(Simulation& sim, double budget_ns, int haptic_divider, const Gesture* gesture,
+           SimulatedHand* hand)
         : sim_(sim),
           limiter_(sim.sample_rate()),
           budget_ns_(budget_ns),
-          haptic_divider_(haptic_divider) {}
+          haptic_divider_(haptic_divider),
+          gesture_(gesture),
+          hand_(hand) {
+        if (hand_) link_.emplace(*hand_);
+    }
 
     void render(float* out, int frames, int channels) override {
         const DenormalGuard no_denormals;
         const std::int64_t start = now_ns();
         const std::uint64_t first = sim_.tick();
+        const double dt = 1.0 / sim_.sample_rate();
         for (int i = 0; i < frames; ++i) {
+            if (hand_) {  // the simulated device: its hand follows the gesture, the link closes the
+                          // loop
+                const double t = sim_.time();
+                if (gesture_) hand_->set_target(gesture_->at(t));
+                hand_->advance(t, dt);
+                if (sim_.tick() % haptic_divider_ == 0) link_->tick(sim_, t, haptic_divider_ * dt);
+            }
             sim_.step();
             const float y = limiter_.process(sim_.output());
             for (int c = 0; c < channels; ++c) out[i * channels + c] = y;
@@ -79,6 +94,9 @@ class Player final : public AudioRenderer {
     OutputLimiter limiter_;
     double budget_ns_;
     std::uint64_t haptic_divider_;
+    const Gesture* gesture_;
+    SimulatedHand* hand_;
+    std::optional<HapticLink> link_;
     std::atomic<std::uint64_t> haptic_ticks_{0}, haptic_late_{0};
 };
 
@@ -97,11 +115,19 @@ int run_play(const PlayArguments& a) {
     if (!warning.empty()) std::cerr << "archet: warning: " << warning << "\n";
     // The device's clock is the master clock: the model runs at its rate.
     Simulation sim(compile(model, output->sample_rate()));
-    sim.set_gesture_track(gesture ? &*gesture : nullptr);
+    if (a.haptic != "none" && a.haptic != "sim")
+        throw InputError("--haptic",
+                         "\"" + a.haptic + "\" is not a haptic device here; use sim or none");
+    std::unique_ptr<SimulatedHand> hand;
+    if (a.haptic == "sim") hand = std::make_unique<SimulatedHand>();
+    // Without a device the gesture file plays the gesture points directly; with one, it moves
+    // the hand that holds the device.
+    sim.set_gesture_track(gesture && !hand ? &*gesture : nullptr);
     int haptic_divider = 1;
     for (const auto& level : sim.model().levels)
         if (!level.gestures.empty()) haptic_divider = std::max(haptic_divider, level.divider);
-    Player player(sim, 1e9 * output->buffer_frames() / output->sample_rate(), haptic_divider);
+    Player player(sim, 1e9 * output->buffer_frames() / output->sample_rate(), haptic_divider,
+                  gesture ? &*gesture : nullptr, hand.get());
     const double duration =
         a.duration > 0 ? a.duration : (gesture ? gesture->duration() + 0.5 : 5.0);
     std::cerr << "archet: playing " << model.name << " on " << output->description() << ", "
@@ -136,6 +162,9 @@ void add_play_command(CLI::App& app, Action& action) {
         "play", "Play a model live, without the studio (gesture file as the device)");
     cmd->add_option("model", a->model, "Model file (.json)")->required();
     add_audio_options(*cmd, a->audio);
+    cmd->add_option("--haptic", a->haptic,
+                    "Haptic device: sim (a simulated hand following the gesture) or none")
+        ->capture_default_str();
     cmd->add_option("--gesture", a->gesture,
                     "Gesture file playing the device axes (default: the model's)");
     cmd->add_option("--duration", a->duration,

@@ -54,6 +54,22 @@ TEST(Audio, AnUnknownApiIsRefusedAndAMissingDeviceFallsBackToTheNullSink) {
               std::string::npos);
 }
 
+TEST(Audio, PlaysThroughTheSimulatedHapticDevice) {
+    const auto r =
+        test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
+                          "--haptic", "sim", "--duration", "1", "--stats"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto s = last_json_line(r.out);
+    EXPECT_NEAR(s["haptic_ticks"].get<double>(), 3000, 100);
+    EXPECT_EQ(s["realtime_allocations"].get<int>(), 0)
+        << "hand, link and model in the callback, allocation-free";
+    const auto bad =
+        test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
+                          "--haptic", "evdev:/dev/nothing"});
+    EXPECT_EQ(bad.status, 2);
+    EXPECT_NE(bad.err.find("--haptic"), std::string::npos) << bad.err;
+}
+
 class JackServer : public ::testing::Test {
   protected:
     void SetUp() override {

@@ -452,6 +452,14 @@ double Simulation::stored_energy() const {
     return e;
 }
 
+GestureSample Simulation::device_force() const {
+    GestureSample f{};
+    for (const auto& lv : model_.levels)
+        for (const auto& g : lv.gestures)
+            (g.axis == GestureAxis::Slide ? f.slide : f.press) += g.force_scale * g.force;
+    return f;
+}
+
 double Simulation::power_in() const {
     double p = 0;
     for (const auto& lv : model_.levels)

@@ -1,0 +1,32 @@
+#pragma once
+// A 2-axis force-feedback device as the engine sees it: positions in, forces out, and what
+// it can do. Axis 0 slides the bow, axis 1 presses it.
+
+#include <string>
+
+namespace archet {
+
+struct HapticCapabilities {
+    std::string name;
+    double range = 0.1;           ///< m, travel either side of centre, per axis
+    double max_force = 5.0;       ///< N, per axis
+    double position_rate = 1000;  ///< Hz, how often it reports positions
+    double force_rate = 1000;     ///< Hz, how often it takes new forces
+};
+
+struct HapticReading {
+    double slide = 0, press = 0;  ///< m
+    double time = -1;             ///< s on the engine's clock when measured; < 0: never
+};
+
+class HapticDevice {
+  public:
+    virtual ~HapticDevice() = default;
+    virtual HapticCapabilities capabilities() const = 0;
+    /// The newest positions the device has reported.
+    virtual HapticReading read() const = 0;
+    /// The forces to render (N); the device takes the newest at its own rate.
+    virtual void write(double slide_force, double press_force, double time) = 0;
+};
+
+}  // namespace archet
