@@ -153,6 +153,35 @@ TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
     EXPECT_EQ(link.exit_status(), 0);
 }
 
+TEST(EngineProcess, ARunawayIsMutedWithinABlockAndTheModelReset) {
+    EngineLink link(options());
+    link.start();
+    ASSERT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 5000ms));
+    std::vector<std::string> errors;
+    ASSERT_TRUE(wait_status(
+        link, StatusKind::ModelLoaded,
+        link.load_model(test::resource("models/bowed-string-220.json").string()), errors));
+    link.play();
+    link.gesture(0.0, 60.0);  // the pad shoves the bow 60 m into the string: kilojoules
+    auto status = link.status();
+    bool blown = false;
+    ASSERT_TRUE(wait_for(
+        [&] {
+            StatusFrame f;
+            while (status.try_pop(f))
+                blown = blown || f.kind == static_cast<std::uint32_t>(StatusKind::Blowup);
+            link.heartbeat();
+            return blown;
+        },
+        3000ms));
+    // Whatever came out before the mute stayed finite (the limiter holds full scale downstream).
+    auto probes = link.probes();
+    ProbeFrame f;
+    while (probes.try_pop(f)) ASSERT_TRUE(std::isfinite(f.output));
+    link.gesture(0.0, 0.0);  // let go: the reset model plays on
+    EXPECT_EQ(link.liveness(), EngineLink::Liveness::Running);
+}
+
 TEST(EngineProcess, StudioTellsUnresponsiveFromExited) {
     EngineLink link(options());
     link.start();

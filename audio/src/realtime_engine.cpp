@@ -24,6 +24,7 @@
 #include "archet/model_parameters.hpp"
 #include "archet/model_validation.hpp"
 #include "archet/output_limiter.hpp"
+#include "archet/parameter_smoother.hpp"
 #include "archet/realtime_allocations.hpp"
 #include "archet/simulation.hpp"
 
@@ -119,6 +120,7 @@ class Engine final : public AudioRenderer {
                 retired_.store(running_model_, std::memory_order_release);
                 running_model_ = next;
                 muted_ = false;
+                smoother_.clear();
                 swapped_sequence_.store(next->sequence);
                 swaps_.fetch_add(1, std::memory_order_release);
             }
@@ -130,7 +132,9 @@ class Engine final : public AudioRenderer {
             else if (r.kind == RealtimeCommand::Stop)
                 playing_ = false;
             else if (running_model_ && r.kind == RealtimeCommand::SetParameter)
-                running_model_->simulation->set_parameter(r.slot, r.value);
+                smoother_.glide(
+                    *running_model_->simulation, r.slot, r.value,
+                    static_cast<int>(kGlideSeconds * running_model_->simulation->sample_rate()));
             else if (running_model_ && r.kind == RealtimeCommand::Gesture)
                 running_model_->simulation->set_device_position({r.slide, r.press});
         }
@@ -280,7 +284,8 @@ class Engine final : public AudioRenderer {
     void recover_from_blowup() {
         // The real-time thread muted the model; a fresh copy replaces it.
         delete pending_.exchange(prepare(current_model_, 0).release());
-        publish(StatusKind::Blowup, 0, "numerical blow-up: output muted and the model reset");
+        publish(StatusKind::Blowup, 0,
+                "energy runaway or non-finite output: muted within the block, model reset");
     }
 
     // ---- real-time thread ----------------------------------------------------------------
@@ -290,6 +295,7 @@ class Engine final : public AudioRenderer {
         Simulation& sim = *m.simulation;
         const std::size_t probes = sim.probe_count();
         for (int i = 0; i < frames; ++i) {
+            smoother_.advance(sim);
             sim.step();
             ProbeFrame f;
             f.tick = sim.tick();
@@ -309,7 +315,15 @@ class Engine final : public AudioRenderer {
             probes_.try_push(f);
         }
         tick_.store(sim.tick(), std::memory_order_relaxed);
-        energy_.store(sim.stored_energy(), std::memory_order_relaxed);
+        const double energy = sim.stored_energy();
+        energy_.store(energy, std::memory_order_relaxed);
+        if (!std::isfinite(energy) ||
+            energy > kRunawayEnergy) {  // mute now; control resets the model
+            muted_ = true;
+            blown_.store(true);
+            std::fill(out, out + static_cast<std::ptrdiff_t>(frames) * channels, 0.0f);
+            return;
+        }
         if (++shape_countdown_ >= options_.shape_every) {
             shape_countdown_ = 0;
             ShapeFrame s;
@@ -335,10 +349,14 @@ class Engine final : public AudioRenderer {
     std::atomic<LoadedModel*> pending_{nullptr}, retired_{nullptr};
     std::atomic<std::uint32_t> swapped_sequence_{0};
     std::atomic<std::uint64_t> swaps_{0};
-    std::uint64_t swaps_answered_ = 0;      ///< control thread
-    LoadedModel* running_model_ = nullptr;  ///< owned by the real-time thread while it runs
-    bool muted_ = false, playing_ = false;  ///< real-time thread only
-    int shape_countdown_ = 0;               ///< real-time thread only
+    std::uint64_t swaps_answered_ = 0;             ///< control thread
+    LoadedModel* running_model_ = nullptr;         ///< owned by the real-time thread while it runs
+    bool muted_ = false, playing_ = false;         ///< real-time thread only
+    int shape_countdown_ = 0;                      ///< real-time thread only
+    ParameterSmoother smoother_;                   ///< real-time thread only
+    static constexpr double kGlideSeconds = 0.01;  ///< parameter changes arrive over 10 ms
+    /// A bowed string holds millijoules: a thousand joules means the numbers ran away.
+    static constexpr double kRunawayEnergy = 1e3;
     std::atomic<std::uint64_t> tick_{0}, blocks_{0};
     std::atomic<double> energy_{0};
     // Control thread's view of the model, for names and checks.

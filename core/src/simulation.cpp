@@ -421,6 +421,59 @@ void Simulation::set_parameter(const ParameterSlot& s, double v) {
     }
 }
 
+double Simulation::parameter(const ParameterSlot& s) const {
+    using K = ParameterSlot::Kind;
+    const CompiledLevel& lv = model_.levels[s.level];
+    switch (s.kind) {
+        case K::Mass:
+            return lv.mass[s.index];
+        case K::ChainK:
+            return lv.chain_k[s.index];
+        case K::ChainZ:
+            return lv.chain_zdt[s.index] * lv.dt;
+        case K::ChainLength: {
+            const Lia& l = model_.source.lias[lv.chain_element[s.index]];
+            const bool forward = model_.source.mats[lv.element_of[s.index]].id == l.from;
+            return forward ? lv.chain_length[s.index] : -lv.chain_length[s.index];
+        }
+        case K::LinkK:
+            return lv.links[s.index].k;
+        case K::LinkZ:
+            return lv.links[s.index].zdt * lv.dt;
+        case K::LinkLength:
+            return lv.links[s.index].contact ? -lv.links[s.index].length : lv.links[s.index].length;
+        case K::GroundK:
+            return lv.grounds[s.index].k;
+        case K::GroundZ:
+            return lv.grounds[s.index].zdt * lv.dt;
+        case K::CrossK:
+            return model_.cross_links[s.index].k;
+        case K::CrossZ:
+            return model_.cross_links[s.index].zdt * lv.dt;
+        case K::CrossLength: {
+            const auto& l = model_.cross_links[s.index];
+            return l.contact ? -l.length : l.length;
+        }
+        case K::BowKb:
+            return model_.bows[s.index].kb;
+        case K::BowZb:
+            return model_.bows[s.index].zbdt * lv.dt;
+        case K::BowMuS:
+            return model_.bows[s.index].mu_s;
+        case K::BowMuD:
+            return model_.bows[s.index].mu_d;
+        case K::BowV0:
+            return model_.bows[s.index].v0;
+        case K::GesturePositionScale:
+            return lv.gestures[s.index].position_scale;
+        case K::GestureForceScale:
+            return lv.gestures[s.index].force_scale;
+        case K::FixedPosition:
+            return lv.x()[s.index];
+    }
+    return 0;
+}
+
 double Simulation::stored_energy() const {
     double e = 0;
     for (const auto& lv : model_.levels) {

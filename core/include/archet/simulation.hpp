@@ -30,6 +30,8 @@ class Simulation {
 
     /// Sets a parameter while running (controls, the studio, --set on a compiled model).
     void set_parameter(const ParameterSlot& slot, double value);
+    /// The parameter's current value, in the model file's units.
+    double parameter(const ParameterSlot& slot) const;
 
     /// Keeps the per-element dissipation (slower; off by default).
     void enable_accounting(bool on);
