@@ -24,6 +24,7 @@
 #include "archet/realtime_allocations.hpp"
 #include "archet/simulated_hand.hpp"
 #include "archet/simulation.hpp"
+#include "archet/take_recorder.hpp"
 #include "audio_options.hpp"
 #include "commands.hpp"
 #include "model_loading.hpp"
@@ -33,7 +34,7 @@ namespace archet::cli {
 namespace {
 
 struct PlayArguments {
-    std::string model, gesture, haptic = "none";
+    std::string model, gesture, haptic = "none", take;
     AudioConfig audio;
     double duration = 0;
     bool stats = false;
@@ -49,14 +50,18 @@ std::int64_t now_ns() {
 class Player final : public AudioRenderer {
   public:
     Player(Simulation& sim, double budget_ns, int haptic_divider, const Gesture* gesture,
-           SimulatedHand* hand)
+           SimulatedHand* hand, TakeRecorder* take)
         : sim_(sim),
           limiter_(sim.sample_rate()),
           budget_ns_(budget_ns),
           haptic_divider_(haptic_divider),
           gesture_(gesture),
-          hand_(hand) {
+          hand_(hand),
+          take_(take) {
         if (hand_) link_.emplace(*hand_);
+        for (const auto& level : sim.model().levels)
+            if (level.divider == haptic_divider) haptic_dt_ = level.dt;
+        if (take_) take_->gesture(0.0, played(0.0));  // where the gesture points start
     }
 
     void render(float* out, int frames, int channels) override {
@@ -72,7 +77,18 @@ class Player final : public AudioRenderer {
                 hand_->advance(t, dt);
                 if (sim_.tick() % haptic_divider_ == 0) link_->tick(sim_, t, haptic_divider_ * dt);
             }
+            if (take_ && sim_.tick() % haptic_divider_ == 0) {
+                // The gesture points read their next position now, at time + their period.
+                const double t_next = sim_.time() + haptic_dt_;
+                take_->gesture(t_next, played(t_next));
+            }
             sim_.step();
+            if (take_) {
+                double probes[ipc::kMaxProbes];
+                const std::size_t count = std::min(sim_.probe_count(), ipc::kMaxProbes);
+                for (std::size_t p = 0; p < count; ++p) probes[p] = sim_.probe(p);
+                take_->sample(sim_.time(), sim_.output(), probes, count);
+            }
             const float y = limiter_.process(sim_.output());
             for (int c = 0; c < channels; ++c) out[i * channels + c] = y;
         }
@@ -94,8 +110,15 @@ class Player final : public AudioRenderer {
     OutputLimiter limiter_;
     double budget_ns_;
     std::uint64_t haptic_divider_;
+    // What the gesture points read at t: the device with a hand on it, else the gesture file.
+    GestureSample played(double t) const {
+        return hand_ || !gesture_ ? sim_.device_position() : gesture_->at(t);
+    }
+
     const Gesture* gesture_;
     SimulatedHand* hand_;
+    TakeRecorder* take_;
+    double haptic_dt_ = 0;
     std::optional<HapticLink> link_;
     std::atomic<std::uint64_t> haptic_ticks_{0}, haptic_late_{0};
 };
@@ -126,8 +149,14 @@ int run_play(const PlayArguments& a) {
     int haptic_divider = 1;
     for (const auto& level : sim.model().levels)
         if (!level.gestures.empty()) haptic_divider = std::max(haptic_divider, level.divider);
+    std::unique_ptr<TakeRecorder> take;
+    if (!a.take.empty()) {
+        std::vector<std::string> probes;
+        for (const auto& p : sim.model().probes) probes.push_back(p.id);
+        take = std::make_unique<TakeRecorder>(a.take, sim.sample_rate(), probes);
+    }
     Player player(sim, 1e9 * output->buffer_frames() / output->sample_rate(), haptic_divider,
-                  gesture ? &*gesture : nullptr, hand.get());
+                  gesture ? &*gesture : nullptr, hand.get(), take.get());
     const double duration =
         a.duration > 0 ? a.duration : (gesture ? gesture->duration() + 0.5 : 5.0);
     std::cerr << "archet: playing " << model.name << " on " << output->description() << ", "
@@ -137,6 +166,13 @@ int run_play(const PlayArguments& a) {
     output->start(player);
     std::this_thread::sleep_for(std::chrono::duration<double>(duration));
     output->stop();
+    if (take) {
+        take->finish();
+        std::cerr << "archet: take written to " << take->folder().string()
+                  << " (take.wav, gesture.json, probes.csv)"
+                  << (take->dropped() ? ", some samples dropped: the disk was too slow" : "")
+                  << "\n";
+    }
     if (a.stats) {
         const AudioStats s = output->stats();
         const nlohmann::ordered_json stats{
@@ -165,6 +201,8 @@ void add_play_command(CLI::App& app, Action& action) {
     cmd->add_option("--haptic", a->haptic,
                     "Haptic device: sim (a simulated hand following the gesture) or none")
         ->capture_default_str();
+    cmd->add_option("--take", a->take,
+                    "Record a take into this new folder: take.wav, gesture.json, probes.csv");
     cmd->add_option("--gesture", a->gesture,
                     "Gesture file playing the device axes (default: the model's)");
     cmd->add_option("--duration", a->duration,

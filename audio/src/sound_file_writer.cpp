@@ -16,9 +16,15 @@ SoundFormat parse_sound_format(const std::string& text) {
     throw InputError("--format", "\"" + text + "\" is not a sound format; use wav or flac");
 }
 
-SoundFileWriter::SoundFileWriter(std::filesystem::path path, SoundFormat format, int sample_rate)
+SoundFileWriter::SoundFileWriter(std::filesystem::path path, SoundFormat format, int sample_rate,
+                                 WriteMode mode)
     : path_(std::move(path)),
-      temp_(path_.string() + ".tmp-" + std::to_string(static_cast<long>(::getpid()))) {
+      temp_(mode == WriteMode::Direct
+                ? path_.string()
+                : path_.string() + ".tmp-" + std::to_string(static_cast<long>(::getpid()))),
+      mode_(mode) {
+    if (mode == WriteMode::Direct && std::filesystem::exists(path_))
+        throw InputError(path_.string(), "already exists; a take never overwrites a file");
     SF_INFO info{};
     info.samplerate = sample_rate;
     info.channels = 1;
@@ -36,8 +42,12 @@ SoundFileWriter::~SoundFileWriter() {
     if (file_) {
         sf_close(file_);
         std::error_code ignored;
-        std::filesystem::remove(temp_, ignored);
+        if (mode_ == WriteMode::Safe) std::filesystem::remove(temp_, ignored);
     }
+}
+
+void SoundFileWriter::update_header() {
+    if (file_) sf_command(file_, SFC_UPDATE_HEADER_NOW, nullptr, 0);
 }
 
 void SoundFileWriter::write(const double* samples, std::size_t count) {
@@ -59,9 +69,10 @@ void SoundFileWriter::close() {
     file_ = nullptr;
     std::error_code ec;
     if (status != 0) {
-        std::filesystem::remove(temp_, ec);
+        if (mode_ == WriteMode::Safe) std::filesystem::remove(temp_, ec);
         throw InputError(path_.string(), "could not finish the sound file (disk full?)");
     }
+    if (mode_ == WriteMode::Direct) return;
     std::filesystem::rename(temp_, path_, ec);
     if (ec) {
         std::filesystem::remove(temp_, ec);

@@ -13,6 +13,8 @@ GestureSample Gesture::at(double t) const {
     while (keyframes_[cursor_ + 1].time < t) ++cursor_;
     const auto& a = keyframes_[cursor_];
     const auto& b = keyframes_[cursor_ + 1];
+    // On a keyframe, exactly its values (a recorded take replays bit for bit).
+    if (t == b.time) return {b.slide, b.press};
     const double u = (t - a.time) / (b.time - a.time);
     return {a.slide + u * (b.slide - a.slide), a.press + u * (b.press - a.press)};
 }

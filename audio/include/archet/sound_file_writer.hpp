@@ -13,12 +13,18 @@ namespace archet {
 
 enum class SoundFormat { Wav, Flac };
 
+/// Safe: through a temporary file renamed on close (never a half-written file of the user's).
+/// Direct: straight into a new file that must not exist yet, its header kept current by
+/// update_header(), so that a crash leaves a valid file up to the last update (takes).
+enum class WriteMode { Safe, Direct };
+
 /// Parses "wav" / "flac"; throws InputError otherwise.
 SoundFormat parse_sound_format(const std::string& text);
 
 class SoundFileWriter {
   public:
-    SoundFileWriter(std::filesystem::path path, SoundFormat format, int sample_rate);
+    SoundFileWriter(std::filesystem::path path, SoundFormat format, int sample_rate,
+                    WriteMode mode = WriteMode::Safe);
     ~SoundFileWriter();
     SoundFileWriter(const SoundFileWriter&) = delete;
     SoundFileWriter& operator=(const SoundFileWriter&) = delete;
@@ -26,6 +32,8 @@ class SoundFileWriter {
     void write(const double* samples, std::size_t count);
     /// Finishes the file and moves it into place.
     void close();
+    /// Rewrites the header for what has been written so far (WAV).
+    void update_header();
 
     std::uint64_t clipped_samples() const { return clipped_; }
     double peak() const { return peak_; }
@@ -33,6 +41,7 @@ class SoundFileWriter {
 
   private:
     std::filesystem::path path_, temp_;
+    WriteMode mode_;
     sf_private_tag* file_ = nullptr;
     std::uint64_t clipped_ = 0, frames_ = 0;
     double peak_ = 0;

@@ -21,6 +21,7 @@ class Simulation {
     void set_gesture_track(const Gesture* gesture);
     /// Live device positions (used when no track is set).
     void set_device_position(GestureSample position) { device_ = position; }
+    GestureSample device_position() const { return device_; }
     /// The force the device should render per axis: the mean force of the model on the gesture
     /// points of that axis over their last period, times their force_scale (N).
     GestureSample device_force() const;

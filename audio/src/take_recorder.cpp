@@ -1,0 +1,104 @@
+#include "archet/take_recorder.hpp"
+
+#include <chrono>
+
+#include "archet/input_error.hpp"
+#include "archet/model_file.hpp"
+
+namespace archet {
+
+namespace {
+constexpr std::uint32_t kSampleCapacity = 1u << 17;  // 2.7 s of samples at 48 kHz
+constexpr std::uint32_t kGestureCapacity = 1u << 13;
+}  // namespace
+
+TakeRecorder::TakeRecorder(std::filesystem::path folder, double sample_rate,
+                           std::vector<std::string> probe_names)
+    : folder_(std::move(folder)),
+      sample_rate_(sample_rate),
+      probe_names_(std::move(probe_names)),
+      samples_(kSampleCapacity),
+      gestures_(kGestureCapacity) {
+    std::error_code ec;
+    if (std::filesystem::exists(folder_) && !std::filesystem::is_empty(folder_, ec))
+        throw InputError(folder_.string(),
+                         "already holds files; a take goes into a new or empty folder");
+    std::filesystem::create_directories(folder_, ec);
+    if (ec) throw InputError(folder_.string(), "cannot create the take folder: " + ec.message());
+    if (probe_names_.size() > ipc::kMaxProbes) probe_names_.resize(ipc::kMaxProbes);
+    // Files are opened before playing starts, so that a bad folder fails now, not mid-take.
+    wav_ = std::make_unique<SoundFileWriter>(folder_ / "take.wav", SoundFormat::Wav,
+                                             static_cast<int>(sample_rate_), WriteMode::Direct);
+    csv_ = std::make_unique<ProbeCsvWriter>(folder_ / "probes.csv", probe_names_);
+    writer_ = std::thread([this] { write_loop(); });
+}
+
+TakeRecorder::~TakeRecorder() {
+    try {
+        finish();
+    } catch (...) {
+    }
+}
+
+void TakeRecorder::sample(double time, double output, const double* probes, std::size_t count) {
+    Sample s;
+    s.time = time;
+    s.output = output;
+    s.count = static_cast<std::uint32_t>(std::min(count, ipc::kMaxProbes));
+    for (std::uint32_t i = 0; i < s.count; ++i) s.probes[i] = probes[i];
+    samples_.ring().try_push(s);
+}
+
+void TakeRecorder::gesture(double time, GestureSample p) {
+    gestures_.ring().try_push({time, p.slide, p.press});
+}
+
+std::uint64_t TakeRecorder::dropped() const {
+    return const_cast<TakeRecorder*>(this)->samples_.ring().dropped() +
+           const_cast<TakeRecorder*>(this)->gestures_.ring().dropped();
+}
+
+void TakeRecorder::write_loop() {
+    try {
+        SoundFileWriter& wav = *wav_;
+        ProbeCsvWriter& csv = *csv_;
+        std::vector<GestureKeyframe> keyframes;
+        std::vector<double> block;
+        auto last_header = std::chrono::steady_clock::now();
+        for (;;) {
+            const bool last_round = stopping_.load();
+            Sample s;
+            block.clear();
+            while (samples_.ring().try_pop(s)) {
+                block.push_back(s.output);
+                csv.write_row(s.time, s.probes);
+            }
+            if (!block.empty()) wav.write(block.data(), block.size());
+            GestureKeyframe k;
+            while (gestures_.ring().try_pop(k)) keyframes.push_back(k);
+            if (std::chrono::steady_clock::now() - last_header > std::chrono::seconds(1)) {
+                wav.update_header();  // a crash from here on still leaves a valid WAV
+                last_header = std::chrono::steady_clock::now();
+            }
+            if (last_round) break;
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+        wav.close();
+        csv.close();
+        write_file_atomically(folder_ / "gesture.json",
+                              format_gesture(Gesture("take", std::move(keyframes))));
+    } catch (const std::exception& e) {
+        error_ = e.what();
+    }
+}
+
+void TakeRecorder::finish() {
+    if (finished_) return;
+    finished_ = true;
+    stopping_.store(true);
+    if (writer_.joinable()) writer_.join();
+    if (!error_.empty())
+        throw InputError(folder_.string(), "the take could not be written: " + error_);
+}
+
+}  // namespace archet

@@ -1,0 +1,93 @@
+// Live takes: re-rendering a take's gesture reproduces its audio to the byte; killing the
+// player mid-take still leaves a valid WAV up to the last second; a take never writes into a
+// folder that holds files.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sndfile.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <thread>
+
+#include "test_support.hpp"
+
+extern char** environ;
+
+namespace archet {
+namespace {
+
+sf_count_t frames_of(const std::filesystem::path& wav) {
+    SF_INFO info{};
+    SNDFILE* f = sf_open(wav.c_str(), SFM_READ, &info);
+    if (!f) return -1;
+    sf_close(f);
+    return info.frames;
+}
+
+void expect_reproduced(const std::vector<std::string>& play_extra, const std::string& name) {
+    const auto dir = test::temp_dir(name);
+    const std::string model = test::resource("models/bowed-string-220.json").string();
+    std::vector<std::string> play{"play", model,    "--duration",
+                                  "1",    "--take", (dir / "take").string()};
+    play.insert(play.end(), play_extra.begin(), play_extra.end());
+    auto r = test::run_archet(play);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const sf_count_t frames = frames_of(dir / "take" / "take.wav");
+    ASSERT_GT(frames, 40000);
+    std::ostringstream duration;
+    duration << std::setprecision(17) << static_cast<double>(frames) / 48000.0;
+    r = test::run_archet({"render", model, "--gesture", (dir / "take" / "gesture.json").string(),
+                          "--duration", duration.str(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(dir / "take" / "take.wav"))
+        << "the re-rendered take differs";
+    // And it was a real take: bowed, with probes for every sample.
+    const std::string csv = test::read_file(dir / "take" / "probes.csv");
+    EXPECT_EQ(static_cast<sf_count_t>(std::count(csv.begin(), csv.end(), '\n')), frames + 1);
+}
+
+TEST(Take, WithTheSimulatedHandReRendersToTheByte) {
+    expect_reproduced({"--haptic", "sim"}, "take-hand");
+}
+
+TEST(Take, FromAGestureFileReRendersToTheByte) {
+    expect_reproduced({"--gesture", test::resource("gestures/detache.json").string()}, "take-file");
+}
+
+TEST(Take, AKilledPlayerLeavesAValidWavUpToTheLastSecond) {
+    const auto dir = test::temp_dir("take-crash");
+    std::vector<std::string> args{
+        ARCHET_BINARY,          "play", test::resource("models/bowed-string-220.json").string(),
+        "--duration",           "20",   "--take",
+        (dir / "take").string()};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(3300));
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+    const sf_count_t frames = frames_of(dir / "take" / "take.wav");
+    EXPECT_GE(frames, 2 * 48000) << "at least the seconds before the last header update";
+    EXPECT_LE(frames, 4 * 48000);
+}
+
+TEST(Take, NeverWritesIntoAFolderThatHoldsFiles) {
+    const auto dir = test::temp_dir("take-busy");
+    { std::ofstream(dir / "mine.txt") << "the user's notes"; }
+    const auto r =
+        test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
+                          "--duration", "0.2", "--take", dir.string()});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("already holds files"), std::string::npos) << r.err;
+    EXPECT_EQ(test::read_file(dir / "mine.txt"), "the user's notes");
+}
+
+}  // namespace
+}  // namespace archet
