@@ -182,6 +182,48 @@ TEST(EngineProcess, ARunawayIsMutedWithinABlockAndTheModelReset) {
     EXPECT_EQ(link.liveness(), EngineLink::Liveness::Running);
 }
 
+TEST(EngineProcess, SwapsModelsWithoutAClick) {
+    EngineLink link(options());
+    link.start();
+    ASSERT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 5000ms));
+    std::vector<std::string> errors;
+    ASSERT_TRUE(wait_status(
+        link, StatusKind::ModelLoaded,
+        link.load_model(test::resource("models/bowed-string-220.json").string()), errors));
+    link.play();
+    auto probes = link.probes();
+    std::vector<double> played;
+    std::uint64_t swap_tick = 0;
+    auto bow_for = [&](std::chrono::milliseconds how_long, double from) {
+        const auto start = std::chrono::steady_clock::now();
+        while (std::chrono::steady_clock::now() - start < how_long) {
+            const double t =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            link.gesture(from + 0.1 * t, 0.0015);
+            link.heartbeat();
+            ProbeFrame f;
+            while (probes.try_pop(f)) played.push_back(f.output);
+            std::this_thread::sleep_for(2ms);
+        }
+    };
+    bow_for(700ms, 0.0);
+    swap_tick = played.size();
+    const auto sequence =
+        link.load_model(test::resource("models/bowed-string-220-harmonic.json").string());
+    bow_for(300ms, 0.07);
+    ASSERT_TRUE(wait_status(link, StatusKind::ModelLoaded, sequence, errors));
+    ASSERT_GT(played.size(), swap_tick + 10000);
+    // The largest step between samples while the old string sang steadily, against the
+    // largest step anywhere after the swap was asked for.
+    double steady = 0, around_swap = 0;
+    for (std::size_t i = swap_tick / 2; i < swap_tick; ++i)
+        steady = std::max(steady, std::abs(played[i] - played[i - 1]));
+    for (std::size_t i = swap_tick; i < played.size(); ++i)
+        around_swap = std::max(around_swap, std::abs(played[i] - played[i - 1]));
+    ASSERT_GT(steady, 0.0) << "it was playing";
+    EXPECT_LT(around_swap, 1.5 * steady) << "a click at the swap";
+}
+
 TEST(EngineProcess, StudioTellsUnresponsiveFromExited) {
     EngineLink link(options());
     link.start();

@@ -106,6 +106,8 @@ class Engine final : public AudioRenderer {
         output_->stop();
         collect_retired();
         delete pending_.exchange(nullptr);
+        delete fading_from_;
+        fading_from_ = nullptr;
         delete running_model_;
         running_model_ = nullptr;
         return 0;
@@ -115,9 +117,17 @@ class Engine final : public AudioRenderer {
 
     void render(float* out, int frames, int channels) override {
         // A new model at a block boundary; the old one goes back for deletion.
-        if (!retired_.load(std::memory_order_acquire)) {
+        if (!fading_from_ && !retired_.load(std::memory_order_acquire)) {
             if (LoadedModel* next = pending_.exchange(nullptr, std::memory_order_acq_rel)) {
-                retired_.store(running_model_, std::memory_order_release);
+                if (running_model_ && playing_ && !muted_) {
+                    // Both play for a few milliseconds and cross-fade: no click.
+                    fading_from_ = running_model_;
+                    fade_done_ = 0;
+                    next->simulation->set_device_position(
+                        running_model_->simulation->device_position());
+                } else {
+                    retired_.store(running_model_, std::memory_order_release);
+                }
                 running_model_ = next;
                 muted_ = false;
                 smoother_.clear();
@@ -290,6 +300,20 @@ class Engine final : public AudioRenderer {
 
     // ---- real-time thread ----------------------------------------------------------------
 
+    // Mixes the outgoing model into the incoming one's sample; retires it when faded out.
+    double cross_fade(double incoming) {
+        Simulation& old = *fading_from_->simulation;
+        old.step();
+        const double outgoing = old.output();
+        const double a = static_cast<double>(++fade_done_) / kFadeSamples;
+        if (fade_done_ >= kFadeSamples || !std::isfinite(outgoing)) {
+            retired_.store(fading_from_, std::memory_order_release);
+            fading_from_ = nullptr;
+            return incoming;
+        }
+        return (1.0 - a) * outgoing + a * incoming;
+    }
+
     void run_block(LoadedModel& m, float* out, int frames, int channels) {
         const DenormalGuard no_denormals;
         Simulation& sim = *m.simulation;
@@ -303,6 +327,7 @@ class Engine final : public AudioRenderer {
             f.reserved = 0;
             for (std::size_t p = 0; p < probes; ++p) f.values[p] = sim.probe(p);
             f.output = sim.output();
+            if (fading_from_) f.output = cross_fade(f.output);
             if (!std::isfinite(f.output)) {  // mute within this block; control resets the model
                 muted_ = true;
                 blown_.store(true);
@@ -355,6 +380,9 @@ class Engine final : public AudioRenderer {
     int shape_countdown_ = 0;                      ///< real-time thread only
     ParameterSmoother smoother_;                   ///< real-time thread only
     static constexpr double kGlideSeconds = 0.01;  ///< parameter changes arrive over 10 ms
+    LoadedModel* fading_from_ = nullptr;           ///< real-time thread: the model being faded out
+    int fade_done_ = 0;
+    static constexpr int kFadeSamples = 480;  ///< 10 ms at 48 kHz
     /// A bowed string holds millijoules: a thousand joules means the numbers ran away.
     static constexpr double kRunawayEnergy = 1e3;
     std::atomic<std::uint64_t> tick_{0}, blocks_{0};

@@ -84,7 +84,7 @@ struct ProbeFrame {
     std::uint32_t count;  ///< probe values used
     std::uint32_t reserved;
     double values[kMaxProbes];
-    double output;  ///< the model's audio output
+    double output;  ///< the audio played (the model's output; cross-faded while models swap)
 };
 
 struct ShapeFrame {
