@@ -164,6 +164,7 @@ int run_play(const PlayArguments& a) {
               << duration << " s\n";
     const std::uint64_t allocations_before = realtime_allocations();
     output->start(player);
+    std::cerr << "archet: " << output->scheduling() << "\n";
     std::this_thread::sleep_for(std::chrono::duration<double>(duration));
     output->stop();
     if (take) {

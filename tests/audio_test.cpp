@@ -34,6 +34,8 @@ TEST(Audio, PlaysIntoTheNullSinkInRealTimeWithoutAllocating) {
     EXPECT_EQ(s["realtime_allocations"].get<int>(), 0);
     EXPECT_NEAR(s["haptic_ticks"].get<double>(), 1.5 * 3000, 100) << "the gesture link at 3 kHz";
     EXPECT_LT(s["worst_callback_us"].get<double>(), s["callback_budget_us"].get<double>());
+    EXPECT_NE(r.err.find("real-time scheduling"), std::string::npos)
+        << "says whether it got it: " << r.err;
     for (const char* key : {"callbacks", "xruns", "worst_callback_us", "callback_budget_us",
                             "haptic_ticks", "haptic_late_ticks"})
         EXPECT_TRUE(s.contains(key)) << key;

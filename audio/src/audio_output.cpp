@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <thread>
 
@@ -50,6 +51,7 @@ class NullOutput final : public AudioOutput {
         buffer_.assign(static_cast<std::size_t>(frames_ * channels_), 0.0f);
         running_.store(true);
         thread_ = std::thread([this] { loop(); });
+        while (scheduling_.load() < 0) std::this_thread::sleep_for(std::chrono::microseconds(100));
     }
     void stop() override {
         if (running_.exchange(false) && thread_.joinable()) thread_.join();
@@ -60,12 +62,18 @@ class NullOutput final : public AudioOutput {
     std::string description() const override {
         return "null sink (no device, clocked in real time)";
     }
+    std::string scheduling() const override {
+        return scheduling_.load() == 1
+                   ? "real-time scheduling granted"
+                   : "real-time scheduling not permitted (raise the user's rtprio "
+                     "limit or grant CAP_SYS_NICE); running at normal priority";
+    }
 
   private:
     void loop() {
         sched_param param{};
         param.sched_priority = 70;
-        pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);  // best effort
+        scheduling_.store(pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0 ? 1 : 0);
         mark_realtime_thread();
         const auto period = static_cast<std::int64_t>(1e9 * frames_ / rate_);
         std::int64_t deadline = now_ns();
@@ -90,6 +98,7 @@ class NullOutput final : public AudioOutput {
     AudioRenderer* renderer_ = nullptr;
     std::vector<float> buffer_;
     std::atomic<bool> running_{false};
+    std::atomic<int> scheduling_{-1};  ///< −1 unknown, 0 refused, 1 granted
     std::thread thread_;
     CallbackMeter meter_;
 };
@@ -145,6 +154,10 @@ class DeviceOutput final : public AudioOutput {
     double sample_rate() const override { return config_.sample_rate; }
     int buffer_frames() const override { return config_.buffer_frames; }
     std::string description() const override { return name_; }
+    std::string scheduling() const override {
+        return config_.api == "jack" ? "scheduled by the JACK server"
+                                     : "real-time scheduling requested from the driver";
+    }
 
   private:
     static int callback(void* out, void*, unsigned frames, double, RtAudioStreamStatus status,

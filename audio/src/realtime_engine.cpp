@@ -82,6 +82,7 @@ class Engine final : public AudioRenderer {
             output_->description() + ", " + std::to_string(output_->buffer_frames()) + " frames";
         if (!warning.empty()) said = warning + "; " + said;
         output_->start(*this);
+        said += "; " + output_->scheduling();
         header.engine_state.store(static_cast<std::uint32_t>(EngineState::Ready));
         publish(StatusKind::Heartbeat, 0, said);
         auto last_status = std::chrono::steady_clock::now();

@@ -42,6 +42,8 @@ class AudioOutput {
     virtual double sample_rate() const = 0;
     virtual int buffer_frames() const = 0;
     virtual std::string description() const = 0;
+    /// Whether the real-time thread got real-time scheduling, in words (after start()).
+    virtual std::string scheduling() const = 0;
 };
 
 /// Opens the output the config asks for. A device API that cannot be opened falls back to the
