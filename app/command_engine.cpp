@@ -16,6 +16,9 @@ void add_engine_command(CLI::App& app, Action& action) {
                     "Shared-memory segment created by the studio (/archet-...)")
         ->required();
     add_audio_options(*cmd, o->audio);
+    cmd->add_option("--haptic", o->haptic,
+                    "Haptic device: sim (the pad moves a simulated hand) or none")
+        ->capture_default_str();
     cmd->add_option("--shape-every", o->shape_every, "Blocks between string-shape frames")
         ->capture_default_str();
     cmd->callback([&action, o] { action = [o] { return run_engine(*o); }; });

@@ -17,7 +17,7 @@
 #include "archet/audio_output.hpp"
 #include "archet/compiled_model.hpp"
 #include "archet/denormal_guard.hpp"
-#include "archet/haptic_link.hpp"
+#include "archet/hand_loop.hpp"
 #include "archet/input_error.hpp"
 #include "archet/model_file.hpp"
 #include "archet/output_limiter.hpp"
@@ -56,9 +56,8 @@ class Player final : public AudioRenderer {
           budget_ns_(budget_ns),
           haptic_divider_(haptic_divider),
           gesture_(gesture),
-          hand_(hand),
           take_(take) {
-        if (hand_) link_.emplace(*hand_);
+        if (hand) hand_loop_.emplace(*hand, sim);
         for (const auto& level : sim.model().levels)
             if (level.divider == haptic_divider) haptic_dt_ = level.dt;
         if (take_) take_->gesture(0.0, played(0.0));  // where the gesture points start
@@ -68,15 +67,11 @@ class Player final : public AudioRenderer {
         const DenormalGuard no_denormals;
         const std::int64_t start = now_ns();
         const std::uint64_t first = sim_.tick();
-        const double dt = 1.0 / sim_.sample_rate();
         for (int i = 0; i < frames; ++i) {
-            if (hand_) {  // the simulated device: its hand follows the gesture, the link closes the
-                          // loop
-                const double t = sim_.time();
-                if (gesture_) hand_->set_target(gesture_->at(t));
-                hand_->advance(t, dt);
-                if (sim_.tick() % haptic_divider_ == 0) link_->tick(sim_, t, haptic_divider_ * dt);
-            }
+            // The simulated device: its hand follows the gesture, the link closes the loop.
+            if (hand_loop_)
+                hand_loop_->before_step(sim_,
+                                        gesture_ ? gesture_->at(sim_.time()) : GestureSample{});
             if (take_ && sim_.tick() % haptic_divider_ == 0) {
                 // The gesture points read their next position now, at time + their period.
                 const double t_next = sim_.time() + haptic_dt_;
@@ -112,14 +107,13 @@ class Player final : public AudioRenderer {
     std::uint64_t haptic_divider_;
     // What the gesture points read at t: the device with a hand on it, else the gesture file.
     GestureSample played(double t) const {
-        return hand_ || !gesture_ ? sim_.device_position() : gesture_->at(t);
+        return hand_loop_ || !gesture_ ? sim_.device_position() : gesture_->at(t);
     }
 
     const Gesture* gesture_;
-    SimulatedHand* hand_;
     TakeRecorder* take_;
     double haptic_dt_ = 0;
-    std::optional<HapticLink> link_;
+    std::optional<HandLoop> hand_loop_;
     std::atomic<std::uint64_t> haptic_ticks_{0}, haptic_late_{0};
 };
 

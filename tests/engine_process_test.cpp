@@ -55,6 +55,19 @@ bool wait_status(EngineLink& link, StatusKind kind, std::uint32_t sequence,
         5000ms);
 }
 
+// Starts the engine, loads a shipped model and plays it.
+bool start_playing(EngineLink& link, const std::string& model) {
+    link.start();
+    if (!wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 5000ms))
+        return false;
+    std::vector<std::string> errors;
+    if (!wait_status(link, StatusKind::ModelLoaded, link.load_model(test::resource(model).string()),
+                     errors))
+        return false;
+    link.play();
+    return true;
+}
+
 TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
     EngineLink link(options());
     link.start();
@@ -155,13 +168,8 @@ TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
 
 TEST(EngineProcess, ARunawayIsMutedWithinABlockAndTheModelReset) {
     EngineLink link(options());
-    link.start();
-    ASSERT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 5000ms));
+    ASSERT_TRUE(start_playing(link, "models/bowed-string-220.json"));
     std::vector<std::string> errors;
-    ASSERT_TRUE(wait_status(
-        link, StatusKind::ModelLoaded,
-        link.load_model(test::resource("models/bowed-string-220.json").string()), errors));
-    link.play();
     link.gesture(0.0, 60.0);  // the pad shoves the bow 60 m into the string: kilojoules
     auto status = link.status();
     bool blown = false;
@@ -184,13 +192,8 @@ TEST(EngineProcess, ARunawayIsMutedWithinABlockAndTheModelReset) {
 
 TEST(EngineProcess, SwapsModelsWithoutAClick) {
     EngineLink link(options());
-    link.start();
-    ASSERT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 5000ms));
+    ASSERT_TRUE(start_playing(link, "models/bowed-string-220.json"));
     std::vector<std::string> errors;
-    ASSERT_TRUE(wait_status(
-        link, StatusKind::ModelLoaded,
-        link.load_model(test::resource("models/bowed-string-220.json").string()), errors));
-    link.play();
     auto probes = link.probes();
     std::vector<double> played;
     std::uint64_t swap_tick = 0;
@@ -222,6 +225,42 @@ TEST(EngineProcess, SwapsModelsWithoutAClick) {
         around_swap = std::max(around_swap, std::abs(played[i] - played[i - 1]));
     ASSERT_GT(steady, 0.0) << "it was playing";
     EXPECT_LT(around_swap, 1.5 * steady) << "a click at the swap";
+}
+
+TEST(EngineProcess, ThePadMovesASimulatedHandThatFeelsTheString) {
+    EngineLinkOptions o = options();
+    o.haptic = "sim";
+    EngineLink link(o);
+    ASSERT_TRUE(start_playing(link, "models/bowed-string-220.json"));
+    std::vector<std::string> errors;
+    auto probes = link.probes();
+    double max_friction = 0, max_hand_force = 0;
+    const auto start = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - start < 800ms) {
+        const double t =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        link.gesture(0.1 * t, 0.0015);  // the mouse: the hand follows it through its grip
+        link.heartbeat();
+        ProbeFrame f;
+        while (probes.try_pop(f)) {
+            max_friction = std::max(max_friction, std::abs(f.values[5]));
+            max_hand_force = std::max(max_hand_force, std::abs(f.values[7]));  // hand_force_slide
+        }
+        std::this_thread::sleep_for(5ms);
+    }
+    EXPECT_GT(max_friction, 0.01) << "the hand bowed the string";
+    EXPECT_GT(max_hand_force, 0.01) << "and felt it";
+    auto status = link.status();
+    StatusFrame latest{};
+    wait_for(
+        [&] {
+            StatusFrame f;
+            bool fresh = false;
+            while (status.try_pop(f)) latest = f, fresh = true;
+            return fresh;
+        },
+        500ms);
+    EXPECT_EQ(latest.realtime_allocations, 0u);
 }
 
 TEST(EngineProcess, StudioTellsUnresponsiveFromExited) {

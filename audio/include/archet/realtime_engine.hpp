@@ -18,6 +18,8 @@ struct EngineOptions {
     std::string segment;  ///< shared-memory name, from the studio
     AudioConfig audio;    ///< where the sound goes (null sink by default)
     int shape_every = 8;  ///< blocks between string-shape frames
+    std::string haptic =
+        "none";  ///< none: the pad sets the device position; sim: it moves a simulated hand
 };
 
 /// Runs until told to quit or the studio dies. Returns the exit status (0 normal; 2 when the

@@ -36,8 +36,9 @@ EngineLink::~EngineLink() {
 
 void EngineLink::start() {
     const std::string block = std::to_string(options_.block_frames);
-    std::vector<std::string> args{options_.archet_binary, "engine",   "--shm",
-                                  segment_.name(),        "--buffer", block};
+    std::vector<std::string> args{
+        options_.archet_binary, "engine", "--shm", segment_.name(), "--buffer", block, "--haptic",
+        options_.haptic};
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
