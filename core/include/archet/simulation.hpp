@@ -85,8 +85,8 @@ class Simulation {
     double hand_work_ = 0;
     bool accounting_ = false;
     std::vector<double> dissipated_;
-    std::vector<int>
-        active_;  ///< per level: does it tick this step (int: a char store would alias everything)
+    /// Per level: does it tick this step. (int, not char: a char store may alias anything.)
+    std::vector<int> active_;
     std::vector<int> countdown_;  ///< per level: steps until its next tick
 };
 
