@@ -54,8 +54,7 @@ void TakeRecorder::gesture(double time, GestureSample p) {
 }
 
 std::uint64_t TakeRecorder::dropped() const {
-    return const_cast<TakeRecorder*>(this)->samples_.ring().dropped() +
-           const_cast<TakeRecorder*>(this)->gestures_.ring().dropped();
+    return samples_.ring().dropped() + gestures_.ring().dropped();
 }
 
 void TakeRecorder::write_loop() {

@@ -168,18 +168,17 @@ inline void chain_loops(int n, const double* __restrict x, const double* __restr
     for (int s = 1; s <= n; ++s) xn[s] = 2.0 * x[s] - xp[s] + c[s] * (f[s - 1] - f[s]);
 }
 
-__attribute__((target_clones("avx2", "default"))) void integrate_chain(const CompiledLevel& lv,
+__attribute__((target_clones("avx2", "default"))) void integrate_chain(CompiledLevel& lv,
                                                                        double* xn) {
     const int current = lv.current;
     const double* x = lv.buffer[current].data();
     const double* xp = lv.buffer[(current + 2) % 3].data();
     if (lv.has_chain_lengths)
         chain_loops<true>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(),
-                          lv.chain_length.data(), lv.coeff.data(),
-                          const_cast<double*>(lv.chain_force.data()));
+                          lv.chain_length.data(), lv.coeff.data(), lv.chain_force.data());
     else
         chain_loops<false>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(), nullptr,
-                           lv.coeff.data(), const_cast<double*>(lv.chain_force.data()));
+                           lv.coeff.data(), lv.chain_force.data());
 }
 }  // namespace
 

@@ -81,6 +81,7 @@ class LocalRing {
     LocalRing(const LocalRing&) = delete;
     LocalRing& operator=(const LocalRing&) = delete;
     SpscRing<Frame>& ring() { return ring_; }
+    const SpscRing<Frame>& ring() const { return ring_; }
 
   private:
     char* memory_;
