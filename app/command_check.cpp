@@ -7,7 +7,7 @@
 #include <map>
 #include <memory>
 
-#include "archet/discrete_modes.hpp"
+#include "archet/modal_analysis.hpp"
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
 #include "archet/model_validation.hpp"
@@ -63,12 +63,25 @@ int run_check(const CheckArguments& a) {
                 r.stiffest_dof.empty() ? "" : ", stiffest ", r.stiffest_dof.c_str());
         }
         const LinearSystem string = sounding_part(model);
-        const auto modes = discrete_modes(string);
-        if (!modes.empty()) {
+        if (string.size() > 0 && string.size() <= kMaxModalDofs) {
+            const ModalAnalysis modes = analyse_modes(string, model);
+            if (modes.fundamental > 0)
+                std::printf(
+                    "first mode %.6f Hz: the string's fundamental (support modes of bridges set "
+                    "aside)\n",
+                    modes.fundamental);
             std::printf("lowest modes of the %d-DOF part that sounds (around \"%s\"):\n",
                         string.size(), string.dofs.front().c_str());
-            for (std::size_t i = 0; i < std::min<std::size_t>(modes.size(), 5); ++i)
-                std::printf("  %12.6f Hz  T60 %.3g s\n", modes[i].frequency, modes[i].t60);
+            for (std::size_t i = 0; i < std::min<std::size_t>(modes.modes.size(), 5); ++i) {
+                const ModeInfo& m = modes.modes[i];
+                std::printf(
+                    "  %12.6f Hz  T60 %-8.3g %s\n", m.frequency, m.t60,
+                    m.support ? "support" : ("partial " + std::to_string(m.partial)).c_str());
+            }
+        } else if (string.size() > kMaxModalDofs) {
+            std::printf(
+                "modes      not computed: %d degrees of freedom (the modal analysis handles %d)\n",
+                string.size(), kMaxModalDofs);
         }
     }
     if (problems.empty()) {
