@@ -17,7 +17,9 @@
 #include "archet/audio_output.hpp"
 #include "archet/compiled_model.hpp"
 #include "archet/denormal_guard.hpp"
-#include "archet/hand_loop.hpp"
+#include "archet/evdev_device.hpp"
+#include "archet/haptic_choice.hpp"
+#include "archet/haptic_loop.hpp"
 #include "archet/input_error.hpp"
 #include "archet/model_file.hpp"
 #include "archet/output_limiter.hpp"
@@ -50,14 +52,14 @@ std::int64_t now_ns() {
 class Player final : public AudioRenderer {
   public:
     Player(Simulation& sim, double budget_ns, int haptic_divider, const Gesture* gesture,
-           SimulatedHand* hand, TakeRecorder* take)
+           const HapticChoice& haptic, TakeRecorder* take)
         : sim_(sim),
           limiter_(sim.sample_rate()),
           budget_ns_(budget_ns),
           haptic_divider_(haptic_divider),
           gesture_(gesture),
           take_(take) {
-        if (hand) hand_loop_.emplace(*hand, sim);
+        if (haptic.device) haptic_loop_.emplace(*haptic.device, haptic.hand, sim);
         for (const auto& level : sim.model().levels)
             if (level.divider == haptic_divider) haptic_dt_ = level.dt;
         if (take_) take_->gesture(0.0, played(0.0));  // where the gesture points start
@@ -68,10 +70,10 @@ class Player final : public AudioRenderer {
         const std::int64_t start = now_ns();
         const std::uint64_t first = sim_.tick();
         for (int i = 0; i < frames; ++i) {
-            // The simulated device: its hand follows the gesture, the link closes the loop.
-            if (hand_loop_)
-                hand_loop_->before_step(sim_,
-                                        gesture_ ? gesture_->at(sim_.time()) : GestureSample{});
+            // A device: a simulated hand follows the gesture, the link closes the loop.
+            if (haptic_loop_)
+                haptic_loop_->before_step(sim_,
+                                          gesture_ ? gesture_->at(sim_.time()) : GestureSample{});
             if (take_ && sim_.tick() % haptic_divider_ == 0) {
                 // The gesture points read their next position now, at time + their period.
                 const double t_next = sim_.time() + haptic_dt_;
@@ -107,13 +109,13 @@ class Player final : public AudioRenderer {
     std::uint64_t haptic_divider_;
     // What the gesture points read at t: the device with a hand on it, else the gesture file.
     GestureSample played(double t) const {
-        return hand_loop_ || !gesture_ ? sim_.device_position() : gesture_->at(t);
+        return haptic_loop_ || !gesture_ ? sim_.device_position() : gesture_->at(t);
     }
 
     const Gesture* gesture_;
     TakeRecorder* take_;
     double haptic_dt_ = 0;
-    std::optional<HandLoop> hand_loop_;
+    std::optional<HapticLoop> haptic_loop_;
     std::atomic<std::uint64_t> haptic_ticks_{0}, haptic_late_{0};
 };
 
@@ -132,14 +134,10 @@ int run_play(const PlayArguments& a) {
     if (!warning.empty()) std::cerr << "archet: warning: " << warning << "\n";
     // The device's clock is the master clock: the model runs at its rate.
     Simulation sim(compile(model, output->sample_rate()));
-    if (a.haptic != "none" && a.haptic != "sim")
-        throw InputError("--haptic",
-                         "\"" + a.haptic + "\" is not a haptic device here; use sim or none");
-    std::unique_ptr<SimulatedHand> hand;
-    if (a.haptic == "sim") hand = std::make_unique<SimulatedHand>();
+    const HapticChoice haptic = open_haptic_device(a.haptic);
     // Without a device the gesture file plays the gesture points directly; with one, it moves
     // the hand that holds the device.
-    sim.set_gesture_track(gesture && !hand ? &*gesture : nullptr);
+    sim.set_gesture_track(gesture && !haptic.device ? &*gesture : nullptr);
     int haptic_divider = 1;
     for (const auto& level : sim.model().levels)
         if (!level.gestures.empty()) haptic_divider = std::max(haptic_divider, level.divider);
@@ -150,7 +148,7 @@ int run_play(const PlayArguments& a) {
         take = std::make_unique<TakeRecorder>(a.take, sim.sample_rate(), probes);
     }
     Player player(sim, 1e9 * output->buffer_frames() / output->sample_rate(), haptic_divider,
-                  gesture ? &*gesture : nullptr, hand.get(), take.get());
+                  gesture ? &*gesture : nullptr, haptic, take.get());
     const double duration =
         a.duration > 0 ? a.duration : (gesture ? gesture->duration() + 0.5 : 5.0);
     std::cerr << "archet: playing " << model.name << " on " << output->description() << ", "
@@ -193,8 +191,9 @@ void add_play_command(CLI::App& app, Action& action) {
         "play", "Play a model live, without the studio (gesture file as the device)");
     cmd->add_option("model", a->model, "Model file (.json)")->required();
     add_audio_options(*cmd, a->audio);
-    cmd->add_option("--haptic", a->haptic,
-                    "Haptic device: sim (a simulated hand following the gesture) or none")
+    cmd->add_option(
+           "--haptic", a->haptic,
+           "Haptic device: none, sim (a simulated hand following the gesture) or evdev:PATH")
         ->capture_default_str();
     cmd->add_option("--take", a->take,
                     "Record a take into this new folder: take.wav, gesture.json, probes.csv");
@@ -210,10 +209,18 @@ void add_play_command(CLI::App& app, Action& action) {
 }
 
 void add_devices_command(CLI::App& app, Action& action) {
-    auto* cmd = app.add_subcommand("devices", "List the audio output devices Archet can play to");
+    auto* cmd = app.add_subcommand(
+        "devices", "List the audio outputs and haptic devices Archet can play with");
     cmd->callback([&action] {
         action = [] {
             for (const auto& line : list_audio_devices()) std::cout << line << "\n";
+            const auto haptic = list_haptic_devices();
+            for (const auto& line : haptic) std::cout << line << "\n";
+            if (haptic.empty())
+                std::cout << "evdev: no force-feedback joystick found in /dev/input (readable "
+                             "event devices with "
+                             "two absolute axes and FF_CONSTANT)\n";
+            std::cout << "sim: simulated hand (always available)\n";
             return 0;
         };
     });

@@ -65,11 +65,18 @@ TEST(Audio, PlaysThroughTheSimulatedHapticDevice) {
     EXPECT_NEAR(s["haptic_ticks"].get<double>(), 3000, 100);
     EXPECT_EQ(s["realtime_allocations"].get<int>(), 0)
         << "hand, link and model in the callback, allocation-free";
-    const auto bad =
-        test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
-                          "--haptic", "evdev:/dev/nothing"});
-    EXPECT_EQ(bad.status, 2);
-    EXPECT_NE(bad.err.find("--haptic"), std::string::npos) << bad.err;
+    const std::string model = test::resource("models/bowed-string-220.json").string();
+    for (const auto& [device, expected] : std::vector<std::pair<std::string, std::string>>{
+             {"evdev:/dev/input/no-such-joystick", "cannot open the device"},
+             {"evdev:/dev/null", "not an input device"},
+             {"joystick", "is not a haptic device; use none, sim or evdev:"}}) {
+        const auto bad = test::run_archet({"play", model, "--haptic", device, "--duration", "0.2"});
+        EXPECT_EQ(bad.status, 2) << device;
+        EXPECT_NE(bad.err.find(expected), std::string::npos) << bad.err;
+    }
+    const auto devices = test::run_archet({"devices"});
+    EXPECT_EQ(devices.status, 0);
+    EXPECT_NE(devices.out.find("sim: simulated hand"), std::string::npos) << devices.out;
 }
 
 class JackServer : public ::testing::Test {

@@ -25,7 +25,8 @@ TEST(Cli, NewCheckRenderAsInTheReadme) {
     r = test::run_archet({"check", model});
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.out.find("problems   none"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("first mode 98.000000 Hz: the string's fundamental"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("first mode 98.000000 Hz: the string's fundamental"), std::string::npos)
+        << r.out;
     EXPECT_NE(r.out.find("partial 1"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("margin"), std::string::npos) << r.out;
 

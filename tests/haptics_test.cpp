@@ -9,8 +9,10 @@
 #include <functional>
 #include <numbers>
 #include <random>
+#include <thread>
 
 #include "archet/compiled_model.hpp"
+#include "archet/evdev_device.hpp"
 #include "archet/haptic_link.hpp"
 #include "archet/model_file.hpp"
 #include "archet/simulated_hand.hpp"
@@ -193,6 +195,20 @@ TEST(Haptics, HandReadingsRespectRateLatencyAndResolution) {
     }
     EXPECT_NEAR(updates, 500, 3) << "at the device's own rate";
     EXPECT_NEAR(hand.position().slide, 0.02, 1e-3) << "the hand reached its target";
+}
+
+TEST(Haptics, AForceFeedbackJoystickAnswersThroughEvdev) {
+    const auto devices = list_haptic_devices();
+    if (devices.empty())
+        GTEST_SKIP() << "no force-feedback joystick in /dev/input (needs hardware)";
+    const std::string path = devices.front().substr(6, devices.front().find(':') - 6);
+    EvdevDevice device(path);
+    EXPECT_FALSE(device.capabilities().name.empty());
+    device.write(0.1, 0.0, 0.0);  // a gentle push, then let go
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_FALSE(device.stale(0.0, 0.02)) << "its I/O thread answers";
+    const HapticReading r = device.read();
+    EXPECT_LE(std::abs(r.slide), device.capabilities().range);
 }
 
 }  // namespace

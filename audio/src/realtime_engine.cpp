@@ -19,7 +19,8 @@
 
 #include "archet/compiled_model.hpp"
 #include "archet/denormal_guard.hpp"
-#include "archet/hand_loop.hpp"
+#include "archet/haptic_choice.hpp"
+#include "archet/haptic_loop.hpp"
 #include "archet/input_error.hpp"
 #include "archet/ipc/shared_segment.hpp"
 #include "archet/model_file.hpp"
@@ -41,8 +42,8 @@ struct LoadedModel {
     Model model;
     CompiledModel resolver;  ///< names → slots, on the control thread
     std::unique_ptr<Simulation> simulation;
-    std::vector<MatSlot> shape;    ///< MATs of the fastest level, in model order
-    std::optional<HandLoop> hand;  ///< with a simulated device: its hand and link for this model
+    std::vector<MatSlot> shape;        ///< MATs of the fastest level, in model order
+    std::optional<HapticLoop> haptic;  ///< with a device: its loop and link for this model
     std::uint32_t sequence = 0;
 };
 
@@ -78,11 +79,7 @@ class Engine final : public AudioRenderer {
         auto& header = segment_.header();
         header.engine_pid.store(static_cast<std::int32_t>(::getpid()));
         std::string said = request_realtime_resources();
-        if (options_.haptic == "sim")
-            hand_ = std::make_unique<SimulatedHand>();
-        else if (options_.haptic != "none")
-            throw InputError("--haptic", "\"" + options_.haptic +
-                                             "\" is not a haptic device here; use sim or none");
+        haptic_ = open_haptic_device(options_.haptic);
         std::string warning;
         output_ = open_audio_output(options_.audio, &warning);
         limiter_ = std::make_unique<OutputLimiter>(output_->sample_rate());
@@ -156,7 +153,8 @@ class Engine final : public AudioRenderer {
                     static_cast<int>(kGlideSeconds * running_model_->simulation->sample_rate()));
             else if (r.kind == RealtimeCommand::Gesture) {
                 pad_ = {r.slide, r.press};  // with a simulated hand the pad is its target
-                if (running_model_ && !hand_) running_model_->simulation->set_device_position(pad_);
+                if (running_model_ && !haptic_.device)
+                    running_model_->simulation->set_device_position(pad_);
             }
         }
         if (playing_ && running_model_ && !muted_)
@@ -242,7 +240,8 @@ class Engine final : public AudioRenderer {
             compile(model, output_->sample_rate());  // the device's clock is the master
         loaded->simulation = std::make_unique<Simulation>(loaded->resolver);
         loaded->simulation->set_gesture_track(nullptr);  // live: the device or the pad plays it
-        if (hand_) loaded->hand.emplace(*hand_, *loaded->simulation);
+        if (haptic_.device)
+            loaded->haptic.emplace(*haptic_.device, haptic_.hand, *loaded->simulation);
         for (const auto& m : model.mats) {
             const MatSlot slot = loaded->resolver.mat_slots.at(m.id);
             if (slot.level == 0 && loaded->shape.size() < kMaxShapePoints)
@@ -332,7 +331,7 @@ class Engine final : public AudioRenderer {
         const std::size_t probes = sim.probe_count();
         for (int i = 0; i < frames; ++i) {
             smoother_.advance(sim);
-            if (m.hand) m.hand->before_step(sim, pad_);
+            if (m.haptic) m.haptic->before_step(sim, pad_);
             sim.step();
             ProbeFrame f;
             f.tick = sim.tick();
@@ -392,8 +391,8 @@ class Engine final : public AudioRenderer {
     bool muted_ = false, playing_ = false;  ///< real-time thread only
     int shape_countdown_ = 0;               ///< real-time thread only
     GestureSample pad_{};                   ///< real-time thread: the pad's latest position
-    std::unique_ptr<SimulatedHand> hand_;   ///< the simulated device, used by the real-time thread
-    ParameterSmoother smoother_;            ///< real-time thread only
+    HapticChoice haptic_;         ///< the device, used by the real-time thread (none by default)
+    ParameterSmoother smoother_;  ///< real-time thread only
     static constexpr double kGlideSeconds = 0.01;  ///< parameter changes arrive over 10 ms
     LoadedModel* fading_from_ = nullptr;           ///< real-time thread: the model being faded out
     int fade_done_ = 0;

@@ -11,7 +11,7 @@ HapticLink::HapticLink(HapticDevice& device, HapticLinkOptions options)
 void HapticLink::tick(Simulation& sim, double time, double period) {
     ++ticks_;
     const HapticReading r = device_.read();
-    const bool stale = r.time < 0 || time - r.time > options_.stale_after;
+    const bool stale = device_.stale(time, options_.stale_after);
     GestureSample wanted{};
     if (stale) {
         ++stale_;  // hold the last position, render nothing

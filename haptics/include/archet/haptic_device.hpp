@@ -27,6 +27,12 @@ class HapticDevice {
     virtual HapticReading read() const = 0;
     /// The forces to render (N); the device takes the newest at its own rate.
     virtual void write(double slide_force, double press_force, double time) = 0;
+    /// Whether its data is too old to trust at engine time `time`. By default from the reading's
+    /// time; a device that reports only changes judges by when it last answered at all.
+    virtual bool stale(double time, double limit) const {
+        const HapticReading r = read();
+        return r.time < 0 || time - r.time > limit;
+    }
 };
 
 }  // namespace archet

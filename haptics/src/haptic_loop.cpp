@@ -1,18 +1,21 @@
-#include "archet/hand_loop.hpp"
+#include "archet/haptic_loop.hpp"
 
 namespace archet {
 
-HandLoop::HandLoop(SimulatedHand& hand, const Simulation& sim) : hand_(hand), link_(hand) {
+HapticLoop::HapticLoop(HapticDevice& device, SimulatedHand* hand, const Simulation& sim)
+    : hand_(hand), link_(device) {
     for (const auto& level : sim.model().levels)
         if (!level.gestures.empty() && level.divider >= divider_)
             divider_ = level.divider, period_ = level.dt;
     if (period_ == 0) period_ = 1.0 / sim.sample_rate();
 }
 
-void HandLoop::before_step(Simulation& sim, GestureSample target) {
+void HapticLoop::before_step(Simulation& sim, GestureSample target) {
     const double t = sim.time();
-    hand_.set_target(target);
-    hand_.advance(t, 1.0 / sim.sample_rate());
+    if (hand_) {
+        hand_->set_target(target);
+        hand_->advance(t, 1.0 / sim.sample_rate());
+    }
     if (sim.tick() % static_cast<std::uint64_t>(divider_) == 0) link_.tick(sim, t, period_);
 }
 

@@ -1,0 +1,62 @@
+#pragma once
+// A force-feedback joystick through Linux evdev (libevdev). Axis X slides the bow, axis Y
+// presses it. Two constant-force effects are uploaded once; an I/O thread (never the
+// real-time one) reads EV_ABS positions and updates the effects' levels with the newest force
+// at the rate the device takes, and drops the force to zero when the simulation stops writing.
+
+#include <atomic>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "archet/haptic_device.hpp"
+
+struct libevdev;
+
+namespace archet {
+
+struct EvdevOptions {
+    double range = 0.05;          ///< m: a full deflection of an axis
+    double max_force = 3.0;       ///< N at full effect level
+    double update_rate = 500;     ///< Hz: how often forces are sent (USB devices take 250–1000)
+    double write_timeout = 0.01;  ///< s without a new force before the device is let go
+};
+
+class EvdevDevice final : public HapticDevice {
+  public:
+    /// Opens `path` (/dev/input/eventN); throws InputError naming what is missing.
+    explicit EvdevDevice(const std::string& path, EvdevOptions options = {});
+    ~EvdevDevice() override;
+    EvdevDevice(const EvdevDevice&) = delete;
+    EvdevDevice& operator=(const EvdevDevice&) = delete;
+
+    HapticCapabilities capabilities() const override { return capabilities_; }
+    HapticReading read() const override;
+    void write(double slide_force, double press_force, double time) override;
+    bool stale(double time, double limit) const override;
+
+  private:
+    void io_loop();
+    void send_levels(double slide, double press);
+
+    std::string path_;
+    EvdevOptions options_;
+    HapticCapabilities capabilities_;
+    int fd_ = -1;
+    libevdev* device_ = nullptr;
+    int effect_[2] = {-1, -1};
+    int minimum_[2] = {0, 0}, maximum_[2] = {1, 1};
+    std::atomic<double> position_[2] = {0.0, 0.0};
+    std::atomic<double> force_[2] = {0.0, 0.0};
+    std::atomic<double> last_write_{-1.0};     ///< engine time of the last force written
+    std::atomic<long long> last_write_ns_{0};  ///< monotonic time of it
+    std::atomic<long long> last_poll_ns_{0};   ///< monotonic time the I/O thread last answered
+    std::atomic<bool> running_{false};
+    std::thread io_;
+};
+
+/// "evdev PATH: NAME (force feedback)" for each input device with two absolute axes and
+/// constant-force effects.
+std::vector<std::string> list_haptic_devices();
+
+}  // namespace archet
