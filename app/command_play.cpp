@@ -22,6 +22,7 @@
 #include "archet/haptic_loop.hpp"
 #include "archet/input_error.hpp"
 #include "archet/model_file.hpp"
+#include "archet/monotonic_clock.hpp"
 #include "archet/output_limiter.hpp"
 #include "archet/realtime_allocations.hpp"
 #include "archet/simulated_hand.hpp"
@@ -42,12 +43,6 @@ struct PlayArguments {
     bool stats = false;
 };
 
-std::int64_t now_ns() {
-    timespec t{};
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
-}
-
 // The real-time side of `play`: steps the model a block at a time into the device's buffer.
 class Player final : public AudioRenderer {
   public:
@@ -67,7 +62,7 @@ class Player final : public AudioRenderer {
 
     void render(float* out, int frames, int channels) override {
         const DenormalGuard no_denormals;
-        const std::int64_t start = now_ns();
+        const std::int64_t start = monotonic_ns();
         const std::uint64_t first = sim_.tick();
         for (int i = 0; i < frames; ++i) {
             // A device: a simulated hand follows the gesture, the link closes the loop.
@@ -94,7 +89,7 @@ class Player final : public AudioRenderer {
         const std::uint64_t ticks = (sim_.tick() + haptic_divider_ - 1) / haptic_divider_ -
                                     (first + haptic_divider_ - 1) / haptic_divider_;
         haptic_ticks_.fetch_add(ticks, std::memory_order_relaxed);
-        if (static_cast<double>(now_ns() - start) > budget_ns_)
+        if (static_cast<double>(monotonic_ns() - start) > budget_ns_)
             haptic_late_.fetch_add(ticks, std::memory_order_relaxed);
     }
 

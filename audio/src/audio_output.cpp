@@ -12,17 +12,12 @@
 #include <thread>
 
 #include "archet/input_error.hpp"
+#include "archet/monotonic_clock.hpp"
 #include "archet/realtime_allocations.hpp"
 
 namespace archet {
 
 namespace {
-
-std::int64_t now_ns() {
-    timespec t{};
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
-}
 
 // Shared measurement of callbacks (written on the real-time thread only).
 struct CallbackMeter {
@@ -76,20 +71,20 @@ class NullOutput final : public AudioOutput {
         scheduling_.store(pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0 ? 1 : 0);
         mark_realtime_thread();
         const auto period = static_cast<std::int64_t>(1e9 * frames_ / rate_);
-        std::int64_t deadline = now_ns();
+        std::int64_t deadline = monotonic_ns();
         while (running_.load(std::memory_order_relaxed)) {
             deadline += period;
             timespec t{static_cast<time_t>(deadline / 1'000'000'000),
                        static_cast<long>(deadline % 1'000'000'000)};
             while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &t, nullptr) == EINTR) {
             }
-            const std::int64_t start = now_ns();
+            const std::int64_t start = monotonic_ns();
             if (start - deadline > period) {  // a whole block late: the device would have glitched
                 meter_.xruns.fetch_add(1, std::memory_order_relaxed);
                 deadline = start;
             }
             renderer_->render(buffer_.data(), frames_, channels_);
-            meter_.record(now_ns() - start);
+            meter_.record(monotonic_ns() - start);
         }
     }
 
@@ -164,12 +159,12 @@ class DeviceOutput final : public AudioOutput {
                         void* self) {
         auto* me = static_cast<DeviceOutput*>(self);
         mark_realtime_thread();  // the driver's thread: counted if anything allocates here
-        const std::int64_t start = now_ns();
+        const std::int64_t start = monotonic_ns();
         if (status & RTAUDIO_OUTPUT_UNDERFLOW)
             me->meter_.xruns.fetch_add(1, std::memory_order_relaxed);
         me->renderer_->render(static_cast<float*>(out), static_cast<int>(frames),
                               me->config_.channels);
-        me->meter_.record(now_ns() - start);
+        me->meter_.record(monotonic_ns() - start);
         return 0;
     }
 

@@ -146,7 +146,9 @@ Model harmonic_string(const BowedStringOptions& o, int n) {
     return model;
 }
 
-int bowed_mass(const BowedStringOptions& o, int n);
+int bowed_mass(const BowedStringOptions& o, int n) {
+    return std::clamp(static_cast<int>(std::lround(o.bow_position * (n + 1))), 1, n / 2);
+}
 
 void add_bow(Model& model, const BowedStringOptions& o, int n) {
     const int bowed = bowed_mass(o, n);
@@ -224,10 +226,6 @@ void make_modal(Model& model, int n, int bowed, double ratio) {
     mats.push_back(nut);
     model.mats = mats;
     model.lias = {end_a, end_b};
-}
-
-int bowed_mass(const BowedStringOptions& o, int n) {
-    return std::clamp(static_cast<int>(std::lround(o.bow_position * (n + 1))), 1, n / 2);
 }
 
 Model assemble(const BowedStringOptions& o, int n) {

@@ -16,16 +16,11 @@
 #include <vector>
 
 #include "archet/input_error.hpp"
+#include "archet/monotonic_clock.hpp"
 
 namespace archet {
 
 namespace {
-
-long long now_ns() {
-    timespec t{};
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return static_cast<long long>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
-}
 
 // Direction of a constant force, in the kernel's encoding: 0x4000 left, 0xC000 right, 0 down.
 constexpr unsigned short kDirection[2] = {0xC000, 0x0000};
@@ -83,7 +78,7 @@ EvdevDevice::EvdevDevice(const std::string& path, EvdevOptions options)
     capabilities_.max_force = options_.max_force;
     capabilities_.force_rate = options_.update_rate;
     capabilities_.position_rate = options_.update_rate;
-    last_poll_ns_.store(now_ns());
+    last_poll_ns_.store(monotonic_ns());
     running_.store(true);
     io_ = std::thread([this] { io_loop(); });
 }
@@ -108,13 +103,14 @@ void EvdevDevice::write(double slide, double press, double time) {
     force_[0].store(slide, std::memory_order_relaxed);
     force_[1].store(press, std::memory_order_relaxed);
     last_write_.store(time, std::memory_order_relaxed);
-    last_write_ns_.store(now_ns(), std::memory_order_relaxed);
+    last_write_ns_.store(monotonic_ns(), std::memory_order_relaxed);
 }
 
 // Positions arrive only when the stick moves: the data is stale when the I/O thread stopped
 // answering, not when the hand is still.
 bool EvdevDevice::stale(double, double limit) const {
-    return static_cast<double>(now_ns() - last_poll_ns_.load(std::memory_order_relaxed)) * 1e-9 >
+    return static_cast<double>(monotonic_ns() - last_poll_ns_.load(std::memory_order_relaxed)) *
+               1e-9 >
            limit;
 }
 
@@ -150,8 +146,9 @@ void EvdevDevice::io_loop() {
         }
         if (rc != -EAGAIN && rc != -EINTR)
             break;  // unplugged: stop answering, the link sees it stale
-        last_poll_ns_.store(now_ns(), std::memory_order_relaxed);
-        const double since_write = static_cast<double>(now_ns() - last_write_ns_.load()) * 1e-9;
+        last_poll_ns_.store(monotonic_ns(), std::memory_order_relaxed);
+        const double since_write =
+            static_cast<double>(monotonic_ns() - last_write_ns_.load()) * 1e-9;
         if (since_write > options_.write_timeout)
             send_levels(0, 0);  // the simulation stalled
         else
