@@ -62,10 +62,12 @@ TEST_P(ShippedString, SteadyBowGivesHelmholtzMotion) {
         load_model_file(test::resource("models/bowed-string-" + std::to_string(pitch) + ".json"));
     ASSERT_TRUE(model.gesture);
     EXPECT_EQ(*model.gesture, load_gesture_file(test::resource("gestures/steady-bow.json")));
-    const Bowing b = bow(model, 2.4);
+    // The steady stroke lasts until 2.6 s; the homogeneous 110 Hz string, slowest to settle,
+    // is in Helmholtz motion from about 1.3 s.
+    const Bowing b = bow(model, 2.6);
     EXPECT_NEAR(b.pitch, pitch, 1e-6) << "the shipped string is tuned to its pitch";
-    const auto a = analyse_bowing(b.slip, b.fs, b.pitch, static_cast<std::size_t>(1.0 * b.fs),
-                                  static_cast<std::size_t>(2.3 * b.fs));
+    const auto a = analyse_bowing(b.slip, b.fs, b.pitch, static_cast<std::size_t>(1.5 * b.fs),
+                                  static_cast<std::size_t>(2.55 * b.fs));
     EXPECT_NEAR(a.slips_per_period, 1.0, 0.03) << "one slip per period";
     EXPECT_LT(a.period_spread, 0.05) << "a steady period";
     // The period is the first mode's, a little flat: the homogeneous chain's partials are flat.
@@ -78,8 +80,8 @@ TEST_P(ShippedString, SteadyBowGivesHelmholtzMotion) {
     // String velocity at the bow: the bow's while sticking, about −v_b(1−β)/β while slipping.
     double stick_sum = 0, slip_min = 0;
     int stick_count = 0;
-    for (std::size_t i = static_cast<std::size_t>(1.0 * b.fs);
-         i < static_cast<std::size_t>(2.3 * b.fs); ++i) {
+    for (std::size_t i = static_cast<std::size_t>(1.5 * b.fs);
+         i < static_cast<std::size_t>(2.55 * b.fs); ++i) {
         if (b.slip[i] == 0.0) stick_sum += b.string_velocity[i] - b.bow_velocity[i], ++stick_count;
         slip_min = std::min(slip_min, b.string_velocity[i]);
     }

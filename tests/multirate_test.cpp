@@ -128,5 +128,57 @@ TEST(MultiRate, AHeldSpringAboveTheBoundOnlyLosesEnergy) {
     EXPECT_LT(previous, 1e-3 * start);
 }
 
+// A hand at the haptic rate holding a bow mass through a spring-damper; the link runs at
+// `link_rate`, the hand at `hand_rate`.
+Model hand_and_bow(const std::string& hand_rate, const std::string& link_rate, double damping) {
+    Model model;
+    model.rates = {{"audio", 1}, {"haptic", kDivider}};
+    Mat hand;
+    hand.id = "hand", hand.kind = MatKind::Gesture, hand.rate = hand_rate;
+    hand.axis = GestureAxis::Slide;
+    model.mats = {hand, test::mass("bow", 0.05, 0.0, "audio")};
+    model.lias = {test::spring_damper("hold", "hand", "bow", 1000, damping, link_rate)};
+    // A slow stroke, a quick one, then back.
+    model.gesture = Gesture(
+        "stroke", {{0.0, 0.0, 0.0}, {0.2, 0.01, 0.0}, {0.25, 0.03, 0.0}, {0.5, -0.01, 0.0}});
+    return model;
+}
+
+TEST(MultiRate, AFasterLinkFollowsAHandAlongItsTrackWithoutDelay) {
+    // The hand's points tick at 3 kHz; the link at the bow's rate sees the hand along a line
+    // between its ticks, so the bow moves as if the hand were read at every step.
+    Simulation haptic(compile(hand_and_bow("haptic", "audio", 10)));
+    Simulation audio(compile(hand_and_bow("audio", "audio", 10)));
+    const auto bow = haptic.model().mat_slots.at("bow");
+    const auto reference = audio.model().mat_slots.at("bow");
+    double worst = 0, largest = 0;
+    for (int n = 0; n < 24000; ++n) {
+        haptic.step(), audio.step();
+        worst = std::max(worst, std::abs(haptic.position(bow) - audio.position(reference)));
+        largest = std::max(largest, std::abs(audio.position(reference)));
+    }
+    EXPECT_GT(largest, 0.02) << "the bow followed the stroke";
+    EXPECT_LT(worst, 1e-9 * largest);
+}
+
+TEST(MultiRate, AHandLinkAtTheBowsRateNeedsNoColgateDamping) {
+    // The hand's steps are booked as the hand's work at the link's rate: the link is as
+    // passive as at one rate, undamped or not. The same spring at the hand's rate would hold
+    // its force and is refused without damping.
+    EXPECT_NO_THROW(validate_model(hand_and_bow("haptic", "audio", 0.0)));
+    EXPECT_THROW(validate_model(hand_and_bow("haptic", "haptic", 0.0)), InputError);
+    Simulation sim(compile(hand_and_bow("haptic", "audio", 0.0)));
+    double lowest = sim.stored_energy() - sim.hand_work(), worst = 0, scale = 0;
+    for (int n = 0; n < 24000; ++n) {
+        sim.step();
+        const double balance = sim.stored_energy() - sim.hand_work();
+        worst = std::max(worst, balance - lowest);
+        lowest = std::min(lowest, balance);
+        scale = std::max(scale, sim.stored_energy());
+    }
+    EXPECT_GT(scale, 1e-3) << "the hand moved the bow";
+    EXPECT_LT(worst, 1e-11 * scale) << "energy came from nowhere";
+}
+
 }  // namespace
 }  // namespace archet

@@ -300,10 +300,13 @@ void add_bow_module(Model& model, const BowedStringOptions& o, const std::string
     model.mats.push_back(hand_slide);
     model.mats.push_back(hand_press);
 
+    // The hand's points tick at the haptic rate; the springs that hold the bow run at the
+    // bow's rate and see the hand's steps, so the coupling is exactly passive at every step
+    // (a spring at the haptic rate would hold its force, which is passive only on average).
     auto hold = [](const std::string& id, const std::string& from, const std::string& to, double k,
                    double z) {
         Lia l;
-        l.id = id, l.kind = LiaKind::SpringDamper, l.rate = "haptic";
+        l.id = id, l.kind = LiaKind::SpringDamper, l.rate = "audio";
         l.from = from, l.to = to, l.stiffness = k, l.damping = z;
         return l;
     };

@@ -90,6 +90,7 @@ CompiledModel compile(const Model& model, double sample_rate) {
         for (const auto& r : model.rates)  // named in the model's order
             if (ids.count(r.id)) level_index[r.id] = li, lv.id += (lv.id.empty() ? "" : "+") + r.id;
         lv.divider = divider;
+        lv.inverse_divider = 1.0 / divider;
         lv.dt = divider / c.sample_rate;
         std::vector<int> chain_link_after;
         const std::vector<int> order =
@@ -160,6 +161,12 @@ CompiledModel compile(const Model& model, double sample_rate) {
         lv.modal_points.push_back(std::move(point));
     }
     auto touch = [&](MatSlot s) { c.levels[s.level].touched.push_back(s.index); };
+    auto gesture_point = [&](MatSlot s) {
+        const auto& gestures = c.levels[s.level].gestures;
+        for (int i = 0; i < static_cast<int>(gestures.size()); ++i)
+            if (gestures[i].index == s.index) return i;
+        return -1;
+    };
     for (int li = 0; li < static_cast<int>(model.lias.size()); ++li) {
         const Lia& l = model.lias[li];
         if (is_chain_link[li]) continue;
@@ -193,13 +200,29 @@ CompiledModel compile(const Model& model, double sample_rate) {
             x.element = li;
             const int link_div = c.levels[level].divider;
             const int a_div = c.levels[a.level].divider, b_div = c.levels[b.level].divider;
-            x.a_held = a_div <= link_div, x.b_held = b_div <= link_div;
-            x.a_weight = x.a_held ? 1.0 : static_cast<double>(link_div) / a_div;
-            x.b_weight = x.b_held ? 1.0 : static_cast<double>(link_div) / b_div;
+            using R = CompiledCrossLink::EndRate;
+            auto rate = [&](int div) {
+                return div == link_div ? R::Same : div < link_div ? R::Faster : R::Slower;
+            };
+            x.a_rate = rate(a_div), x.b_rate = rate(b_div);
+            x.a_weight = x.a_rate == R::Slower ? static_cast<double>(link_div) / a_div : 1.0;
+            x.b_weight = x.b_rate == R::Slower ? static_cast<double>(link_div) / b_div : 1.0;
             x.d_prev = c.levels[a.level].x()[a.index] - c.levels[b.level].x()[b.index];
+            const int hand_at_a = x.a_rate == R::Slower ? gesture_point(a) : -1;
+            const int hand_at_b = x.b_rate == R::Slower ? gesture_point(b) : -1;
+            if (!contact && hand_at_a >= 0 && x.b_rate == R::Same)
+                x.hand = hand_at_a, x.hand_is_a = true, x.hand_slot = a, x.end_slot = b;
+            if (!contact && hand_at_b >= 0 && x.a_rate == R::Same)
+                x.hand = hand_at_b, x.hand_is_a = false, x.hand_slot = b, x.end_slot = a;
+            x.hand_sign = x.hand_is_a ? 1.0 : -1.0;
             c.cross_links.push_back(x);
         }
     }
+    // Hand links first: they have a short path of their own in the simulation.
+    std::stable_partition(c.cross_links.begin(), c.cross_links.end(),
+                          [](const CompiledCrossLink& l) { return l.hand >= 0; });
+    c.hand_links = static_cast<int>(std::count_if(c.cross_links.begin(), c.cross_links.end(),
+                                                  [](const auto& l) { return l.hand >= 0; }));
 
     auto watch = [&](MatSlot s) {
         auto& w = c.levels[s.level].watched;

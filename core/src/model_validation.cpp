@@ -211,12 +211,18 @@ class Checker {
     // A link whose MATs tick at another rate acts through a held force or a held position: a
     // zero-order hold, which delays it by half the slow period and so feeds energy into a
     // spring unless enough damping takes it out: Z >= K·T/2 (Colgate's passivity bound).
+    // Except when the only slower ends are gesture points: the hand's steps are then booked
+    // exactly as the hand's work, and the link is as passive as at one rate.
     void check_rate_crossing(const std::string& where, const Lia& l, const Mat& a, const Mat& b) {
         const RateLevel* rl = model_.find_rate(l.rate);
         const RateLevel* ra = model_.find_rate(a.rate);
         const RateLevel* rb = model_.find_rate(b.rate);
         if (!rl || !ra || !rb) return;
-        if (rl->divider == ra->divider && rl->divider == rb->divider) return;
+        auto in_step = [&](const Mat& m, const RateLevel* r) {
+            return r->divider == rl->divider ||
+                   (r->divider > rl->divider && m.kind == MatKind::Gesture);
+        };
+        if (in_step(a, ra) && in_step(b, rb)) return;
         const int slowest = std::max({rl->divider, ra->divider, rb->divider});
         const double period = slowest / model_.sample_rate;
         const double needed = l.stiffness * period / 2.0;

@@ -21,6 +21,7 @@ double envelope_at(const std::vector<std::pair<double, double>>& e, double t) {
 Simulation::Simulation(CompiledModel model) : model_(std::move(model)) {
     active_.assign(model_.levels.size(), 0);
     countdown_.assign(model_.levels.size(), 0);
+    period_done_.assign(model_.levels.size(), 1.0);
     dissipated_.assign(model_.source.lias.size() + model_.source.mats.size(), 0.0);
     set_gesture_track(model_.source.gesture ? &*model_.source.gesture : nullptr);
 }
@@ -34,8 +35,13 @@ void Simulation::set_gesture_track(const Gesture* gesture) {
             level.x()[g.index] = x;
             level.x_prev()[g.index] = x;
         }
-    for (auto& link : model_.cross_links)
-        link.d_prev = link.d_before = position(link.a) - position(link.b);
+    for (auto& link : model_.cross_links) {
+        const double a = seen_position(link.a, link.a_rate, true);
+        const double b = seen_position(link.b, link.b_rate, true);
+        link.d_prev = link.d_before = a - b;
+        link.hand_seen = link.hand_is_a ? a : b;
+        link.hand_force_sum = link.hand_work_sum = 0.0;
+    }
 }
 
 double Simulation::gesture_axis(GestureAxis axis, double t) const {
@@ -56,13 +62,17 @@ void Simulation::step() {
     // Countdowns rather than tick % divider: a 64-bit division per level costs more than
     // the whole step of a small model.
     for (std::size_t l = 0; l < model_.levels.size(); ++l) {
+        const CompiledLevel& lv = model_.levels[l];
         active_[l] = countdown_[l] == 0;
-        countdown_[l] = active_[l] ? model_.levels[l].divider - 1 : countdown_[l] - 1;
+        countdown_[l] = active_[l] ? lv.divider - 1 : countdown_[l] - 1;
+        // How far into its period a faster link sees this level (see seen_position()).
+        period_done_[l] = active_[l] ? 1.0 : (lv.divider - 1 - countdown_[l]) * lv.inverse_divider;
     }
     if (!model_.controls.empty()) apply_controls();
     // Phase 1: every active LIA computes its force from x[n] (and x[n−1]).
     for (std::size_t l = 0; l < model_.levels.size(); ++l)
         if (active_[l]) compute_link_forces(model_.levels[l]);
+    compute_hand_link_forces();
     compute_cross_link_forces();
     // Phase 2: every active MAT integrates; the bow modules solve on the prediction.
     for (std::size_t l = 0; l < model_.levels.size(); ++l)
@@ -115,37 +125,98 @@ void Simulation::compute_link_forces(CompiledLevel& lv) {
     }
 }
 
-// Links across rate levels: a link samples its ends at its own ticks. Its force is held over
-// its period on faster MATs (same impulse) and averaged over slower MATs' periods.
-void Simulation::compute_cross_link_forces() {
-    bool any_ticked = false;
-    for (auto& l : model_.cross_links) {
+// A faster link sees a slower MAT move along a straight line over the MAT's period, from
+// its previous position to its newest (a first-order hold): a gesture point then moves
+// smoothly at the link's rate instead of in steps its damper would feel as spikes. The
+// newest position is the one for the end of the period (the MAT computed it a period
+// ahead), so a gesture track or a simulated slower mass are followed without delay.
+inline double Simulation::seen_position(MatSlot s, CompiledCrossLink::EndRate rate,
+                                        bool between_steps) const {
+    if (rate != CompiledCrossLink::EndRate::Slower) return position(s);
+    const CompiledLevel& lv = model_.levels[s.level];
+    double done = period_done_[s.level];
+    if (between_steps) {  // the next step's view
+        const int period = lv.divider, countdown = countdown_[s.level];
+        done = countdown == 0 ? 1.0 : static_cast<double>(period - countdown) / period;
+    }
+    const double from = lv.x_prev()[s.index], to = lv.x()[s.index];
+    return from + (to - from) * done;
+}
+
+// Hand links: a spring-damper from a slower gesture point to a MAT at the link's rate, the
+// usual way to hold a bow. The link sees the hand move along its line and books the hand's
+// work itself: F[n]·(x[n+1] − x[n−1])/2 in the scheme's energy, so the move seen now is
+// worth the mean of the last two forces (the newest half is pending, see hand_work()).
+// Exact at every step, and short: they tick at every step of their level.
+void Simulation::compute_hand_link_forces() {
+    double hand_work = 0;
+    for (int i = 0; i < model_.hand_links; ++i) {
+        CompiledCrossLink& l = model_.cross_links[i];
         if (!active_[l.level]) continue;
-        any_ticked = true;
-        const double d = position(l.a) - position(l.b);
-        // The damping force of the previous tick has now seen its whole mid-step motion.
-        if (accounting_) dissipated_[l.element] += 0.5 * l.damping_force * (d - l.d_before);
-        const double damping = l.zdt * (d - l.d_prev);
-        const double f = l.k * (d - l.length) + damping;
-        const bool acting = !l.contact || (d - l.length > 0.0 && f > 0.0);
-        l.force = acting ? f : 0.0;
-        l.damping_force = acting ? damping : 0.0;
+        CompiledLevel& hand_level = model_.levels[l.hand_slot.level];
+        CompiledLevel& end_level = model_.levels[l.end_slot.level];
+        const double from = hand_level.x_prev()[l.hand_slot.index];
+        const double to = hand_level.x()[l.hand_slot.index];
+        const double h = from + (to - from) * period_done_[l.hand_slot.level];
+        const double d = l.hand_sign * (h - end_level.x()[l.end_slot.index]);  // x(a) − x(b)
+        const double d_prev = l.d_prev, d_before = l.d_before;
+        const double f = l.k * (d - l.length) + l.zdt * (d - d_prev);
+        const double work = l.hand_sign * 0.5 * (l.force + f) * (h - l.hand_seen);
+        if (accounting_) dissipated_[l.element] += 0.25 * l.zdt * (d - d_before) * (d - d_before);
+        l.d_before = d_prev, l.d_prev = d, l.force = f, l.hand_seen = h;
+        end_level.external[l.end_slot.index] += l.hand_sign * f;
+        // The hand's point takes the mean force over its period when it ticks.
+        l.hand_force_sum -= l.hand_sign * f;
+        hand_work += work;
+        l.hand_work_sum += work;
+        if (active_[l.hand_slot.level]) {
+            const double mean = l.hand_force_sum * (l.hand_is_a ? l.a_weight : l.b_weight);
+            hand_level.external[l.hand_slot.index] += mean;
+            auto& g = hand_level.gestures[l.hand];
+            g.faster_links_force += mean;
+            g.faster_links_work += l.hand_work_sum;
+            l.hand_force_sum = l.hand_work_sum = 0.0;
+        }
+    }
+    hand_work_ += hand_work;
+}
+
+// Links across rate levels: a link samples its ends at its own ticks (a slower end along its
+// line). Its force is held over its period on faster MATs (same impulse) and averaged over
+// slower MATs' periods.
+void Simulation::compute_cross_link_forces() {
+    using R = CompiledCrossLink::EndRate;
+    bool faster_ends_ticked = false;
+    for (std::size_t i = model_.hand_links; i < model_.cross_links.size(); ++i) {
+        CompiledCrossLink& l = model_.cross_links[i];
+        if (!active_[l.level]) continue;
+        const double d = seen_position(l.a, l.a_rate, false) - seen_position(l.b, l.b_rate, false);
+        // The damper of the previous tick has now seen its whole centred motion.
+        if (accounting_ && l.acting)
+            dissipated_[l.element] += 0.25 * l.zdt * (d - l.d_before) * (d - l.d_before);
+        const double f = l.k * (d - l.length) + l.zdt * (d - l.d_prev);
+        l.acting = !l.contact || (d - l.length > 0.0 && f > 0.0);
+        l.force = l.acting ? f : 0.0;
         l.d_before = l.d_prev;
         l.d_prev = d;
-        // A slower end gets the force weighted by the link's share of its period.
-        if (!l.a_held) model_.levels[l.a.level].external[l.a.index] -= l.a_weight * l.force;
-        if (!l.b_held) model_.levels[l.b.level].external[l.b.index] += l.b_weight * l.force;
+        // An end at the link's rate takes the force now; a slower end takes it weighted by
+        // the link's share of its period; faster ends are served below.
+        if (l.a_rate != R::Faster)
+            model_.levels[l.a.level].external[l.a.index] -= l.a_weight * l.force;
+        if (l.b_rate != R::Faster)
+            model_.levels[l.b.level].external[l.b.index] += l.b_weight * l.force;
+        faster_ends_ticked |= l.a_rate == R::Faster || l.b_rate == R::Faster;
     }
-    if (!any_ticked) return;
-    // Faster (or same-rate) ends get the force held at each of their ticks until the link's
-    // next tick: rebuild those sums now, so that the steps in between cost nothing.
+    if (!faster_ends_ticked) return;
+    // Faster ends get the force held at each of their ticks until the link's next tick:
+    // rebuild those sums now, so that the steps in between cost nothing.
     for (const auto& l : model_.cross_links) {
-        if (l.a_held) model_.levels[l.a.level].held[l.a.index] = 0.0;
-        if (l.b_held) model_.levels[l.b.level].held[l.b.index] = 0.0;
+        if (l.a_rate == R::Faster) model_.levels[l.a.level].held[l.a.index] = 0.0;
+        if (l.b_rate == R::Faster) model_.levels[l.b.level].held[l.b.index] = 0.0;
     }
     for (const auto& l : model_.cross_links) {
-        if (l.a_held) model_.levels[l.a.level].held[l.a.index] -= l.force;
-        if (l.b_held) model_.levels[l.b.level].held[l.b.index] += l.force;
+        if (l.a_rate == R::Faster) model_.levels[l.a.level].held[l.a.index] -= l.force;
+        if (l.b_rate == R::Faster) model_.levels[l.b.level].held[l.b.index] += l.force;
     }
 }
 
@@ -307,12 +378,14 @@ void Simulation::update_gesture_points(CompiledLevel& lv) {
     for (auto& g : lv.gestures) {
         xn[g.index] = g.position_scale * gesture_axis(g.axis, t_next);
         // The model's force on the point, and the hand's work over this step in the
-        // scheme's energy: −F·(x[n+1] − x[n−1])/2.
+        // scheme's energy, −F·(x[n+1] − x[n−1])/2, through the links not faster than the
+        // point (faster links book theirs at their own ticks).
         g.force = lv.watched_force[g.watched];
-        const double work = -0.5 * g.force * (xn[g.index] - xp[g.index]);
-        g.work += work;
-        g.power = work / lv.dt;
+        const double work = -0.5 * (g.force - g.faster_links_force) * (xn[g.index] - xp[g.index]);
         hand_work_ += work;
+        g.work += work + g.faster_links_work;
+        g.power = (work + g.faster_links_work) / lv.dt;
+        g.faster_links_force = g.faster_links_work = 0.0;
     }
 }
 
@@ -320,26 +393,28 @@ void Simulation::account(CompiledLevel& lv) {
     const double* x = lv.x();
     const double* xp = lv.x_prev();
     const double* xn = lv.x_next();
-    auto work = [&](double force, int a, int b) {  // damping force times mid-step motion
-        return 0.5 * force * ((xn[a] - xn[b]) - (xp[a] - xp[b]));
+    // A damper Z takes Z·T·v² over a step, v the centred velocity (x[n+1] − x[n−1])/2T: with
+    // the damper's in-flight term in stored_energy() this closes the books exactly.
+    auto taken = [&](double zdt, int a, int b) {
+        const double centred = (xn[a] - xn[b]) - (xp[a] - xp[b]);
+        return 0.25 * zdt * centred * centred;
     };
     const std::size_t lias = model_.source.lias.size();
     for (int j = 1; j < lv.size; ++j)
         if (lv.chain_element[j] >= 0)
-            dissipated_[lv.chain_element[j]] +=
-                work(lv.chain_zdt[j] * ((x[j] - x[j + 1]) - (xp[j] - xp[j + 1])), j, j + 1);
+            dissipated_[lv.chain_element[j]] += taken(lv.chain_zdt[j], j, j + 1);
     for (const auto& l : lv.links) {
         if (l.contact && x[l.a] - x[l.b] - l.length <= 0.0) continue;
-        dissipated_[l.element] += work(l.zdt * ((x[l.a] - x[l.b]) - (xp[l.a] - xp[l.b])), l.a, l.b);
+        dissipated_[l.element] += taken(l.zdt, l.a, l.b);
     }
     for (const auto& g : lv.grounds)
         dissipated_[lias + g.element] +=
-            0.5 * g.zdt * (x[g.index] - xp[g.index]) * (xn[g.index] - xp[g.index]);
+            0.25 * g.zdt * (xn[g.index] - xp[g.index]) * (xn[g.index] - xp[g.index]);
     for (int b : lv.bows) {
         const CompiledBow& bow = model_.bows[b];
-        const double p = x[bow.press] - x[bow.surface], pp = xp[bow.press] - xp[bow.surface];
+        const double p = x[bow.press] - x[bow.surface];
         double buffer = 0;
-        if (p > 0.0 && bow.normal > 0.0) buffer = work(bow.zbdt * (p - pp), bow.press, bow.surface);
+        if (p > 0.0 && bow.normal > 0.0) buffer = taken(bow.zbdt, bow.press, bow.surface);
         dissipated_[bow.element] += bow.dissipated + buffer;
     }
 }
@@ -473,33 +548,61 @@ double Simulation::parameter(const ParameterSlot& s) const {
     return 0;
 }
 
+double Simulation::hand_work() const {
+    // The newest force's half of the move the hand links will see at their next tick.
+    double pending = 0;
+    for (int i = 0; i < model_.hand_links; ++i) {
+        const CompiledCrossLink& l = model_.cross_links[i];
+        pending +=
+            l.hand_sign * 0.5 * l.force *
+            (seen_position(l.hand_slot, CompiledCrossLink::EndRate::Slower, true) - l.hand_seen);
+    }
+    return hand_work_ + pending;
+}
+
 double Simulation::stored_energy() const {
+    // Kinetic ½m((x[n]−x[n−1])/T)², ½K·d[n]·d[n−1] per spring, and −(Z/4T)·(d[n]−d[n−1])² per
+    // damper: the energy a backward-difference damper has taken in but not yet lost. With it,
+    // a step's dissipation is Z·T·v² of the centred velocity, never negative, so the books
+    // close at every step whatever the hand does.
     double e = 0;
     for (const auto& lv : model_.levels) {
         const double* x = lv.x();
         const double* xp = lv.x_prev();
+        auto in_flight = [&](double zdt, int a, int b) {
+            const double u = (x[a] - x[b]) - (xp[a] - xp[b]);
+            return 0.25 * zdt * u * u;
+        };
         for (int s = 1; s <= lv.size; ++s) {
             const double v = (x[s] - xp[s]) / lv.dt;
             e += 0.5 * lv.mass[s] * v * v;
         }
         for (int j = 1; j < lv.size; ++j)
             e += 0.5 * lv.chain_k[j] * (x[j] - x[j + 1] - lv.chain_length[j]) *
-                 (xp[j] - xp[j + 1] - lv.chain_length[j]);
+                     (xp[j] - xp[j + 1] - lv.chain_length[j]) -
+                 in_flight(lv.chain_zdt[j], j, j + 1);
         for (const auto& l : lv.links) {
             const double d = x[l.a] - x[l.b] - l.length, dp = xp[l.a] - xp[l.b] - l.length;
             if (!l.contact || (d > 0 && dp > 0)) e += 0.5 * l.k * d * dp;
+            if (!l.contact || d > 0) e -= in_flight(l.zdt, l.a, l.b);
         }
-        for (const auto& g : lv.grounds)
-            e += 0.5 * g.k * (x[g.index] - g.rest) * (xp[g.index] - g.rest);
+        for (const auto& g : lv.grounds) {
+            const double u = x[g.index] - xp[g.index];
+            e += 0.5 * g.k * (x[g.index] - g.rest) * (xp[g.index] - g.rest) - 0.25 * g.zdt * u * u;
+        }
         for (int b : lv.bows) {
             const auto& bow = model_.bows[b];
             const double p = x[bow.press] - x[bow.surface], pp = xp[bow.press] - xp[bow.surface];
             if (p > 0 && pp > 0) e += 0.5 * bow.kb * p * pp;
+            if (p > 0) e -= in_flight(bow.zbdt, bow.press, bow.surface);
         }
     }
     for (const auto& l : model_.cross_links) {
-        const double d = position(l.a) - position(l.b) - l.length, dp = l.d_prev - l.length;
+        const double d =
+            seen_position(l.a, l.a_rate, true) - seen_position(l.b, l.b_rate, true) - l.length;
+        const double dp = l.d_prev - l.length;
         if (!l.contact || (d > 0 && dp > 0)) e += 0.5 * l.k * d * dp;
+        if (!l.contact || d > 0) e -= 0.25 * l.zdt * (d - dp) * (d - dp);
     }
     return e;
 }

@@ -32,11 +32,24 @@ struct CompiledCrossLink {  ///< a link whose MATs run at other rate levels
     double k = 0, zdt = 0, length = 0;
     bool contact = false;
     int element = -1;
-    bool a_held = true, b_held = true;  ///< end at least as fast as the link: force held
+    /// How an end's rate compares with the link's: at its rate it takes the force at once;
+    /// faster, it holds the force until the link's next tick; slower, it takes the link's
+    /// mean force over its period and is seen moving along a line between its ticks.
+    enum class EndRate { Same, Faster, Slower };
+    EndRate a_rate = EndRate::Same, b_rate = EndRate::Same;
     double a_weight = 1, b_weight = 1;  ///< share of a slower end's period
+    /// A hand link: a spring-damper from a slower gesture point (the hand) to a MAT at the
+    /// link's rate. `hand` is the point's index in its level's gestures, else −1.
+    int hand = -1;
+    bool hand_is_a = true;
+    MatSlot hand_slot, end_slot;  ///< a hand link's hand and other end
+    double hand_sign = 1;         ///< +1 when the hand is a (d = x(a) − x(b)), else −1
     // State: the link samples its ends at its own ticks and holds its force between them.
     double d_prev = 0, force = 0;
-    double d_before = 0, damping_force = 0;  ///< one tick further back, for accounting
+    double d_before = 0;   ///< one tick further back, for accounting
+    double hand_seen = 0;  ///< a hand link: where it saw the hand at its last tick
+    double hand_force_sum = 0, hand_work_sum = 0;  ///< over the hand's period so far
+    bool acting = true;                            ///< a buffer in contact at the last tick
 };
 
 struct CompiledGround {  ///< an oscillator's spring and damper to ground
@@ -54,6 +67,8 @@ struct CompiledGesturePoint {
     // State: the mean force of the model on the point over its last period, and the work
     // the hand did on the model.
     double force = 0, work = 0, power = 0;
+    /// The part of `force` from faster links over this period, and the work they booked.
+    double faster_links_force = 0, faster_links_work = 0;
 };
 
 struct CompiledModalPoint {  ///< x = Σ weight·x(mode); a force F on it moves each mode by weight·F
@@ -81,6 +96,7 @@ struct CompiledBow {
 struct CompiledLevel {
     std::string id;
     int divider = 1;
+    double inverse_divider = 1;
     double dt = 0;
     int size = 0;                   ///< MATs at this level
     std::vector<double> buffer[3];  ///< positions at n+1, n, n−1 by rotation
@@ -167,8 +183,9 @@ struct CompiledOutput {
 
 struct CompiledModel {
     double sample_rate = 48000;
-    std::vector<CompiledLevel> levels;  ///< sorted fastest first
-    std::vector<CompiledCrossLink> cross_links;
+    std::vector<CompiledLevel> levels;           ///< sorted fastest first
+    std::vector<CompiledCrossLink> cross_links;  ///< the hand links first
+    int hand_links = 0;                          ///< how many of cross_links are hand links
     std::vector<CompiledBow> bows;
     std::vector<CompiledControl> controls;
     std::vector<CompiledProbe> probes;

@@ -50,11 +50,13 @@ class Simulation {
     double position(MatSlot s) const { return model_.levels[s.level].x()[s.index]; }
     double velocity(MatSlot s) const;
 
-    /// Stored energy in its discrete-consistent form (J): kinetic ½m((x[n]−x[n−1])/T)² plus
-    /// ½K·d[n]·d[n−1] per spring, which the undamped scheme conserves exactly.
+    /// Stored energy in its discrete-consistent form (J): kinetic ½m((x[n]−x[n−1])/T)², plus
+    /// ½K·d[n]·d[n−1] per spring, which the undamped scheme conserves exactly, minus
+    /// (Z/4T)·(d[n]−d[n−1])² per damper, which makes every step's dissipation non-negative.
     double stored_energy() const;
-    /// Total work done on the model by the gesture points since the start (J).
-    double hand_work() const { return hand_work_; }
+    /// Total work done on the model by the gesture points since the start (J), exact in the
+    /// scheme's energy after every step: stored energy minus hand work never rises.
+    double hand_work() const;
     /// Power delivered by the hand over the last period of each gesture point (W).
     double power_in() const;
     /// Total energy dissipated per element since the start (J), indexed like Model::lias
@@ -67,7 +69,10 @@ class Simulation {
   private:
     void apply_controls();
     void compute_link_forces(CompiledLevel& level);
+    void compute_hand_link_forces();
     void compute_cross_link_forces();
+    /// Where a cross-rate link sees its end s: at its tick in this step, or at the next step's.
+    double seen_position(MatSlot s, CompiledCrossLink::EndRate rate, bool between_steps) const;
     void integrate(CompiledLevel& level);
     void solve_bow(CompiledLevel& level, CompiledBow& bow);
     void update_gesture_points(CompiledLevel& level);
@@ -87,7 +92,8 @@ class Simulation {
     std::vector<double> dissipated_;
     /// Per level: does it tick this step. (int, not char: a char store may alias anything.)
     std::vector<int> active_;
-    std::vector<int> countdown_;  ///< per level: steps until its next tick
+    std::vector<int> countdown_;       ///< per level: steps until its next tick
+    std::vector<double> period_done_;  ///< per level: share of its period gone at this step
 };
 
 }  // namespace archet
