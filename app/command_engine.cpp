@@ -17,7 +17,8 @@ void add_engine_command(CLI::App& app, Action& action) {
         ->required();
     add_audio_options(*cmd, o->audio);
     cmd->add_option("--haptic", o->haptic,
-                    "Haptic device: none, sim (the pad moves a simulated hand) or evdev:PATH")
+                    "Haptic device: none, sim (the pad moves a simulated hand), evdev:PATH (a "
+                    "force-feedback joystick) or sdl:INDEX (an SDL joystick)")
         ->capture_default_str();
     cmd->add_option("--shape-every", o->shape_every, "Blocks between string-shape frames")
         ->capture_default_str();

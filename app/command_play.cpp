@@ -25,6 +25,7 @@
 #include "archet/monotonic_clock.hpp"
 #include "archet/output_limiter.hpp"
 #include "archet/realtime_allocations.hpp"
+#include "archet/sdl_device.hpp"
 #include "archet/simulated_hand.hpp"
 #include "archet/simulation.hpp"
 #include "archet/take_recorder.hpp"
@@ -130,6 +131,7 @@ int run_play(const PlayArguments& a) {
     // The device's clock is the master clock: the model runs at its rate.
     Simulation sim(compile(model, output->sample_rate()));
     const HapticChoice haptic = open_haptic_device(a.haptic);
+    if (!haptic.note.empty()) std::cerr << "archet play: " << haptic.note << "\n";
     // Without a device the gesture file plays the gesture points directly; with one, it moves
     // the hand that holds the device.
     sim.set_gesture_track(gesture && !haptic.device ? &*gesture : nullptr);
@@ -186,9 +188,9 @@ void add_play_command(CLI::App& app, Action& action) {
         "play", "Play a model live, without the studio (gesture file as the device)");
     cmd->add_option("model", a->model, "Model file (.json)")->required();
     add_audio_options(*cmd, a->audio);
-    cmd->add_option(
-           "--haptic", a->haptic,
-           "Haptic device: none, sim (a simulated hand following the gesture) or evdev:PATH")
+    cmd->add_option("--haptic", a->haptic,
+                    "Haptic device: none, sim (a simulated hand following the gesture), evdev:PATH "
+                    "(a force-feedback joystick) or sdl:INDEX (an SDL joystick)")
         ->capture_default_str();
     cmd->add_option("--take", a->take,
                     "Record a take into this new folder: take.wav, gesture.json, probes.csv");
@@ -215,6 +217,9 @@ void add_devices_command(CLI::App& app, Action& action) {
                 std::cout << "evdev: no force-feedback joystick found in /dev/input (readable "
                              "event devices with "
                              "two absolute axes and FF_CONSTANT)\n";
+            const auto sdl = list_sdl_joysticks();
+            for (const auto& line : sdl) std::cout << line << "\n";
+            if (sdl.empty()) std::cout << "sdl: no joystick found by SDL\n";
             std::cout << "sim: simulated hand (always available)\n";
             return 0;
         };

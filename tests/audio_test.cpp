@@ -69,7 +69,8 @@ TEST(Audio, PlaysThroughTheSimulatedHapticDevice) {
     for (const auto& [device, expected] : std::vector<std::pair<std::string, std::string>>{
              {"evdev:/dev/input/no-such-joystick", "cannot open the device"},
              {"evdev:/dev/null", "not an input device"},
-             {"joystick", "is not a haptic device; use none, sim or evdev:"}}) {
+             {"joystick", "is not a haptic device; use none, sim, evdev:"},
+             {"sdl:99", "there is no joystick 99"}}) {
         const auto bad = test::run_archet({"play", model, "--haptic", device, "--duration", "0.2"});
         EXPECT_EQ(bad.status, 2) << device;
         EXPECT_NE(bad.err.find(expected), std::string::npos) << bad.err;

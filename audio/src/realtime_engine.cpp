@@ -86,6 +86,7 @@ class Engine final : public AudioRenderer {
         said +=
             output_->description() + ", " + std::to_string(output_->buffer_frames()) + " frames";
         if (!warning.empty()) said = warning + "; " + said;
+        if (!haptic_.note.empty()) said += "; " + haptic_.note;
         output_->start(*this);
         said += "; " + output_->scheduling();
         header.engine_state.store(static_cast<std::uint32_t>(EngineState::Ready));

@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "archet/input_error.hpp"
-#include "archet/monotonic_clock.hpp"
 
 namespace archet {
 
@@ -78,7 +77,7 @@ EvdevDevice::EvdevDevice(const std::string& path, EvdevOptions options)
     capabilities_.max_force = options_.max_force;
     capabilities_.force_rate = options_.update_rate;
     capabilities_.position_rate = options_.update_rate;
-    last_poll_ns_.store(monotonic_ns());
+    answered();
     running_.store(true);
     io_ = std::thread([this] { io_loop(); });
 }
@@ -91,27 +90,6 @@ EvdevDevice::~EvdevDevice() {
         if (id >= 0) ::ioctl(fd_, EVIOCRMFF, id);
     libevdev_free(device_);
     ::close(fd_);
-}
-
-HapticReading EvdevDevice::read() const {
-    return {position_[0].load(std::memory_order_relaxed),
-            position_[1].load(std::memory_order_relaxed),
-            last_write_.load(std::memory_order_relaxed)};
-}
-
-void EvdevDevice::write(double slide, double press, double time) {
-    force_[0].store(slide, std::memory_order_relaxed);
-    force_[1].store(press, std::memory_order_relaxed);
-    last_write_.store(time, std::memory_order_relaxed);
-    last_write_ns_.store(monotonic_ns(), std::memory_order_relaxed);
-}
-
-// Positions arrive only when the stick moves: the data is stale when the I/O thread stopped
-// answering, not when the hand is still.
-bool EvdevDevice::stale(double, double limit) const {
-    return static_cast<double>(monotonic_ns() - last_poll_ns_.load(std::memory_order_relaxed)) *
-               1e-9 >
-           limit;
 }
 
 void EvdevDevice::send_levels(double slide, double press) {
@@ -142,17 +120,14 @@ void EvdevDevice::io_loop() {
             const int a = event.code == ABS_X ? 0 : 1;
             const double unit =
                 2.0 * (event.value - minimum_[a]) / (maximum_[a] - minimum_[a]) - 1.0;  // −1 … 1
-            position_[a].store(unit * options_.range, std::memory_order_relaxed);
+            publish_position(a, unit * options_.range);
         }
         if (rc != -EAGAIN && rc != -EINTR)
             break;  // unplugged: stop answering, the link sees it stale
-        last_poll_ns_.store(monotonic_ns(), std::memory_order_relaxed);
-        const double since_write =
-            static_cast<double>(monotonic_ns() - last_write_ns_.load()) * 1e-9;
-        if (since_write > options_.write_timeout)
-            send_levels(0, 0);  // the simulation stalled
-        else
-            send_levels(force_[0].load(), force_[1].load());
+        answered();
+        double slide = 0, press = 0;
+        forces_to_send(options_.write_timeout, slide, press);
+        send_levels(slide, press);
         next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
         std::this_thread::sleep_until(next);
     }

@@ -2,6 +2,7 @@
 
 #include "archet/evdev_device.hpp"
 #include "archet/input_error.hpp"
+#include "archet/sdl_device.hpp"
 
 namespace archet {
 
@@ -18,9 +19,22 @@ HapticChoice open_haptic_device(const std::string& name) {
         choice.device = std::make_unique<EvdevDevice>(name.substr(6));
         return choice;
     }
-    throw InputError(
-        "--haptic",
-        "\"" + name + "\" is not a haptic device; use none, sim or evdev:/dev/input/eventN");
+    if (name.rfind("sdl:", 0) == 0 && name.size() > 4) {
+        const std::string index = name.substr(4);
+        if (index.find_first_not_of("0123456789") != std::string::npos || index.size() > 6)
+            throw InputError("--haptic", "\"" + name +
+                                             "\": the SDL joystick is a number, as "
+                                             "`archet devices` lists them (sdl:0, sdl:1, ...)");
+        auto joystick = std::make_unique<SdlDevice>(std::stoi(index));
+        if (!joystick->force_feedback())
+            choice.note = "\"" + joystick->capabilities().name +
+                          "\" has no force feedback: playing with its positions only";
+        choice.device = std::move(joystick);
+        return choice;
+    }
+    throw InputError("--haptic", "\"" + name +
+                                     "\" is not a haptic device; use none, sim, "
+                                     "evdev:/dev/input/eventN or sdl:INDEX");
 }
 
 }  // namespace archet

@@ -9,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-#include "archet/haptic_device.hpp"
+#include "archet/joystick_exchange.hpp"
 
 struct libevdev;
 
@@ -22,7 +22,7 @@ struct EvdevOptions {
     double write_timeout = 0.01;  ///< s without a new force before the device is let go
 };
 
-class EvdevDevice final : public HapticDevice {
+class EvdevDevice final : public JoystickExchange {
   public:
     /// Opens `path` (/dev/input/eventN); throws InputError naming what is missing.
     explicit EvdevDevice(const std::string& path, EvdevOptions options = {});
@@ -31,9 +31,6 @@ class EvdevDevice final : public HapticDevice {
     EvdevDevice& operator=(const EvdevDevice&) = delete;
 
     HapticCapabilities capabilities() const override { return capabilities_; }
-    HapticReading read() const override;
-    void write(double slide_force, double press_force, double time) override;
-    bool stale(double time, double limit) const override;
 
   private:
     void io_loop();
@@ -46,11 +43,6 @@ class EvdevDevice final : public HapticDevice {
     libevdev* device_ = nullptr;
     int effect_[2] = {-1, -1};
     int minimum_[2] = {0, 0}, maximum_[2] = {1, 1};
-    std::atomic<double> position_[2] = {0.0, 0.0};
-    std::atomic<double> force_[2] = {0.0, 0.0};
-    std::atomic<double> last_write_{-1.0};     ///< engine time of the last force written
-    std::atomic<long long> last_write_ns_{0};  ///< monotonic time of it
-    std::atomic<long long> last_poll_ns_{0};   ///< monotonic time the I/O thread last answered
     std::atomic<bool> running_{false};
     std::thread io_;
 };
