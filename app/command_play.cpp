@@ -142,7 +142,8 @@ int run_play(const PlayArguments& a) {
     if (!a.take.empty()) {
         std::vector<std::string> probes;
         for (const auto& p : sim.model().probes) probes.push_back(p.id);
-        take = std::make_unique<TakeRecorder>(a.take, sim.sample_rate(), probes);
+        take = std::make_unique<TakeRecorder>(a.take, model, sim.sample_rate(), probes);
+        take->begin(0);  // from the model's start: no state needed to re-render it
     }
     Player player(sim, 1e9 * output->buffer_frames() / output->sample_rate(), haptic_divider,
                   gesture ? &*gesture : nullptr, haptic, take.get());
@@ -159,7 +160,8 @@ int run_play(const PlayArguments& a) {
     if (take) {
         take->finish();
         std::cerr << "archet: take written to " << take->folder().string()
-                  << " (take.wav, gesture.json, probes.csv)"
+                  << " (take.wav, gesture.json, probes.csv; `archet render --take "
+                  << take->folder().string() << " -o FILE` re-renders it)"
                   << (take->dropped() ? ", some samples dropped: the disk was too slow" : "")
                   << "\n";
     }

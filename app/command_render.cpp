@@ -12,9 +12,12 @@
 #include "archet/compiled_model.hpp"
 #include "archet/input_error.hpp"
 #include "archet/model_file.hpp"
+#include "archet/parameter_smoother.hpp"
 #include "archet/probe_csv_writer.hpp"
 #include "archet/renderer.hpp"
 #include "archet/sound_file_writer.hpp"
+#include "archet/state_file.hpp"
+#include "archet/take_file.hpp"
 #include "commands.hpp"
 #include "model_loading.hpp"
 
@@ -23,30 +26,89 @@ namespace archet::cli {
 namespace {
 
 struct RenderArguments {
-    std::string model, output, gesture, probes, format = "wav";
+    std::string model, output, gesture, probes, format = "wav", take;
     double duration = 0, sample_rate = 0;
     std::vector<std::string> set;
 };
 
 constexpr double kTail = 0.5;  // s rendered after the gesture ends, for the decay
 
-int run_render(const RenderArguments& a) {
-    const SoundFormat format = parse_sound_format(a.format);
+// What to render: a model and gesture from the command line, or a recorded take.
+struct RenderPlan {
+    Model model;
+    std::optional<Gesture> gesture;
+    double duration = 0;
+    std::uint64_t frames = 0;              ///< 0: from duration
+    std::vector<double> state;             ///< empty: from the model's start
+    std::vector<ParameterChange> changes;  ///< made while the take played
+};
+
+RenderPlan plan_from_arguments(const RenderArguments& a) {
+    if (a.model.empty()) throw InputError("model", "give a model file, or --take DIR");
     if (a.duration < 0 || !std::isfinite(a.duration))
         throw InputError("--duration", "must be positive seconds");
     if (a.sample_rate < 0) throw InputError("--sample-rate", "must be positive Hz");
-    const Model model = load_validated_model(a.model, a.set, a.sample_rate);
-    std::optional<Gesture> gesture;
+    RenderPlan plan;
+    plan.model = load_validated_model(a.model, a.set, a.sample_rate);
     if (!a.gesture.empty())
-        gesture = load_gesture_file(a.gesture);
-    else if (model.gesture)
-        gesture = model.gesture;
+        plan.gesture = load_gesture_file(a.gesture);
+    else if (plan.model.gesture)
+        plan.gesture = plan.model.gesture;
+    plan.duration =
+        a.duration > 0 ? a.duration : (plan.gesture ? plan.gesture->duration() + kTail : 2.0);
+    return plan;
+}
+
+// A take replays as it was played: its model, gesture, starting state and parameter changes,
+// for exactly as many samples as it holds.
+RenderPlan plan_from_take(const RenderArguments& a) {
+    if (!a.model.empty() || !a.gesture.empty() || a.duration > 0 || a.sample_rate > 0 ||
+        !a.set.empty())
+        throw InputError("--take",
+                         "replays the take as it was played; drop the model, "
+                         "--gesture, --duration, --sample-rate and --set");
+    const std::filesystem::path folder = a.take;
+    const TakeDescription take = read_take_file(folder / "take.json");
+    RenderPlan plan;
+    plan.model = load_validated_model((folder / "model.json").string(), {}, take.sample_rate);
+    plan.gesture = load_gesture_file(folder / "gesture.json");
+    plan.frames = take.frames;
+    plan.duration = static_cast<double>(take.frames) / take.sample_rate;
+    if (take.has_state) plan.state = read_state_file(folder / "state.bin");
+    if (take.has_parameters) plan.changes = read_parameter_changes(folder / "parameters.json");
+    return plan;
+}
+
+int run_render(const RenderArguments& a) {
+    const SoundFormat format = parse_sound_format(a.format);
+    RenderPlan plan = a.take.empty() ? plan_from_arguments(a) : plan_from_take(a);
+    const Model& model = plan.model;
+    const std::optional<Gesture>& gesture = plan.gesture;
+    const double duration = plan.duration;
 
     Simulation sim(compile(model));
     sim.set_gesture_track(gesture ? &*gesture : nullptr);
-    const double duration =
-        a.duration > 0 ? a.duration : (gesture ? gesture->duration() + kTail : 2.0);
-    const auto frames = static_cast<std::uint64_t>(std::llround(duration * sim.sample_rate()));
+    if (!plan.state.empty()) {  // after the track: setting it moves the gesture points
+        if (plan.state.size() != sim.state_size())
+            throw InputError(a.take + "/state.bin", "holds " + std::to_string(plan.state.size()) +
+                                                        " numbers but model.json needs " +
+                                                        std::to_string(sim.state_size()) +
+                                                        "; the files come from different takes");
+        sim.load_state(plan.state.data());
+    }
+    // The take's parameter changes glide in as the engine glided them.
+    std::vector<ParameterSlot> slots;
+    for (const auto& c : plan.changes) {
+        const auto dot = c.parameter.rfind('.');
+        if (dot == std::string::npos)
+            throw InputError(a.take + "/parameters.json",
+                             "\"" + c.parameter + "\" is not ELEMENT.PARAMETER");
+        slots.push_back(
+            sim.model().resolve_parameter(c.parameter.substr(0, dot), c.parameter.substr(dot + 1)));
+    }
+    const auto frames =
+        plan.frames > 0 ? plan.frames
+                        : static_cast<std::uint64_t>(std::llround(duration * sim.sample_rate()));
     if (frames == 0) throw InputError("--duration", "renders no sample; give a longer duration");
 
     SoundFileWriter audio(a.output, format, static_cast<int>(std::lround(sim.sample_rate())));
@@ -60,6 +122,17 @@ int run_render(const RenderArguments& a) {
     RenderOptions options;
     options.frames = frames;
     options.with_probes = csv != nullptr;
+    ParameterSmoother smoother;
+    std::size_t next_change = 0;
+    if (!plan.changes.empty())
+        options.before_step = [&](Simulation& s) {
+            while (next_change < plan.changes.size() &&
+                   plan.changes[next_change].tick == s.tick()) {
+                const ParameterChange& c = plan.changes[next_change];
+                smoother.glide(s, slots[next_change++], c.value, c.glide_samples);
+            }
+            smoother.advance(s);
+        };
     render(sim, options, [&](const RenderBlock& block) {
         audio.write(block.audio, block.frames);
         for (std::size_t i = 0; csv && i < block.frames; ++i)
@@ -94,7 +167,7 @@ void add_render_command(CLI::App& app, Action& action) {
     auto a = std::make_shared<RenderArguments>();
     auto* cmd =
         app.add_subcommand("render", "Render a model and a gesture offline to a sound file");
-    cmd->add_option("model", a->model, "Model file (.json)")->required();
+    cmd->add_option("model", a->model, "Model file (.json)");
     cmd->add_option("-o,--output", a->output, "Sound file to write")->required();
     cmd->add_option("--gesture", a->gesture, "Gesture file (default: the model's own gesture)");
     cmd->add_option("--duration", a->duration,
@@ -105,6 +178,8 @@ void add_render_command(CLI::App& app, Action& action) {
         ->capture_default_str();
     cmd->add_option("--sample-rate", a->sample_rate, "Master clock (Hz; default: the model's)");
     cmd->add_option("--set", a->set, "Override a parameter: ID.PARAM=VALUE (repeatable)");
+    cmd->add_option("--take", a->take,
+                    "Re-render a recorded take folder exactly (instead of MODEL and --gesture)");
     cmd->callback([&action, a] { action = [a] { return run_render(*a); }; });
 }
 

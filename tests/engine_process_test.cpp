@@ -28,14 +28,7 @@ EngineLinkOptions options() {
     return o;
 }
 
-bool wait_for(const std::function<bool()>& done, std::chrono::milliseconds limit) {
-    const auto end = std::chrono::steady_clock::now() + limit;
-    while (std::chrono::steady_clock::now() < end) {
-        if (done()) return true;
-        std::this_thread::sleep_for(2ms);
-    }
-    return done();
-}
+using test::wait_for;
 
 // Reads status frames until one of `kind` answers `sequence` (errors are collected).
 bool wait_status(EngineLink& link, StatusKind kind, std::uint32_t sequence,

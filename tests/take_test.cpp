@@ -46,6 +46,12 @@ void expect_reproduced(const std::vector<std::string>& play_extra, const std::st
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(dir / "take" / "take.wav"))
         << "the re-rendered take differs";
+    // And in one command, from the take's own description.
+    r = test::run_archet(
+        {"render", "--take", (dir / "take").string(), "-o", (dir / "replayed.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "replayed.wav"), test::read_file(dir / "take" / "take.wav"))
+        << "render --take differs";
     // And it was a real take: bowed, with probes for every sample.
     const std::string csv = test::read_file(dir / "take" / "probes.csv");
     EXPECT_EQ(static_cast<sf_count_t>(std::count(csv.begin(), csv.end(), '\n')), frames + 1);
@@ -87,6 +93,40 @@ TEST(Take, NeverWritesIntoAFolderThatHoldsFiles) {
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("already holds files"), std::string::npos) << r.err;
     EXPECT_EQ(test::read_file(dir / "mine.txt"), "the user's notes");
+}
+
+TEST(Take, ADamagedTakeIsRefusedByNameAndKept) {
+    const auto dir = test::temp_dir("take-damaged");
+    auto r = test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
+                               "--duration", "0.3", "--take", (dir / "take").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string take = (dir / "take").string();
+    const std::string description = test::read_file(dir / "take" / "take.json");
+    auto expect_refused = [&](const std::string& expected) {
+        const auto bad = test::run_archet({"render", "--take", take, "-o", take + "/x.wav"});
+        EXPECT_EQ(bad.status, 2) << bad.err;
+        EXPECT_NE(bad.err.find(expected), std::string::npos) << bad.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "take" / "x.wav"));
+    };
+    // It says it began mid-performance, but its state is missing, foreign or cut short.
+    std::string with_state = description;
+    with_state.replace(with_state.find("\"state\": false"), 14, "\"state\": true");
+    std::ofstream(dir / "take" / "take.json") << with_state;
+    expect_refused("state.bin: cannot open the state file");
+    std::ofstream(dir / "take" / "state.bin") << "RIFF....WAVE";
+    expect_refused("is not an Archet state file");
+    std::ofstream(dir / "take" / "state.bin") << "archet-state 1 3\n" << std::string(24, '\0');
+    expect_refused("holds 3 numbers but model.json needs");
+    std::ofstream(dir / "take" / "state.bin") << "archet-state 1 3\n" << std::string(10, '\0');
+    expect_refused("is truncated or damaged");
+    std::ofstream(dir / "take" / "take.json") << "{\"format\": \"archet-take\", \"version\": 1}";
+    expect_refused("sample_rate");
+    r = test::run_archet({"render", "--take", take,
+                          test::resource("models/bowed-string-220.json").string(), "-o",
+                          take + "/x.wav"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("replays the take as it was played"), std::string::npos) << r.err;
+    EXPECT_GT(test::read_file(dir / "take" / "take.wav").size(), 10000u) << "the take is kept";
 }
 
 }  // namespace

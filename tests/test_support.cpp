@@ -2,11 +2,13 @@
 
 #include <sys/wait.h>
 #include <unistd.h>
+#include <thread>
 
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 namespace archet::test {
 
@@ -35,6 +37,15 @@ std::string quote(const std::string& s) {
     return q + "'";
 }
 }  // namespace
+
+bool wait_for(const std::function<bool()>& done, std::chrono::milliseconds limit) {
+    const auto end = std::chrono::steady_clock::now() + limit;
+    while (std::chrono::steady_clock::now() < end) {
+        if (done()) return true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    return done();
+}
 
 std::string read_file(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);

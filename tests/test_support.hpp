@@ -2,7 +2,9 @@
 // Helpers shared by the test suites: paths, running the real `archet` binary, and small
 // models built in code.
 
+#include <chrono>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,9 @@ struct CommandResult {
 CommandResult run_archet(const std::vector<std::string>& arguments);
 
 std::string read_file(const std::filesystem::path& path);
+
+/// Polls `done` every 2 ms until it holds or `limit` passes; returns its last answer.
+bool wait_for(const std::function<bool()>& done, std::chrono::milliseconds limit);
 
 /// Zero-crossing frequency (Hz) of a signal sampled at fs, with linear interpolation,
 /// from the first to the last upward crossing.

@@ -30,6 +30,7 @@
 #include "archet/parameter_smoother.hpp"
 #include "archet/realtime_allocations.hpp"
 #include "archet/simulation.hpp"
+#include "archet/take_recorder.hpp"
 
 namespace archet {
 
@@ -44,14 +45,20 @@ struct LoadedModel {
     std::unique_ptr<Simulation> simulation;
     std::vector<MatSlot> shape;        ///< MATs of the fastest level, in model order
     std::optional<HapticLoop> haptic;  ///< with a device: its loop and link for this model
+    std::uint64_t haptic_divider = 1;  ///< the gesture points' level, for takes
+    double haptic_dt = 0;
+    std::uint64_t generation = 0;  ///< which load of the control thread it comes from
     std::uint32_t sequence = 0;
 };
 
 // Work the control thread hands to the real-time thread.
 struct RealtimeCommand {
-    enum Kind : std::uint32_t { SetParameter, Gesture, Play, Stop } kind;
+    enum Kind : std::uint32_t { SetParameter, Gesture, Play, Stop, StartTake, StopTake } kind;
     ParameterSlot slot;
     double value, slide, press;
+    TakeRecorder* take = nullptr;  ///< StartTake: the recorder, owned by the real-time thread
+    std::uint64_t generation = 0;  ///< StartTake: the model load it was prepared for
+    std::uint32_t name = 0;        ///< SetParameter: its name in the take being recorded
 };
 
 void copy_text(char (&to)[kTextSize], const std::string& from) {
@@ -69,7 +76,8 @@ class Engine final : public AudioRenderer {
           probes_(segment_.probes()),
           shapes_(segment_.shapes()),
           status_(segment_.status()),
-          to_realtime_(1024) {}
+          to_realtime_(1024),
+          finished_takes_(16) {}
 
     ~Engine() override {
         if (output_) output_->stop();
@@ -102,6 +110,7 @@ class Engine final : public AudioRenderer {
             CommandFrame command;
             while (commands_.try_pop(command)) handle(command);
             collect_retired();
+            collect_takes();
             if (blown_.exchange(false)) recover_from_blowup();
             if (std::chrono::steady_clock::now() - last_status > std::chrono::milliseconds(50)) {
                 publish(StatusKind::Heartbeat, 0, current_name_);
@@ -112,6 +121,11 @@ class Engine final : public AudioRenderer {
         header.engine_state.store(static_cast<std::uint32_t>(EngineState::Exiting));
         output_->stop();
         collect_retired();
+        // The real-time thread has stopped: its takes are the control thread's to finish.
+        if (recording_) finished_takes_.ring().try_push(recording_);
+        if (waiting_take_) finished_takes_.ring().try_push(waiting_take_);
+        recording_ = waiting_take_ = nullptr;
+        collect_takes();
         delete pending_.exchange(nullptr);
         delete fading_from_;
         fading_from_ = nullptr;
@@ -135,6 +149,7 @@ class Engine final : public AudioRenderer {
                 } else {
                     retired_.store(running_model_, std::memory_order_release);
                 }
+                end_take();  // the take's model is gone
                 running_model_ = next;
                 muted_ = false;
                 smoother_.clear();
@@ -148,16 +163,25 @@ class Engine final : public AudioRenderer {
                 playing_ = true;
             else if (r.kind == RealtimeCommand::Stop)
                 playing_ = false;
-            else if (running_model_ && r.kind == RealtimeCommand::SetParameter)
-                smoother_.glide(
-                    *running_model_->simulation, r.slot, r.value,
-                    static_cast<int>(kGlideSeconds * running_model_->simulation->sample_rate()));
-            else if (r.kind == RealtimeCommand::Gesture) {
+            else if (running_model_ && r.kind == RealtimeCommand::SetParameter) {
+                Simulation& sim = *running_model_->simulation;
+                const int glide = static_cast<int>(kGlideSeconds * sim.sample_rate());
+                smoother_.glide(sim, r.slot, r.value, glide);
+                if (recording_) recording_->parameter(sim.tick(), r.name, r.value, glide);
+            } else if (r.kind == RealtimeCommand::StartTake) {
+                if (waiting_take_) finished_takes_.ring().try_push(waiting_take_);
+                waiting_take_ = r.take;
+                waiting_generation_ = r.generation;
+            } else if (r.kind == RealtimeCommand::StopTake) {
+                end_take();
+            } else if (r.kind == RealtimeCommand::Gesture) {
                 pad_ = {r.slide, r.press};  // with a simulated hand the pad is its target
                 if (running_model_ && !haptic_.device)
                     running_model_->simulation->set_device_position(pad_);
             }
         }
+        if (muted_) end_take();
+        if (waiting_take_) begin_take();
         if (playing_ && running_model_ && !muted_)
             run_block(*running_model_, out, frames, channels);
         else
@@ -224,6 +248,10 @@ class Engine final : public AudioRenderer {
             case Opcode::Quit:
                 quit_.store(true);
                 return;
+            case Opcode::StartTake:
+                return start_take(c, text);
+            case Opcode::StopTake:
+                return send({RealtimeCommand::StopTake, {}, 0, 0, 0}, c);
         }
         fail(c, "unknown opcode " + std::to_string(c.opcode));
     }
@@ -243,12 +271,18 @@ class Engine final : public AudioRenderer {
         loaded->simulation->set_gesture_track(nullptr);  // live: the device or the pad plays it
         if (haptic_.device)
             loaded->haptic.emplace(*haptic_.device, haptic_.hand, *loaded->simulation);
+        for (const auto& level : loaded->resolver.levels)
+            if (!level.gestures.empty() &&
+                static_cast<std::uint64_t>(level.divider) >= loaded->haptic_divider)
+                loaded->haptic_divider = static_cast<std::uint64_t>(level.divider),
+                loaded->haptic_dt = level.dt;
         for (const auto& m : model.mats) {
             const MatSlot slot = loaded->resolver.mat_slots.at(m.id);
             if (slot.level == 0 && loaded->shape.size() < kMaxShapePoints)
                 loaded->shape.push_back(slot);
         }
         loaded->sequence = sequence;
+        loaded->generation = generation_;
         return loaded;
     }
 
@@ -260,6 +294,7 @@ class Engine final : public AudioRenderer {
                 throw InputError(path, "has " + std::to_string(model.probes.size()) +
                                            " probes; the engine streams at most " +
                                            std::to_string(kMaxProbes));
+            ++generation_;
             auto loaded = prepare(model, c.sequence);
             current_resolver_ = loaded->resolver;
             current_model_ = std::move(model);
@@ -281,7 +316,9 @@ class Engine final : public AudioRenderer {
             set_parameter_checked(check, element, parameter, c.value);
             const ParameterSlot slot = current_resolver_.resolve_parameter(element, parameter);
             current_model_ = std::move(check);
-            send({RealtimeCommand::SetParameter, slot, c.value, 0, 0}, c);
+            RealtimeCommand r{RealtimeCommand::SetParameter, slot, c.value, 0, 0};
+            if (live_take_) r.name = live_take_->parameter_name(name);
+            send(r, c);
         } catch (const std::exception& e) {
             fail(c, e.what());
         }
@@ -291,6 +328,49 @@ class Engine final : public AudioRenderer {
                                       const std::string& parameter, double value) {
         archet::set_parameter(model, element, parameter, value);  // names and range
         validate_model(model);                                    // and stability
+    }
+
+    // Opens the take's files here, off the real-time path, and hands the recorder over; the
+    // real-time thread begins it at a block boundary.
+    void start_take(const CommandFrame& c, const std::string& folder) {
+        try {
+            if (current_name_.empty()) throw InputError(folder, "no model is loaded to record");
+            if (live_take_)
+                throw InputError(folder, "a take is already being recorded into " +
+                                             live_take_->folder().string() + "; stop it first");
+            if (folder.empty()) throw InputError("StartTake", "give the take's folder");
+            std::vector<std::string> probes;
+            for (const auto& p : current_resolver_.probes) probes.push_back(p.id);
+            const std::size_t state_size = Simulation(current_resolver_).state_size();
+            auto take = std::make_unique<TakeRecorder>(folder, current_model_,
+                                                       output_->sample_rate(), probes, state_size);
+            RealtimeCommand r{RealtimeCommand::StartTake, {}, 0, 0, 0};
+            r.take = take.get();
+            r.generation = generation_;
+            if (!to_realtime_.ring().try_push(r))
+                throw InputError(folder, "the real-time thread is behind; take not started");
+            live_take_ = take.release();  // the real-time thread owns it until it hands it back
+            publish(StatusKind::Take, c.sequence, "recording " + folder);
+        } catch (const std::exception& e) {
+            fail(c, e.what());
+        }
+    }
+
+    // Finishes the takes the real-time thread handed back (ended, replaced or never begun).
+    void collect_takes() {
+        TakeRecorder* take = nullptr;
+        while (finished_takes_.ring().try_pop(take)) {
+            if (take == live_take_) live_take_ = nullptr;
+            std::string said = "written " + take->folder().string();
+            try {
+                take->finish();
+                said += " (" + std::to_string(take->frames()) + " samples)";
+            } catch (const std::exception& e) {
+                said = std::string("take failed: ") + e.what();
+            }
+            delete take;
+            publish(StatusKind::Take, 0, said);
+        }
     }
 
     // Deletes what the real-time thread let go of, and answers each model swap it made.
@@ -311,6 +391,29 @@ class Engine final : public AudioRenderer {
     }
 
     // ---- real-time thread ----------------------------------------------------------------
+
+    // A take begins at a block boundary where the model plays alone and no parameter is
+    // gliding: its saved state and gesture then replay it exactly. Until then it waits.
+    void begin_take() {
+        if (recording_ || !running_model_ || fading_from_ || smoother_.active() > 0) return;
+        if (running_model_->generation < waiting_generation_) return;  // its model comes next
+        if (running_model_->generation > waiting_generation_) {        // a newer model replaced it
+            finished_takes_.ring().try_push(waiting_take_);
+            waiting_take_ = nullptr;
+            return;
+        }
+        Simulation& sim = *running_model_->simulation;
+        if (double* state = waiting_take_->state_buffer()) sim.save_state(state);
+        waiting_take_->begin(sim.tick());
+        waiting_take_->gesture(sim.time(), sim.device_position());
+        recording_ = waiting_take_;
+        waiting_take_ = nullptr;
+    }
+
+    void end_take() {
+        if (recording_) finished_takes_.ring().try_push(recording_);
+        recording_ = nullptr;
+    }
 
     // Mixes the outgoing model into the incoming one's sample; retires it when faded out.
     double cross_fade(double incoming) {
@@ -333,6 +436,8 @@ class Engine final : public AudioRenderer {
         for (int i = 0; i < frames; ++i) {
             smoother_.advance(sim);
             if (m.haptic) m.haptic->before_step(sim, pad_);
+            if (recording_ && sim.tick() % m.haptic_divider == 0)  // the points read it now
+                recording_->gesture(sim.time() + m.haptic_dt, sim.device_position());
             sim.step();
             ProbeFrame f;
             f.tick = sim.tick();
@@ -351,6 +456,7 @@ class Engine final : public AudioRenderer {
             const float y = limiter_->process(f.output);
             for (int c = 0; c < channels; ++c) out[i * channels + c] = y;
             probes_.try_push(f);
+            if (recording_) recording_->sample(sim.time(), f.output, f.values, f.count);
         }
         tick_.store(sim.tick(), std::memory_order_relaxed);
         const double energy = sim.stored_energy();
@@ -381,6 +487,7 @@ class Engine final : public AudioRenderer {
     SpscRing<ShapeFrame> shapes_;
     SpscRing<StatusFrame> status_;
     LocalRing<RealtimeCommand> to_realtime_;
+    LocalRing<TakeRecorder*> finished_takes_;  ///< real-time → control: takes to finish
     std::unique_ptr<AudioOutput> output_;
     std::unique_ptr<OutputLimiter> limiter_;
     std::atomic<bool> quit_{false}, blown_{false};
@@ -392,6 +499,10 @@ class Engine final : public AudioRenderer {
     bool muted_ = false, playing_ = false;  ///< real-time thread only
     int shape_countdown_ = 0;               ///< real-time thread only
     GestureSample pad_{};                   ///< real-time thread: the pad's latest position
+    TakeRecorder* waiting_take_ = nullptr;  ///< real-time thread: to begin when it can
+    std::uint64_t waiting_generation_ = 0;  ///< real-time thread: the model it was made for
+    TakeRecorder* recording_ = nullptr;     ///< real-time thread: the take being fed
+    TakeRecorder* live_take_ = nullptr;     ///< control thread: the take it last started
     HapticChoice haptic_;         ///< the device, used by the real-time thread (none by default)
     ParameterSmoother smoother_;  ///< real-time thread only
     static constexpr double kGlideSeconds = 0.01;  ///< parameter changes arrive over 10 ms
@@ -406,6 +517,7 @@ class Engine final : public AudioRenderer {
     Model current_model_;
     CompiledModel current_resolver_;
     std::string current_name_;
+    std::uint64_t generation_ = 0;  ///< control thread: models loaded so far
 };
 
 }  // namespace

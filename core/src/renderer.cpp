@@ -17,6 +17,7 @@ void render(Simulation& sim, const RenderOptions& options,
         const std::size_t frames = static_cast<std::size_t>(
             std::min<std::uint64_t>(options.block_frames, options.frames - done));
         for (std::size_t i = 0; i < frames; ++i) {
+            if (options.before_step) options.before_step(sim);
             sim.step();
             audio[i] = sim.output();
             for (std::size_t p = 0; p < probe_count; ++p)

@@ -1,42 +1,61 @@
 #pragma once
 // Records a live take into a folder: take.wav (the model's output, as `archet render` writes
-// it), probes.csv, and gesture.json (the device positions the model actually played). The
-// real-time side only copies into lock-free rings; a writer thread does the file work and
-// refreshes the WAV header every second, so a crash leaves a valid WAV up to the last second.
-// Re-rendering the model with the take's gesture reproduces the take's audio exactly.
+// it), probes.csv, gesture.json (the device positions the model actually played), model.json,
+// and, when it began mid-performance, state.bin (the model's state at its first sample) and
+// parameters.json (the changes made while recording); take.json ties them together (see
+// take_file.hpp). The real-time side only copies into lock-free rings and a buffer sized in
+// advance; a writer thread does the file work and refreshes the WAV header every second, so
+// a crash leaves a valid WAV up to the last second. `archet render --take DIR` reproduces
+// take.wav exactly.
 
 #include <atomic>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "archet/gesture.hpp"
 #include "archet/ipc/spsc_ring.hpp"
+#include "archet/model.hpp"
 #include "archet/probe_csv_writer.hpp"
 #include "archet/sound_file_writer.hpp"
+#include "archet/take_file.hpp"
 
 namespace archet {
 
 class TakeRecorder {
   public:
-    /// Creates the folder (it must not exist, or be empty) and starts the writer thread.
-    TakeRecorder(std::filesystem::path folder, double sample_rate,
-                 std::vector<std::string> probe_names);
+    /// Creates the folder (it must not exist, or be empty), writes model.json (`played`, at
+    /// the rate it plays) and starts the writer thread. `state_size` > 0 makes room for a
+    /// state saved where the take begins (Simulation::state_size()).
+    TakeRecorder(std::filesystem::path folder, const Model& played, double sample_rate,
+                 std::vector<std::string> probe_names, std::size_t state_size = 0);
     ~TakeRecorder();  ///< finishes the take
     TakeRecorder(const TakeRecorder&) = delete;
     TakeRecorder& operator=(const TakeRecorder&) = delete;
 
+    // ---- control thread ----
+    /// A number for a parameter name, to pass to parameter() from the real-time side.
+    std::uint32_t parameter_name(const std::string& element_dot_parameter);
+
     // ---- real-time side: no allocation, no I/O ----
+    /// Where Simulation::save_state() writes the state at the take's start (null without).
+    double* state_buffer() { return state_.empty() ? nullptr : state_.data(); }
+    /// The take's first sample will be master tick `tick` (call once, before sample()).
+    void begin(std::uint64_t tick);
     /// One audio-rate sample: the model's output and its probe values.
     void sample(double time, double output, const double* probes, std::size_t count);
     /// A device position the gesture points took, at the time they took it.
     void gesture(double time, GestureSample position);
+    /// A parameter change that starts gliding at `tick`.
+    void parameter(std::uint64_t tick, std::uint32_t name, double value, int glide_samples);
 
     /// Stops, writes what is left, closes the files. Throws if a file could not be written.
     void finish();
     std::uint64_t dropped() const;  ///< samples lost because the writer fell behind
+    std::uint64_t frames() const { return frames_.load(); }
     const std::filesystem::path& folder() const { return folder_; }
 
   private:
@@ -45,7 +64,15 @@ class TakeRecorder {
         std::uint32_t count;
         double probes[ipc::kMaxProbes];
     };
+    struct Change {
+        std::uint64_t tick;
+        std::uint32_t name;
+        int glide_samples;
+        double value;
+    };
     void write_loop();
+    void write_description(std::vector<GestureKeyframe> keyframes,
+                           const std::vector<Change>& changes);
 
     std::filesystem::path folder_;
     double sample_rate_;
@@ -54,6 +81,13 @@ class TakeRecorder {
     std::unique_ptr<ProbeCsvWriter> csv_;
     ipc::LocalRing<Sample> samples_;
     ipc::LocalRing<GestureKeyframe> gestures_;
+    ipc::LocalRing<Change> changes_;
+    std::vector<double> state_;
+    std::atomic<std::uint64_t> start_tick_{0};
+    std::atomic<bool> begun_{false};
+    std::atomic<std::uint64_t> frames_{0};
+    std::mutex names_mutex_;  ///< control and writer threads only
+    std::vector<std::string> names_;
     std::atomic<bool> stopping_{false};
     std::thread writer_;
     std::string error_;

@@ -22,6 +22,8 @@ struct RenderOptions {
     std::uint64_t frames = 0;
     bool with_probes = false;
     std::size_t block_frames = 4096;
+    /// Called before every step when set (e.g. to replay a take's parameter changes).
+    std::function<void(Simulation&)> before_step;
 };
 
 /// Steps `simulation` options.frames times, calling `sink` after each block. Denormals are

@@ -34,6 +34,16 @@ class Simulation {
     /// The parameter's current value, in the model file's units.
     double parameter(const ParameterSlot& slot) const;
 
+    /// The whole state of a running model (positions, link and bow states, parameters, the
+    /// clock) as plain numbers: enough to resume it exactly, e.g. to re-render a take started
+    /// mid-performance. save_state() does not allocate (real-time safe); `out` holds
+    /// state_size() values.
+    std::size_t state_size() const;
+    void save_state(double* out) const;
+    /// Resumes from a saved state of the same compiled model (same state_size()). Set the
+    /// gesture track first: setting it moves the gesture points.
+    void load_state(const double* in);
+
     /// Keeps the per-element dissipation (slower; off by default).
     void enable_accounting(bool on);
 
@@ -67,6 +77,9 @@ class Simulation {
     CompiledModel& model() { return model_; }
 
   private:
+    /// Calls `field` on every number of the state, in a fixed order (see simulation_state.cpp).
+    template <class Self, class Field>
+    static void for_each_state(Self& self, Field&& field);
     void apply_controls();
     void compute_link_forces(CompiledLevel& level);
     void compute_hand_link_forces();

@@ -79,6 +79,12 @@ std::uint32_t EngineLink::stop() {
 std::uint32_t EngineLink::quit() {
     return send(command(Opcode::Quit));
 }
+std::uint32_t EngineLink::start_take(const std::string& folder) {
+    return send(command(Opcode::StartTake, folder));
+}
+std::uint32_t EngineLink::stop_take() {
+    return send(command(Opcode::StopTake));
+}
 std::uint32_t EngineLink::gesture(double slide, double press) {
     CommandFrame f = command(Opcode::Gesture);
     f.slide = slide, f.press = press;

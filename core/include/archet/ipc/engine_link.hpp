@@ -40,6 +40,10 @@ class EngineLink {
     std::uint32_t stop();
     std::uint32_t gesture(double slide, double press);
     std::uint32_t quit();
+    /// Records a take into `folder` (new or empty) from the next block on, until stop_take(),
+    /// a new model or a blow-up; the engine answers with Take status frames.
+    std::uint32_t start_take(const std::string& folder);
+    std::uint32_t stop_take();
     std::uint32_t send(CommandFrame frame);
 
     SpscRing<ProbeFrame> probes() { return segment_.probes(); }

@@ -10,8 +10,8 @@
 
 namespace archet::ipc {
 
-inline constexpr std::uint32_t kMagic = 0x54454843;  // "CHET" little-endian
-inline constexpr std::uint16_t kProtocolVersion = 1;
+inline constexpr std::uint32_t kMagic = 0x54454843;   // "CHET" little-endian
+inline constexpr std::uint16_t kProtocolVersion = 2;  ///< 2: takes (StartTake, StopTake)
 inline constexpr std::uint16_t kMinimumCompatibleVersion = 1;
 
 inline constexpr std::size_t kMaxProbes = 16;        ///< probe values per probe frame
@@ -69,6 +69,8 @@ enum class Opcode : std::uint32_t {
     Stop = 4,          ///< stop it (silence, forces to zero)
     Gesture = 5,       ///< slide, press: the pad's device position (m)
     Quit = 6,          ///< leave cleanly
+    StartTake = 7,     ///< text: a new (or empty) folder to record a take into
+    StopTake = 8,      ///< finish the take being recorded
 };
 
 struct CommandFrame {
@@ -94,7 +96,13 @@ struct ShapeFrame {
     float positions[kMaxShapePoints];
 };
 
-enum class StatusKind : std::uint32_t { Heartbeat = 1, ModelLoaded = 2, Error = 3, Blowup = 4 };
+enum class StatusKind : std::uint32_t {
+    Heartbeat = 1,
+    ModelLoaded = 2,
+    Error = 3,
+    Blowup = 4,
+    Take = 5,  ///< text: "recording DIR" when a take begins, "written DIR ..." when it is done
+};
 
 struct StatusFrame {
     std::uint32_t kind;      ///< a StatusKind

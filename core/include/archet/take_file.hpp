@@ -1,0 +1,38 @@
+#pragma once
+// What a take folder holds besides its audio (take.wav), probes (probes.csv) and gesture
+// (gesture.json): take.json, which says how to re-render it; model.json, the model as it was
+// played; state.bin, the model's state where the take began (absent when it began at the
+// model's start); and parameters.json, the parameter changes made while it was recorded.
+// `archet render --take DIR` reads them all and reproduces take.wav to the byte.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace archet {
+
+struct TakeDescription {
+    double sample_rate = 48000;
+    std::uint64_t frames = 0;      ///< samples in take.wav
+    std::uint64_t start_tick = 0;  ///< master tick of the take's first sample
+    bool has_state = false;        ///< state.bin: the take began mid-performance
+    bool has_parameters = false;   ///< parameters.json: parameters changed during the take
+};
+
+/// A parameter change made while playing: it starts gliding at master tick `tick`, before
+/// that tick's step, and arrives over `glide_samples` steps.
+struct ParameterChange {
+    std::uint64_t tick = 0;
+    std::string parameter;  ///< ELEMENT.PARAM
+    double value = 0;
+    int glide_samples = 1;
+};
+
+std::string format_take(const TakeDescription& take);
+TakeDescription read_take_file(const std::filesystem::path& path);
+
+std::string format_parameter_changes(const std::vector<ParameterChange>& changes);
+std::vector<ParameterChange> read_parameter_changes(const std::filesystem::path& path);
+
+}  // namespace archet

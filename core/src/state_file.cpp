@@ -1,0 +1,53 @@
+#include "archet/state_file.hpp"
+
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "archet/input_error.hpp"
+#include "archet/model_file.hpp"
+
+namespace archet {
+
+namespace {
+constexpr const char* kMagic = "archet-state 1";
+static_assert(std::endian::native == std::endian::little, "state files are little-endian");
+}  // namespace
+
+void write_state_file(const std::filesystem::path& path, const std::vector<double>& state) {
+    std::string bytes = std::string(kMagic) + " " + std::to_string(state.size()) + "\n";
+    const std::size_t header = bytes.size();
+    bytes.resize(header + state.size() * sizeof(double));
+    std::memcpy(bytes.data() + header, state.data(), state.size() * sizeof(double));
+    write_file_atomically(path, bytes);
+}
+
+std::vector<double> read_state_file(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path.string(), "cannot open the state file");
+    std::string line;
+    std::getline(in, line);
+    std::istringstream words(line);
+    std::string format, version;
+    std::size_t count = 0;
+    if (!(words >> format >> version >> count) || format + " " + version != kMagic)
+        throw InputError(path.string(),
+                         "is not an Archet state file (it starts \"" + line.substr(0, 40) + "\")");
+    const auto start = in.tellg();
+    in.seekg(0, std::ios::end);
+    const auto bytes = static_cast<std::size_t>(in.tellg() - start);
+    if (count > (1u << 28) || bytes != count * sizeof(double))
+        throw InputError(path.string(), "is truncated or damaged: it announces " +
+                                            std::to_string(count) + " numbers but holds " +
+                                            std::to_string(bytes) + " bytes");
+    in.seekg(start);
+    std::vector<double> state(count);
+    in.read(reinterpret_cast<char*>(state.data()), static_cast<std::streamsize>(bytes));
+    if (!in) throw InputError(path.string(), "could not be read to the end");
+    return state;
+}
+
+}  // namespace archet

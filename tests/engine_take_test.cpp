@@ -1,0 +1,192 @@
+// Takes recorded through the shared-memory protocol: the studio starts one in the middle of
+// a performance, changes a parameter while it records and stops it; `archet render --take`
+// then reproduces the take's audio to the byte from the state where it began. A take refuses
+// a folder that holds files and ends when a new model is loaded; an engine killed mid-take
+// leaves a valid WAV up to the last second.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sndfile.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <thread>
+
+#include "archet/ipc/engine_link.hpp"
+#include "archet/take_file.hpp"
+#include "test_support.hpp"
+
+namespace archet::ipc {
+namespace {
+
+using namespace std::chrono_literals;
+
+using test::wait_for;
+
+// The engine, playing a shipped model, with the status frames it has sent so far.
+class EngineSession {
+  public:
+    EngineSession() : link_(options()) {}
+
+    static EngineLinkOptions options() {
+        EngineLinkOptions o;
+        o.archet_binary = ARCHET_BINARY;
+        return o;
+    }
+
+    bool start(const std::string& model) {
+        link_.start();
+        if (!wait_for([&] { return link_.liveness() == EngineLink::Liveness::Running; }, 5000ms))
+            return false;
+        const auto loaded = link_.load_model(test::resource(model).string());
+        if (!await(StatusKind::ModelLoaded,
+                   [&](const StatusFrame& f) { return f.sequence == loaded; }))
+            return false;
+        link_.play();
+        return true;
+    }
+
+    // Plays for `seconds`, the pad bowing at 0.1 m/s with a slow swell of pressure.
+    void bow(double seconds) {
+        const auto start = std::chrono::steady_clock::now();
+        while (std::chrono::steady_clock::now() - start < std::chrono::duration<double>(seconds)) {
+            link_.gesture(0.1 * elapsed_, 0.0015 + 0.0005 * std::sin(3 * elapsed_));
+            link_.heartbeat();
+            drain();
+            std::this_thread::sleep_for(5ms);
+            elapsed_ += 0.005;
+        }
+    }
+
+    // Waits for a status frame of `kind` that `accept`s; remembers errors on the way.
+    bool await(StatusKind kind, const std::function<bool(const StatusFrame&)>& accept) {
+        return wait_for(
+            [&] {
+                link_.heartbeat();
+                StatusFrame f;
+                while (status_.try_pop(f)) {
+                    realtime_allocations_ = f.realtime_allocations;
+                    if (f.kind == static_cast<std::uint32_t>(StatusKind::Error))
+                        errors_.push_back(f.text);
+                    if (f.kind == static_cast<std::uint32_t>(kind) && accept(f)) return true;
+                }
+                drain();
+                return false;
+            },
+            5000ms);
+    }
+
+    bool await_take_written(std::string* text = nullptr) {
+        return await(StatusKind::Take, [&](const StatusFrame& f) {
+            const std::string said = f.text;
+            if (text) *text = said;
+            return said.rfind("written ", 0) == 0 || said.rfind("take failed", 0) == 0;
+        });
+    }
+
+    EngineLink& link() { return link_; }
+    const std::vector<std::string>& errors() const { return errors_; }
+    std::uint64_t realtime_allocations() const { return realtime_allocations_; }
+
+  private:
+    void drain() {  // the studio reads its scopes, so the engine never waits on them
+        ProbeFrame p;
+        while (probes_.try_pop(p)) {
+        }
+        ShapeFrame s;
+        while (shapes_.try_pop(s)) {
+        }
+    }
+
+    EngineLink link_;
+    SpscRing<StatusFrame> status_ = link_.status();
+    SpscRing<ProbeFrame> probes_ = link_.probes();
+    SpscRing<ShapeFrame> shapes_ = link_.shapes();
+    std::vector<std::string> errors_;
+    std::uint64_t realtime_allocations_ = 0;  ///< as the newest status frame counts them
+    double elapsed_ = 0;
+};
+
+// Re-renders the take in `dir`/take and expects take.wav to the byte.
+void expect_replayed(const std::filesystem::path& dir, const char* why) {
+    const auto r = test::run_archet(
+        {"render", "--take", (dir / "take").string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(dir / "take" / "take.wav"))
+        << why;
+}
+
+TEST(EngineTake, StartedMidPerformanceReRendersToTheByte) {
+    const auto dir = test::temp_dir("engine-take");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.bow(0.5);  // the string is sounding when the take starts
+
+    const auto started = engine.link().start_take((dir / "take").string());
+    ASSERT_TRUE(engine.await(StatusKind::Take, [&](const StatusFrame& f) {
+        return f.sequence == started && std::string(f.text).rfind("recording ", 0) == 0;
+    })) << (engine.errors().empty() ? "" : engine.errors()[0]);
+    engine.bow(0.4);
+    engine.link().set_parameter("friction.mu_s", 0.7);  // recorded, and replayed
+    engine.bow(0.4);
+    engine.link().stop_take();
+    std::string said;
+    ASSERT_TRUE(engine.await_take_written(&said)) << said;
+    EXPECT_TRUE(engine.errors().empty()) << engine.errors()[0];
+    EXPECT_EQ(engine.realtime_allocations(), 0u)
+        << "saving the state and feeding the take allocate nothing on the real-time thread";
+
+    const TakeDescription take = read_take_file(dir / "take" / "take.json");
+    EXPECT_TRUE(take.has_state) << "it began mid-performance";
+    EXPECT_TRUE(take.has_parameters);
+    EXPECT_GT(take.start_tick, 10000u);
+    EXPECT_GT(take.frames, 20000u);
+    expect_replayed(dir, "the re-rendered take differs");
+}
+
+TEST(EngineTake, RefusesAFolderThatHoldsFiles) {
+    const auto dir = test::temp_dir("engine-take-busy");
+    std::ofstream(dir / "keep.txt") << "mine";
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    const auto started = engine.link().start_take(dir.string());
+    ASSERT_TRUE(engine.await(StatusKind::Error,
+                             [&](const StatusFrame& f) { return f.sequence == started; }));
+    EXPECT_NE(engine.errors().back().find("already holds files"), std::string::npos)
+        << engine.errors().back();
+    EXPECT_EQ(test::read_file(dir / "keep.txt"), "mine");
+}
+
+TEST(EngineTake, ANewModelEndsTheTake) {
+    const auto dir = test::temp_dir("engine-take-swap");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.link().start_take((dir / "take").string());
+    engine.bow(0.3);
+    engine.link().load_model(test::resource("models/bowed-string-440.json").string());
+    std::string said;
+    ASSERT_TRUE(engine.await_take_written(&said)) << said;
+    expect_replayed(dir, "what was recorded before the swap still replays exactly");
+}
+
+TEST(EngineTake, AKilledEngineLeavesAValidWavUpToTheLastSecond) {
+    const auto dir = test::temp_dir("engine-take-kill");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.link().start_take((dir / "take").string());
+    engine.bow(2.3);
+    ::kill(engine.link().engine_pid(), SIGKILL);
+    ASSERT_TRUE(
+        wait_for([&] { return engine.link().liveness() == EngineLink::Liveness::Exited; }, 2000ms));
+    SF_INFO info{};
+    SNDFILE* wav = sf_open((dir / "take" / "take.wav").c_str(), SFM_READ, &info);
+    ASSERT_NE(wav, nullptr) << sf_strerror(nullptr);
+    sf_close(wav);
+    EXPECT_GE(info.frames, 48000) << "at least the last full second before the kill";
+    EXPECT_EQ(info.samplerate, 48000);
+}
+
+}  // namespace
+}  // namespace archet::ipc
