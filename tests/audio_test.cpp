@@ -45,7 +45,7 @@ TEST(Audio, AnUnknownApiIsRefusedAndAMissingDeviceFallsBackToTheNullSink) {
     auto r = test::run_archet(
         {"play", test::resource("models/bowed-string-220.json").string(), "--audio", "oss"});
     EXPECT_EQ(r.status, 2);
-    EXPECT_NE(r.err.find("use jack, alsa, pulse or null"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("use jack, alsa, pulse, auto or null"), std::string::npos) << r.err;
     ::setenv("JACK_DEFAULT_SERVER", "archet-no-such-server", 1);
     r = test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
                           "--audio", "jack", "--duration", "0.3", "--stats"});
@@ -54,6 +54,15 @@ TEST(Audio, AnUnknownApiIsRefusedAndAMissingDeviceFallsBackToTheNullSink) {
     EXPECT_NE(r.err.find("playing into a null sink instead"), std::string::npos) << r.err;
     EXPECT_NE(last_json_line(r.out)["output"].get<std::string>().find("null sink"),
               std::string::npos);
+    // auto takes the first output that opens, and says so when none does.
+    ::setenv("JACK_DEFAULT_SERVER", "archet-no-such-server", 1);
+    r = test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
+                          "--audio", "auto", "--duration", "0.3", "--stats"});
+    ::unsetenv("JACK_DEFAULT_SERVER");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string output = last_json_line(r.out)["output"].get<std::string>();
+    if (output.find("null sink") != std::string::npos)
+        EXPECT_NE(r.err.find("no audio output opened (jack: "), std::string::npos) << r.err;
 }
 
 TEST(Audio, PlaysThroughTheSimulatedHapticDevice) {

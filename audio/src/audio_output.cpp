@@ -103,7 +103,7 @@ RtAudio::Api api_of(const std::string& name) {
     if (name == "alsa") return RtAudio::LINUX_ALSA;
     if (name == "pulse") return RtAudio::LINUX_PULSE;
     throw InputError("--audio",
-                     "\"" + name + "\" is not an audio API; use jack, alsa, pulse or null");
+                     "\"" + name + "\" is not an audio API; use jack, alsa, pulse, auto or null");
 }
 
 class DeviceOutput final : public AudioOutput {
@@ -185,6 +185,20 @@ std::unique_ptr<AudioOutput> open_audio_output(const AudioConfig& c, std::string
     if (c.channels < 1 || c.channels > 32) throw InputError("channels", "must be 1 to 32");
     if (c.api == "null")
         return std::make_unique<NullOutput>(c.sample_rate, c.buffer_frames, c.channels);
+    if (c.api == "auto") {  // the first that opens: a JACK server, then PulseAudio, then ALSA
+        std::string tried;
+        for (const char* api : {"jack", "pulse", "alsa"}) {
+            AudioConfig attempt = c;
+            attempt.api = api;
+            try {
+                return std::make_unique<DeviceOutput>(attempt);
+            } catch (const RtAudioError& e) {
+                tried += (tried.empty() ? "" : "; ") + std::string(api) + ": " + e.getMessage();
+            }
+        }
+        if (warning) *warning = "no audio output opened (" + tried + "); playing into a null sink";
+        return std::make_unique<NullOutput>(c.sample_rate, c.buffer_frames, c.channels);
+    }
     api_of(c.api);  // unknown names are the user's mistake, not a missing device
     try {
         return std::make_unique<DeviceOutput>(c);

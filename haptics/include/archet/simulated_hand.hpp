@@ -16,7 +16,7 @@ namespace archet {
 
 struct SimulatedHandOptions {
     double mass = 0.5;         ///< kg per axis: hand and handle
-    double damping = 8.0;      ///< N·s/m: the arm's own damping
+    double damping = 25.0;     ///< N·s/m: the arm's own damping (about critical with grip)
     double grip = 300.0;       ///< N/m: how firmly the hand follows its target
     double latency = 0.001;    ///< s before a reading is reported and a force applied
     double resolution = 1e-5;  ///< m, position quantisation

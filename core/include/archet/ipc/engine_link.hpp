@@ -16,6 +16,7 @@ namespace archet::ipc {
 struct EngineLinkOptions {
     std::string archet_binary;  ///< the `archet` executable
     int block_frames = 64;
+    std::string audio = "null";   ///< passed to the engine's --audio (auto: the first that opens)
     std::string haptic = "none";  ///< passed to the engine's --haptic
     std::uint32_t probe_capacity = 1u << 16;
     std::chrono::milliseconds unresponsive_after{300};

@@ -1,0 +1,40 @@
+// archet-studio: the Qt studio. `archet-studio [MODEL]` opens the model (by default the
+// shipped 220 Hz string) and plays it on a real-time engine process.
+
+#include <QApplication>
+#include <QCommandLineParser>
+#include <QDir>
+#include <QFileInfo>
+
+#include "archet/bowed_string.hpp"
+#include "archet/ui/main_window.hpp"
+
+int main(int argc, char** argv) {
+    QApplication app(argc, argv);
+    QApplication::setApplicationName("Archet studio");
+    QApplication::setOrganizationName("Archet");
+    QCommandLineParser parser;
+    parser.setApplicationDescription("Build, play and record bowed-string models");
+    parser.addHelpOption();
+    parser.addPositionalArgument("model", "Model file to open (.json)");
+    QCommandLineOption audio("audio", "Audio output: auto, jack, pulse, alsa or null", "api",
+                             "auto");
+    parser.addOption(audio);
+    parser.process(app);
+
+    archet::ui::EngineClientOptions engine;
+    engine.archet_binary = QDir(QApplication::applicationDirPath()).filePath("archet");
+    engine.audio = parser.value(audio);
+    archet::ui::MainWindow window(engine);
+    const QStringList files = parser.positionalArguments();
+    const QString shipped = QStringLiteral(ARCHET_RESOURCE_DIR "/models/bowed-string-220.json");
+    if (!files.isEmpty()) {
+        if (!window.open_file(files.front())) return 2;
+    } else if (QFileInfo::exists(shipped)) {
+        window.open_file(shipped);
+    } else {
+        window.open_model(archet::build_bowed_string({}));
+    }
+    window.show();
+    return QApplication::exec();
+}

@@ -1,0 +1,133 @@
+// The studio under Qt's offscreen platform, with a real engine process: it opens the shipped
+// string and plays it, the pad bows it, the scopes fill with the string's motion, and a killed
+// engine is noticed and restarted with the same model. Screenshots of the window while bowing
+// are written to build/test-artifacts/ (look at them).
+
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <QApplication>
+#include <QDir>
+#include <QMouseEvent>
+#include <QTest>
+#include <QWheelEvent>
+
+#include "archet/ui/gesture_pad.hpp"
+#include "archet/ui/main_window.hpp"
+#include "archet/ui/scope_panel.hpp"
+#include "test_support.hpp"
+
+namespace archet::ui {
+namespace {
+
+EngineClientOptions engine_options() {
+    EngineClientOptions o;
+    o.archet_binary = ARCHET_BINARY;
+    o.audio = "null";  // clocked in real time, like a sound card
+    return o;
+}
+
+void save_screenshot(QWidget& widget, const QString& name) {
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    const QString path = QDir(ARCHET_ARTIFACT_DIR).filePath(name);
+    EXPECT_TRUE(widget.grab().save(path)) << path.toStdString();
+}
+
+// Bows with the pad for `seconds`: pressed in, moving across at 0.1 m/s.
+void bow(MainWindow& window, double seconds, double start_slide = -0.1) {
+    QElapsedTimer clock;
+    clock.start();
+    while (clock.elapsed() < seconds * 1000) {
+        const double t = clock.elapsed() / 1000.0;
+        window.pad().set_position(start_slide + 0.1 * t, std::min(0.0015, 0.05 * t));
+        QTest::qWait(10);
+    }
+}
+
+bool wait_until(const std::function<bool()>& done, int ms) {
+    QElapsedTimer clock;
+    clock.start();
+    while (clock.elapsed() < ms) {
+        if (done()) return true;
+        QTest::qWait(10);
+    }
+    return done();
+}
+
+TEST(Studio, PlaysTheShippedStringAndTheScopesFollowTheBow) {
+    MainWindow window(engine_options());
+    ASSERT_TRUE(window.open_file(test::resource("models/bowed-string-220.json").c_str()));
+    window.show();
+    ASSERT_TRUE(wait_until([&] { return window.engine().status().state == "running"; }, 5000));
+    ASSERT_TRUE(
+        wait_until([&] { return window.engine().status().model == "bowed-string-220"; }, 5000));
+    bow(window, 1.5);
+    const ProbeHistory& h = window.engine().history();
+    EXPECT_GT(h.frames_received(), 40000u) << "the probe stream runs at the audio rate";
+    EXPECT_GT(std::abs(h.latest(h.channel("friction_force"))), 1e-3) << "the pad bows the string";
+    EXPECT_GT(window.scopes().drawn_samples(), 900) << "20 ms of the string at 48 kHz";
+    EXPECT_EQ(window.engine().shape().size(), 65u) << "every MAT of the string's rate level";
+    EXPECT_EQ(window.engine().status().xruns, 0u);
+    EXPECT_EQ(window.engine().status().realtime_allocations, 0u);
+    save_screenshot(window, "studio-bowing.png");
+}
+
+TEST(Studio, AKilledEngineIsRestartedWithTheSameModel) {
+    MainWindow window(engine_options());
+    ASSERT_TRUE(window.open_file(test::resource("models/bowed-string-440.json").c_str()));
+    window.show();
+    ASSERT_TRUE(
+        wait_until([&] { return window.engine().status().model == "bowed-string-440"; }, 5000));
+    bow(window, 0.3);
+    const pid_t first = window.engine().engine_pid();
+    ::kill(first, SIGKILL);
+    ASSERT_TRUE(wait_until([&] { return window.engine().status().restarts == 1; }, 3000))
+        << "the studio noticed";
+    EXPECT_NE(window.engine().engine_pid(), first);
+    ASSERT_TRUE(wait_until(
+        [&] {
+            return window.engine().status().state == "running" &&
+                   window.engine().status().model == "bowed-string-440";
+        },
+        5000))
+        << "and the new engine plays the same model";
+    const auto before = window.engine().history().frames_received();
+    bow(window, 0.5, 0.0);
+    EXPECT_GT(window.engine().history().frames_received(), before + 10000) << "playing again";
+    save_screenshot(window, "studio-after-restart.png");
+}
+
+TEST(Studio, ThePadMapsTheMouseToTheBow) {
+    GesturePad pad;
+    pad.resize(400, 260);
+    double slide = 1, press = 1;
+    QObject::connect(&pad, &GesturePad::moved, [&](double s, double p) { slide = s, press = p; });
+    // The pad's area is inset 12 px at the sides and bottom and 28 px at the top.
+    const QPoint centre(200, 28 + (260 - 28 - 12) / 2);
+    QTest::mousePress(&pad, Qt::LeftButton, {}, centre);
+    EXPECT_NEAR(slide, 0.0, 1e-9);
+    const double middle = (GesturePad::kPressMin + GesturePad::kPressMax) / 2;
+    EXPECT_NEAR(press, middle, 1e-12);
+    QTest::mouseMove(&pad, centre + QPoint(100, 0));  // dragging
+    EXPECT_NEAR(slide, 100.0 / 376 * 2 * GesturePad::kSlideRange, 1e-9);
+    QTest::mouseRelease(&pad, Qt::LeftButton, {}, centre + QPoint(100, 0));
+    QTest::mouseMove(&pad, centre);  // no button held: the bow stays
+    EXPECT_NEAR(slide, 100.0 / 376 * 2 * GesturePad::kSlideRange, 1e-9);
+    QWheelEvent up(QPointF(200, 100), QPointF(200, 100), {}, QPoint(0, 120), Qt::NoButton, {},
+                   Qt::NoScrollPhase, false);
+    QApplication::sendEvent(&pad, &up);
+    EXPECT_NEAR(press, middle - 0.0001, 1e-9) << "the wheel lifts the bow a tenth of a mm";
+    pad.set_position(1.0, 1.0);
+    EXPECT_EQ(slide, GesturePad::kSlideRange) << "clamped to the pad";
+    EXPECT_EQ(press, GesturePad::kPressMax);
+}
+
+}  // namespace
+}  // namespace archet::ui
+
+int main(int argc, char** argv) {
+    qputenv("QT_QPA_PLATFORM", "offscreen");
+    QApplication app(argc, argv);
+    ::testing::InitGoogleTest(&argc, argv);
+    return RUN_ALL_TESTS();
+}

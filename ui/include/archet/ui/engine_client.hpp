@@ -1,0 +1,90 @@
+#pragma once
+// The studio's side of the real-time engine, on the GUI thread: starts `archet engine` on a
+// fresh shared segment, sends it the model, transport, parameters and the pad's gesture, and
+// at display rate keeps its heartbeat, drains what it streams (status, probe frames, string
+// shapes) and watches it. An engine that exits or stops answering is restarted with the same
+// model, playing again if it was: the user loses nothing.
+
+#include <QObject>
+#include <QString>
+#include <QTemporaryDir>
+#include <QTimer>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "archet/ipc/engine_link.hpp"
+#include "archet/model.hpp"
+#include "archet/ui/probe_history.hpp"
+
+namespace archet::ui {
+
+struct EngineClientOptions {
+    QString archet_binary;  ///< the `archet` executable (beside the studio's)
+    QString audio = "auto";
+    int buffer_frames = 128;
+    /// sim: the pad moves a simulated hand (mass and damping) that holds the bow, so the
+    /// mouse's coarse steps reach the string smoothly; or a joystick (evdev:PATH, sdl:N).
+    QString haptic = "sim";
+    int poll_ms = 15;  ///< display rate
+};
+
+struct EngineStatus {
+    QString state = "stopped";  ///< starting, running, unresponsive, restarting
+    QString device;             ///< what the engine said about its audio and scheduling
+    QString model;              ///< the model it plays
+    std::uint64_t xruns = 0, dropped = 0, realtime_allocations = 0;
+    double load = 0;    ///< worst fraction of the block period used lately
+    double energy = 0;  ///< J stored in the string
+    int restarts = 0;
+};
+
+class EngineClient : public QObject {
+    Q_OBJECT
+
+  public:
+    explicit EngineClient(EngineClientOptions options, QObject* parent = nullptr);
+    ~EngineClient() override;
+
+    void start();
+    /// Plays `model` (written to the session folder, then loaded by the engine).
+    void load(const Model& model);
+    void play();
+    void stop();
+    bool playing() const { return playing_; }
+    void set_parameter(const QString& element_dot_parameter, double value);
+    void gesture(double slide, double press);
+    void start_take(const QString& folder);
+    void stop_take();
+
+    const ProbeHistory& history() const { return history_; }
+    const std::vector<float>& shape() const { return shape_; }
+    const EngineStatus& status() const { return status_; }
+    pid_t engine_pid() const { return link_ ? link_->engine_pid() : -1; }
+
+  signals:
+    void status_changed();
+    void message(const QString& text);  ///< errors and take news, for the status bar
+    void engine_lost(const QString& why);
+    void model_loaded(const QString& name);
+
+  private:
+    void poll();
+    void launch();
+    void restart(const QString& why);
+    void read_status();
+
+    EngineClientOptions options_;
+    std::unique_ptr<ipc::EngineLink> link_;
+    QTimer timer_;
+    QTemporaryDir session_;
+    std::optional<Model> model_;
+    bool playing_ = false;
+    double slide_ = 0, press_ = 0;
+    ProbeHistory history_;
+    std::vector<float> shape_;
+    EngineStatus status_;
+    std::chrono::steady_clock::time_point unresponsive_since_{};
+};
+
+}  // namespace archet::ui

@@ -1,0 +1,47 @@
+#pragma once
+// The mouse as the bow: dragging across the pad moves the sliding axis, dragging down (or the
+// wheel) presses the bow into the string. The force the model feeds back is drawn as arrows
+// at the bow: the visual stand-in for a force-feedback device.
+
+#include <QWidget>
+
+namespace archet::ui {
+
+class GesturePad : public QWidget {
+    Q_OBJECT
+
+  public:
+    explicit GesturePad(QWidget* parent = nullptr);
+
+    /// Where the pad holds the bow (m), as if dragged there.
+    void set_position(double slide, double press);
+    double slide() const { return slide_; }
+    double press() const { return press_; }
+    /// The force the model returns on each axis (N), drawn at the bow.
+    void set_feedback(double slide_force, double press_force);
+
+    static constexpr double kSlideRange = 0.15;                     ///< m either side of centre
+    static constexpr double kPressMin = -0.003, kPressMax = 0.006;  ///< m; below 0 lifted
+
+    QSize sizeHint() const override { return {420, 260}; }
+
+  signals:
+    void moved(double slide, double press);
+
+  protected:
+    void paintEvent(QPaintEvent*) override;
+    void mousePressEvent(QMouseEvent*) override;
+    void mouseMoveEvent(QMouseEvent*) override;
+    void wheelEvent(QWheelEvent*) override;
+
+  private:
+    QRectF area() const;
+    double x_of(double slide) const;
+    double y_of(double press) const;
+    void move_to(QPointF point);
+
+    double slide_ = 0, press_ = 0;
+    double slide_force_ = 0, press_force_ = 0;
+};
+
+}  // namespace archet::ui

@@ -1,0 +1,60 @@
+#pragma once
+// The scopes on the string while it plays (QCustomPlot): at the bowing point, its
+// displacement, the bow force and its velocity against the bow's (the paper's Fig. 4); the
+// bow force against the displacement (Fig. 5, XY); the whole string's shape; and the sound's
+// spectrum. Run or freeze, trigger on the slip, a time base, and a cursor with readouts.
+// Refreshed at display rate from the probe history; it never touches the audio path.
+
+#include <QWidget>
+#include <vector>
+
+#include "archet/ui/probe_history.hpp"
+
+class QCustomPlot;
+class QCPCurve;
+class QCPItemTracer;
+class QCheckBox;
+class QComboBox;
+class QLabel;
+
+namespace archet::ui {
+
+class ScopePanel : public QWidget {
+    Q_OBJECT
+
+  public:
+    explicit ScopePanel(QWidget* parent = nullptr);
+
+    /// `string` picks the string's points out of the shape frame (the engine sends every MAT
+    /// of the audio level; the bow's masses are not the string).
+    void refresh(const ProbeHistory& history, const std::vector<float>& shape,
+                 const std::vector<int>& string, double sample_rate);
+    void set_frozen(bool frozen);
+    bool frozen() const;
+    void set_trigger_on_slip(bool on);
+    void set_time_base_ms(double ms);
+
+    /// Samples drawn in the last refresh (0 while nothing arrives).
+    int drawn_samples() const { return drawn_; }
+
+  private:
+    void show_cursor(double time_ms);
+    std::size_t trigger_back(const ProbeHistory& history, std::size_t span) const;
+
+    QCustomPlot* displacement_;
+    QCustomPlot* force_;
+    QCustomPlot* velocity_;
+    QCustomPlot* xy_;
+    QCPCurve* xy_curve_;
+    QCustomPlot* shape_;
+    QCustomPlot* spectrum_;
+    QCPItemTracer* tracer_;
+    QCheckBox* freeze_;
+    QCheckBox* trigger_;
+    QComboBox* time_base_;
+    QLabel* readout_;
+    std::vector<double> times_ms_, x_mm_, force_n_, v_string_, v_bow_;
+    int drawn_ = 0;
+};
+
+}  // namespace archet::ui
