@@ -9,11 +9,16 @@
 #include <QApplication>
 #include <QDir>
 #include <QMouseEvent>
+#include <QStandardPaths>
 #include <QTest>
 #include <QWheelEvent>
 
+#include "archet/model_file.hpp"
 #include "archet/ui/gesture_pad.hpp"
+#include "archet/ui/graph_view.hpp"
+#include "archet/ui/inspector.hpp"
 #include "archet/ui/main_window.hpp"
+#include "archet/ui/model_document.hpp"
 #include "archet/ui/scope_panel.hpp"
 #include "test_support.hpp"
 
@@ -97,13 +102,41 @@ TEST(Studio, AKilledEngineIsRestartedWithTheSameModel) {
     save_screenshot(window, "studio-after-restart.png");
 }
 
+TEST(Studio, EditsReachTheRunningEngine) {
+    MainWindow window(engine_options());
+    ASSERT_TRUE(window.open_file(test::resource("models/bowed-string-220.json").c_str()));
+    ASSERT_TRUE(
+        wait_until([&] { return window.engine().status().model == "bowed-string-220"; }, 5000));
+    QStringList messages;
+    int loads = 0;
+    QObject::connect(&window.engine(), &EngineClient::message,
+                     [&](const QString& text) { messages << text; });
+    QObject::connect(&window.engine(), &EngineClient::model_loaded, [&] { ++loads; });
+    // A parameter glides into the running model: no reload, no complaint.
+    window.graph().select({"friction"});
+    ASSERT_EQ(window.inspector().element(), "friction");
+    ASSERT_TRUE(window.inspector().edit("mu_s", 0.7));
+    bow(window, 0.3);
+    EXPECT_EQ(loads, 0);
+    EXPECT_TRUE(messages.isEmpty()) << messages.join("; ").toStdString();
+    // A new element reloads it.
+    window.document().add_mat(MatKind::Oscillator, {0, 200});
+    ASSERT_TRUE(wait_until([&] { return loads == 1; }, 3000)) << messages.join("; ").toStdString();
+    // And undo brings the shipped model back to the engine.
+    window.document().undo_stack().undo();
+    ASSERT_TRUE(wait_until([&] { return loads == 2; }, 3000));
+    window.document().undo_stack().undo();
+    EXPECT_EQ(format_model(window.document().model()),
+              format_model(load_model_file(test::resource("models/bowed-string-220.json"))));
+}
+
 TEST(Studio, ThePadMapsTheMouseToTheBow) {
     GesturePad pad;
     pad.resize(400, 260);
     double slide = 1, press = 1;
     QObject::connect(&pad, &GesturePad::moved, [&](double s, double p) { slide = s, press = p; });
-    // The pad's area is inset 12 px at the sides and bottom and 28 px at the top.
-    const QPoint centre(200, 28 + (260 - 28 - 12) / 2);
+    // The pad's area is inset 12 px at the sides and bottom and 36 px at the top.
+    const QPoint centre(200, 36 + (260 - 36 - 12) / 2);
     QTest::mousePress(&pad, Qt::LeftButton, {}, centre);
     EXPECT_NEAR(slide, 0.0, 1e-9);
     const double middle = (GesturePad::kPressMin + GesturePad::kPressMax) / 2;
@@ -124,10 +157,3 @@ TEST(Studio, ThePadMapsTheMouseToTheBow) {
 
 }  // namespace
 }  // namespace archet::ui
-
-int main(int argc, char** argv) {
-    qputenv("QT_QPA_PLATFORM", "offscreen");
-    QApplication app(argc, argv);
-    ::testing::InitGoogleTest(&argc, argv);
-    return RUN_ALL_TESTS();
-}

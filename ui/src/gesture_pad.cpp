@@ -35,7 +35,7 @@ GesturePad::GesturePad(QWidget* parent) : QWidget(parent) {
 }
 
 QRectF GesturePad::area() const {
-    return QRectF(rect()).adjusted(12, 28, -12, -12);
+    return QRectF(rect()).adjusted(12, 36, -12, -12);
 }
 
 double GesturePad::x_of(double slide) const {
@@ -104,8 +104,8 @@ void GesturePad::paintEvent(QPaintEvent*) {
     arrow(p, tip, tip + QPointF(0, press_force_ * kNewtonsToPixels));
     p.setClipping(false);
     p.setPen(palette().text().color());
-    p.drawText(QRectF(rect()).adjusted(12, 4, -12, 0), Qt::AlignLeft | Qt::AlignTop,
-               tr("bow %1 mm, pressed %2 mm · string pushes back %3 N, %4 N")
+    p.drawText(QRectF(rect()).adjusted(12, 2, -12, 0), Qt::AlignLeft | Qt::AlignTop,
+               tr("bow at %1 mm, pressed %2 mm\nthe string pushes back %3 N, %4 N")
                    .arg(slide_ * 1000, 0, 'f', 1)
                    .arg(press_ * 1000, 0, 'f', 2)
                    .arg(slide_force_, 0, 'f', 2)

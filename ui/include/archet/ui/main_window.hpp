@@ -1,6 +1,8 @@
 #pragma once
-// The studio's main window: the model being played, its scopes, the gesture pad, transport
-// and takes, with the engine's state in the status bar.
+// The studio's main window: the graph editor over the scopes, the gesture pad, the inspector
+// and the modes beside them, menus for files, editing and playing, and the engine's state in
+// the status bar. Every edit goes through the ModelDocument (undoable) and reaches the
+// running engine: a parameter glides in, a new element reloads the model.
 
 #include <QMainWindow>
 #include <QString>
@@ -11,10 +13,15 @@
 
 class QAction;
 class QLabel;
+class QMenu;
 
 namespace archet::ui {
 
 class GesturePad;
+class GraphView;
+class Inspector;
+class ModelDocument;
+class ModesPanel;
 class ScopePanel;
 
 class MainWindow : public QMainWindow {
@@ -23,41 +30,64 @@ class MainWindow : public QMainWindow {
   public:
     MainWindow(EngineClientOptions engine, QWidget* parent = nullptr);
 
-    /// Plays `model` (its file, if any, for Save); errors go to a message box.
+    /// Edits and plays `model` (its file, if any, for Save).
     void open_model(const Model& model, const QString& path = {});
+    /// Errors go to a message box; returns whether the file was opened.
     bool open_file(const QString& path);
+    bool save_to(const QString& path);
 
     EngineClient& engine() { return *engine_; }
+    ModelDocument& document() { return *document_; }
+    GraphView& graph() { return *graph_; }
+    Inspector& inspector() { return *inspector_; }
+    ModesPanel& modes() { return *modes_; }
     GesturePad& pad() { return *pad_; }
     ScopePanel& scopes() { return *scopes_; }
-    const Model& model() const { return model_; }
-    /// Where takes go: a new folder per take under it.
+    /// Where takes go (a new dated folder per take) and where autosaves go.
     void set_takes_folder(const QString& folder) { takes_folder_ = folder; }
+    void set_autosave_folder(const QString& folder) { autosave_folder_ = folder; }
+    /// Writes the autosave now (the timer does it every 30 s when there are changes).
+    QString autosave();
+
+  protected:
+    void closeEvent(QCloseEvent*) override;
 
   private:
-    void build_actions();
+    void build_menus();
+    QToolBar* build_palette();
     void new_string();
     void open_dialog();
+    void save();
     void save_as();
     void toggle_play();
     void toggle_take();
+    void copy();
+    void paste();
+    void model_changed(int change, const QString& element, const QString& parameter);
     void refresh();
     void show_status();
+    void remember_recent(const QString& path);
+    void fill_recent_menu();
+    void update_title();
 
     EngineClient* engine_;
+    ModelDocument* document_;
+    GraphView* graph_;
+    Inspector* inspector_;
+    ModesPanel* modes_;
     ScopePanel* scopes_;
     GesturePad* pad_;
-    QLabel* summary_;
     QLabel* engine_state_;
     QLabel* device_;
     QLabel* meters_;
     QAction* play_;
     QAction* record_;
+    QMenu* recent_;
     QTimer display_;
-    Model model_;
+    QTimer autosave_timer_;
     std::vector<int> string_points_;  ///< which shape-frame entries are the string
-    QString path_;
     QString takes_folder_;
+    QString autosave_folder_;
     QString take_;  ///< the folder being recorded into
 };
 

@@ -1,0 +1,15 @@
+// main() of the studio's test suites: a QApplication on Qt's offscreen platform, with
+// QStandardPaths in test mode so that settings, takes and autosaves stay out of $HOME.
+
+#include <gtest/gtest.h>
+
+#include <QApplication>
+#include <QStandardPaths>
+
+int main(int argc, char** argv) {
+    qputenv("QT_QPA_PLATFORM", "offscreen");
+    QStandardPaths::setTestModeEnabled(true);
+    QApplication app(argc, argv);
+    ::testing::InitGoogleTest(&argc, argv);
+    return RUN_ALL_TESTS();
+}

@@ -1,0 +1,176 @@
+// The studio's model editor under Qt's offscreen platform: placing, connecting, moving,
+// deleting, copying and pasting elements on the canvas, each undone and redone exactly; a
+// model edited in the editor saves and reloads identically; the inspector refuses a value
+// that would make the scheme unstable and says why; the modes panel finds the string's.
+
+#include <gtest/gtest.h>
+
+#include <QApplication>
+#include <QDir>
+#include <QGraphicsView>
+#include <QStandardPaths>
+#include <QTest>
+
+#include "archet/model_file.hpp"
+#include "archet/ui/graph_view.hpp"
+#include "archet/ui/inspector.hpp"
+#include "archet/ui/model_document.hpp"
+#include "archet/ui/modes_panel.hpp"
+#include "test_support.hpp"
+
+namespace archet::ui {
+namespace {
+
+std::string text_of(const Model& m) {
+    return format_model(m);
+}
+
+// A small editable model: two masses on a spring between fixed ends.
+Model little_model() {
+    Model m;
+    m.name = "little";
+    m.mats = {test::fixed("left"), test::mass("a", 0.01), test::mass("b", 0.01),
+              test::fixed("right")};
+    for (std::size_t i = 0; i < m.mats.size(); ++i)
+        m.mats[i].display = std::make_pair(100.0 * static_cast<double>(i), 0.0);
+    m.lias = {test::spring_damper("k1", "left", "a", 100, 0.01),
+              test::spring_damper("k2", "a", "b", 100, 0.01),
+              test::spring_damper("k3", "b", "right", 100, 0.01)};
+    m.outputs = {{"a", Output::Signal::Position, 1.0}};
+    return m;
+}
+
+class Editor : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        document.reset(little_model());
+        view.resize(800, 400);
+        view.show();
+        view.fit();
+    }
+    QPoint screen_of(const QString& id) { return view.mapFromScene(view.node_position(id)); }
+    QPoint screen_at(QPointF scene) { return view.mapFromScene(scene); }
+
+    ModelDocument document;
+    GraphView view{document};
+};
+
+TEST_F(Editor, PlacingConnectingMovingAndDeletingAreEachUndoable) {
+    const std::string original = text_of(document.model());
+    std::vector<std::string> after_each;
+
+    view.set_tool(GraphView::Tool::AddMat, MatKind::Mass);
+    QTest::mouseClick(view.viewport(), Qt::LeftButton, {}, screen_at({150, 120}));
+    ASSERT_EQ(document.model().mats.size(), 5u) << "a mass placed where clicked";
+    const Mat& added = document.model().mats.back();
+    EXPECT_NEAR(added.display->first, 150, 2);
+    EXPECT_NEAR(added.display->second, 120, 2);
+    const QString m1 = QString::fromStdString(added.id);
+    after_each.push_back(text_of(document.model()));
+
+    view.set_tool(GraphView::Tool::Connect, MatKind::Mass, LiaKind::Spring);
+    QTest::mousePress(view.viewport(), Qt::LeftButton, {}, screen_of("b"));
+    QTest::mouseMove(view.viewport(), screen_of(m1));
+    QTest::mouseRelease(view.viewport(), Qt::LeftButton, {}, screen_of(m1));
+    ASSERT_EQ(document.model().lias.size(), 4u) << "dragging from b to the new mass joins them";
+    EXPECT_EQ(document.model().lias.back().from, "b");
+    EXPECT_EQ(QString::fromStdString(document.model().lias.back().to), m1);
+    after_each.push_back(text_of(document.model()));
+
+    view.set_tool(GraphView::Tool::Select);
+    document.move({m1}, {30, -10}, false);
+    EXPECT_NEAR(document.model().find_mat(m1.toStdString())->display->first, 180, 2);
+    after_each.push_back(text_of(document.model()));
+
+    view.select({m1});
+    QTest::keyClick(view.viewport(), Qt::Key_Delete);
+    EXPECT_EQ(document.model().mats.size(), 4u);
+    EXPECT_EQ(document.model().lias.size(), 3u) << "its link goes with it";
+    after_each.push_back(text_of(document.model()));
+
+    // Back to the start one step at a time, then forward again.
+    for (int i = static_cast<int>(after_each.size()) - 2; i >= -1; --i) {
+        document.undo_stack().undo();
+        EXPECT_EQ(text_of(document.model()), i >= 0 ? after_each[i] : original) << "undo " << i;
+    }
+    for (const std::string& expected : after_each) {
+        document.undo_stack().redo();
+        EXPECT_EQ(text_of(document.model()), expected);
+    }
+}
+
+TEST_F(Editor, DraggingANodeMovesItInOneStep) {
+    const QPoint from = screen_of("a");
+    const QPoint to = from + QPoint(40, 30);
+    QTest::mousePress(view.viewport(), Qt::LeftButton, {}, from);
+    for (int i = 1; i <= 4; ++i) QTest::mouseMove(view.viewport(), from + (to - from) * i / 4);
+    QTest::mouseRelease(view.viewport(), Qt::LeftButton, {}, to);
+    const QPointF moved = view.mapToScene(to) - view.mapToScene(from);
+    EXPECT_NEAR(document.model().find_mat("a")->display->first, 100 + moved.x(), 1.0);
+    EXPECT_NEAR(document.model().find_mat("a")->display->second, moved.y(), 1.0);
+    EXPECT_EQ(document.undo_stack().count(), 1);
+    document.undo_stack().undo();
+    EXPECT_NEAR(document.model().find_mat("a")->display->first, 100, 1e-9);
+}
+
+TEST_F(Editor, ADragsMovesMergeIntoOneStep) {
+    document.move({"a"}, {5, 0}, true);
+    document.move({"a"}, {5, 0}, true);
+    document.move({"a"}, {5, 0}, true);
+    EXPECT_EQ(document.undo_stack().count(), 1);
+    EXPECT_NEAR(document.model().find_mat("a")->display->first, 115, 1e-9);
+    document.undo_stack().undo();
+    EXPECT_NEAR(document.model().find_mat("a")->display->first, 100, 1e-9);
+}
+
+TEST_F(Editor, CopyAndPasteDuplicateMassesAndTheLinksAmongThem) {
+    const QString copied = document.copy({"a", "b", "k2"});
+    const QStringList added = document.paste(copied, {0, 80});
+    EXPECT_EQ(added.size(), 3) << added.join(",").toStdString();
+    EXPECT_EQ(document.model().mats.size(), 6u);
+    EXPECT_EQ(document.model().lias.size(), 4u);
+    const Lia& pasted = document.model().lias.back();
+    EXPECT_EQ(pasted.from, "a_2");
+    EXPECT_EQ(pasted.to, "b_2");
+    EXPECT_NEAR(document.model().find_mat("a_2")->display->second, 80, 1e-9);
+    EXPECT_TRUE(document.paste("not a model", {}).isEmpty()) << "foreign clipboard text is ignored";
+    document.undo_stack().undo();
+    EXPECT_EQ(text_of(document.model()), text_of(little_model()));
+}
+
+TEST_F(Editor, AnEditedModelSavesAndReloadsIdentically) {
+    document.add_mat(MatKind::Oscillator, {50, 60});
+    document.set_parameter("k2", "stiffness", 250);
+    const auto dir = test::temp_dir("editor-save");
+    write_file_atomically(dir / "edited.json", format_model(document.model()));
+    const Model reloaded = load_model_file(dir / "edited.json");
+    EXPECT_EQ(text_of(reloaded), text_of(document.model()));
+    EXPECT_EQ(reloaded.find_lia("k2")->stiffness, 250);
+}
+
+TEST_F(Editor, TheInspectorRefusesAnUnstableValueAndSaysWhy) {
+    Inspector inspector(document);
+    inspector.show_element("k2");
+    EXPECT_TRUE(inspector.edit("stiffness", 300));
+    EXPECT_EQ(document.model().find_lia("k2")->stiffness, 300);
+    const std::string before = text_of(document.model());
+    // At 48 kHz two 10 g masses go unstable near K = 0.01·(2·48000)²/4 ≈ 2.3e7 N/m.
+    EXPECT_FALSE(inspector.edit("stiffness", 1e9));
+    EXPECT_NE(inspector.warning().indexOf("stab"), -1) << inspector.warning().toStdString();
+    EXPECT_EQ(text_of(document.model()), before) << "nothing changed";
+    EXPECT_FALSE(inspector.edit("stiffness", -5));
+    EXPECT_EQ(text_of(document.model()), before);
+    document.undo_stack().undo();
+    EXPECT_EQ(document.model().find_lia("k2")->stiffness, 100) << "the applied edit undoes";
+}
+
+TEST(ModesPanelTest, FindsTheStringsFundamental) {
+    ModelDocument document;
+    ModesPanel panel(document);
+    document.reset(load_model_file(test::resource("models/bowed-string-220-harmonic.json")));
+    EXPECT_NEAR(panel.fundamental(), 220.0, 1e-6);
+    EXPECT_GT(panel.mode_count(), 20);
+}
+
+}  // namespace
+}  // namespace archet::ui

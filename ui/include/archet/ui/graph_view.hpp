@@ -1,0 +1,63 @@
+#pragma once
+// The mass-interaction graph on a canvas (QGraphicsView): MATs as nodes, LIAs as edges, the
+// bow module as a diamond joining its four MATs; each shows its rate level. A tool chooses
+// what a click does: select (rubber band, drag to move), place a MAT, or drag from one MAT
+// to another to connect them. Zoom with the wheel, pan with the middle button. Every edit
+// goes through the ModelDocument, so it can be undone.
+
+#include <QGraphicsView>
+#include <QStringList>
+#include <optional>
+
+#include "archet/model.hpp"
+
+namespace archet::ui {
+
+class ModelDocument;
+
+class GraphView : public QGraphicsView {
+    Q_OBJECT
+
+  public:
+    enum class Tool { Select, AddMat, Connect };
+
+    explicit GraphView(ModelDocument& document, QWidget* parent = nullptr);
+    ~GraphView() override;
+
+    void set_tool(Tool tool, MatKind mat = MatKind::Mass, LiaKind link = LiaKind::Spring);
+    Tool tool() const { return tool_; }
+    QStringList selected_ids() const;
+    void select(const QStringList& ids);
+    /// Fits the whole graph in view.
+    void fit();
+
+    /// For tests and scripting: the canvas position of a MAT's node.
+    QPointF node_position(const QString& id) const;
+
+  signals:
+    void selection_changed(const QStringList& ids);
+
+  protected:
+    void mousePressEvent(QMouseEvent*) override;
+    void mouseMoveEvent(QMouseEvent*) override;
+    void mouseReleaseEvent(QMouseEvent*) override;
+    void wheelEvent(QWheelEvent*) override;
+    void keyPressEvent(QKeyEvent*) override;
+
+  private:
+    void rebuild();
+    QString mat_at(QPointF scene_point) const;
+
+    ModelDocument& document_;
+    QGraphicsScene scene_;
+    Tool tool_ = Tool::Select;
+    MatKind mat_kind_ = MatKind::Mass;
+    LiaKind link_kind_ = LiaKind::Spring;
+    QString connect_from_;
+    QGraphicsLineItem* rubber_line_ = nullptr;
+    std::optional<QPointF> drag_start_;
+    bool panning_ = false;
+    QPoint pan_last_;
+};
+
+}  // namespace archet::ui

@@ -1,0 +1,43 @@
+#pragma once
+// The selected element's parameters, with their units and ranges, and the stability margin
+// of its rate level. A value is checked before it is applied: one out of range, or one that
+// would make the scheme unstable, is refused with the reason and the model is left as it was.
+
+#include <QString>
+#include <QWidget>
+
+class QFormLayout;
+class QLabel;
+
+namespace archet::ui {
+
+class ModelDocument;
+
+class Inspector : public QWidget {
+    Q_OBJECT
+
+  public:
+    explicit Inspector(ModelDocument& document, QWidget* parent = nullptr);
+
+    void show_element(const QString& id);
+    const QString& element() const { return element_; }
+    /// What the last refused edit said (empty when the last edit was applied).
+    const QString& warning() const { return warning_; }
+    /// Applies a typed value as the field would; returns whether it was applied.
+    bool edit(const QString& parameter, double value);
+
+  private:
+    void rebuild();
+    void show_stability();
+
+    ModelDocument& document_;
+    QString element_;
+    QString warning_;
+    QLabel* title_;
+    QLabel* stability_;
+    QLabel* warning_label_;
+    QWidget* fields_;
+    QFormLayout* form_;
+};
+
+}  // namespace archet::ui

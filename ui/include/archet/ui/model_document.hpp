@@ -1,0 +1,76 @@
+#pragma once
+// The model being edited in the studio, with its undo history. Every edit (add, connect,
+// delete, move, paste, a parameter, a rate) is one undoable step that stores the model
+// before and after it: simple, and exact whatever the edit touched. Listeners learn what
+// kind of change it was, so that a parameter glides into the running engine while a new
+// element reloads it.
+
+#include <QObject>
+#include <QPointF>
+#include <QString>
+#include <QStringList>
+#include <QUndoStack>
+
+#include "archet/model.hpp"
+
+namespace archet::ui {
+
+class ModelDocument : public QObject {
+    Q_OBJECT
+
+  public:
+    enum class Change { Structure, Parameter, Layout };
+
+    explicit ModelDocument(QObject* parent = nullptr);
+
+    const Model& model() const { return model_; }
+    QUndoStack& undo_stack() { return undo_; }
+    /// Starts editing `model` afresh (no undo history); `path` is its file, if any.
+    void reset(const Model& model, const QString& path = {});
+    const QString& path() const { return path_; }
+    void set_path(const QString& path);
+    bool modified() const { return !undo_.isClean(); }
+    void mark_saved() { undo_.setClean(); }
+
+    // ---- edits: each one step of the undo history ----
+    /// A new MAT of `kind` at `at`, on `rate`; returns its id (kind name and a number).
+    QString add_mat(MatKind kind, QPointF at, const QString& rate = "audio");
+    /// A link of `kind` from one MAT to another, at the faster of their rates; returns its id.
+    QString add_link(LiaKind kind, const QString& from, const QString& to);
+    /// Deletes elements, with the links, probes, outputs and controls that need them.
+    void remove(const QStringList& ids);
+    /// Moves MATs on the canvas; a drag's successive moves merge into one step.
+    void move(const QStringList& ids, QPointF delta, bool continuing_drag);
+    /// Throws InputError (with the reason) for an unknown name or a value out of range.
+    void set_parameter(const QString& id, const QString& name, double value);
+    void set_rate(const QString& id, const QString& rate);
+
+    /// The selected MATs and the links among them, as model JSON (for the clipboard).
+    QString copy(const QStringList& ids) const;
+    /// Adds what copy() produced, renamed where ids are taken and moved by `offset`;
+    /// returns the new ids.
+    QStringList paste(const QString& text, QPointF offset);
+
+    /// The position of a MAT on the canvas (assigned when the model had none).
+    QPointF position_of(const Mat& mat) const;
+
+  signals:
+    /// After every change, undo and redo included. For a parameter, `element` and `name`
+    /// say which (its new value is in model()).
+    void changed(archet::ui::ModelDocument::Change change, const QString& element,
+                 const QString& name);
+    void path_changed(const QString& path);
+
+  private:
+    friend class ModelEdit;
+    void apply(const Model& model, Change change, const QString& element, const QString& name);
+    void push(const QString& text, Model after, Change change, const QString& element = {},
+              const QString& name = {}, int merge = -1);
+    QString fresh_id(const QString& stem) const;
+
+    Model model_;
+    QString path_;
+    QUndoStack undo_;
+};
+
+}  // namespace archet::ui

@@ -1,0 +1,133 @@
+#include "archet/ui/inspector.hpp"
+
+#include <QComboBox>
+#include <QDoubleValidator>
+#include <QFormLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QVBoxLayout>
+
+#include "archet/model_parameters.hpp"
+#include "archet/model_validation.hpp"
+#include "archet/stability.hpp"
+#include "archet/ui/model_document.hpp"
+
+namespace archet::ui {
+
+Inspector::Inspector(ModelDocument& document, QWidget* parent)
+    : QWidget(parent), document_(document) {
+    title_ = new QLabel;
+    title_->setWordWrap(true);
+    stability_ = new QLabel;
+    stability_->setWordWrap(true);
+    warning_label_ = new QLabel;
+    warning_label_->setWordWrap(true);
+    warning_label_->setStyleSheet("color: #b03020");
+    fields_ = new QWidget;
+    form_ = new QFormLayout(fields_);
+    auto* layout = new QVBoxLayout(this);
+    layout->addWidget(title_);
+    layout->addWidget(fields_);
+    layout->addWidget(warning_label_);
+    layout->addWidget(stability_);
+    layout->addStretch(1);
+    connect(&document_, &ModelDocument::changed, this, [this] { rebuild(); });
+    rebuild();
+}
+
+void Inspector::show_element(const QString& id) {
+    element_ = id;
+    warning_.clear();
+    warning_label_->clear();
+    rebuild();
+}
+
+bool Inspector::edit(const QString& parameter, double value) {
+    const Model& current = document_.model();
+    Model candidate = current;
+    try {
+        archet::set_parameter(candidate, element_.toStdString(), parameter.toStdString(), value);
+        validate_model(candidate);  // names, ranges, and the stability bound
+    } catch (const std::exception& e) {
+        warning_ = tr("Not applied: %1").arg(QString::fromUtf8(e.what()));
+        warning_label_->setText(warning_);
+        rebuild();  // the field shows the value still in force
+        return false;
+    }
+    warning_.clear();
+    warning_label_->clear();
+    document_.set_parameter(element_, parameter, value);
+    return true;
+}
+
+void Inspector::rebuild() {
+    while (form_->rowCount() > 0) form_->removeRow(0);
+    const Model& model = document_.model();
+    const std::string id = element_.toStdString();
+    const Mat* mat = model.find_mat(id);
+    const Lia* lia = model.find_lia(id);
+    if (!mat && !lia) {
+        element_.clear();
+        title_->setText(tr("<b>%1</b><br>%2 masses and points, %3 links. Select an element to "
+                           "edit it.")
+                            .arg(QString::fromStdString(model.name))
+                            .arg(model.mats.size())
+                            .arg(model.lias.size()));
+        show_stability();
+        return;
+    }
+    const QString kind = mat ? to_string(mat->kind) : to_string(lia->kind);
+    const std::string& rate = mat ? mat->rate : lia->rate;
+    title_->setText(tr("<b>%1</b> — %2").arg(element_, kind));
+    auto* rates = new QComboBox;
+    for (const auto& r : model.rates)
+        rates->addItem(tr("%1 (÷%2)").arg(QString::fromStdString(r.id)).arg(r.divider),
+                       QString::fromStdString(r.id));
+    rates->setCurrentIndex(rates->findData(QString::fromStdString(rate)));
+    connect(rates, &QComboBox::activated, this, [this, rates] {
+        try {
+            document_.set_rate(element_, rates->currentData().toString());
+        } catch (const std::exception& e) {
+            warning_label_->setText(QString::fromUtf8(e.what()));
+        }
+    });
+    form_->addRow(tr("Rate level"), rates);
+    for (const ParameterInfo& p : element_parameters(model, id)) {
+        const QString name = QString::fromStdString(p.name);
+        auto* field = new QLineEdit(QString::number(get_parameter(model, id, p.name), 'g', 10));
+        field->setObjectName(name);
+        auto* validator = new QDoubleValidator(field);
+        validator->setLocale(QLocale::c());
+        field->setValidator(validator);
+        field->setToolTip(tr("%1 in %2; at least %3%4")
+                              .arg(name, QString::fromStdString(p.unit))
+                              .arg(p.minimum)
+                              .arg(p.strictly_positive ? tr(", above zero") : QString()));
+        connect(field, &QLineEdit::editingFinished, this, [this, field, name] {
+            bool ok = false;
+            const double value = QLocale::c().toDouble(field->text(), &ok);
+            const double now =
+                get_parameter(document_.model(), element_.toStdString(), name.toStdString());
+            if (ok && value != now) edit(name, value);
+        });
+        form_->addRow(tr("%1 (%2)").arg(name, QString::fromStdString(p.unit)), field);
+    }
+    show_stability();
+}
+
+void Inspector::show_stability() {
+    try {
+        QStringList lines;
+        for (const StabilityReport& r : analyse_stability(document_.model()))
+            if (!r.stiffest_dof.empty())  // a level with no moving mass cannot go unstable
+                lines << tr("rate %1: %2 % of the stability bound left (stiffest: %3)")
+                             .arg(QString::fromStdString(r.rate))
+                             .arg(100 * r.margin(), 0, 'f', 1)
+                             .arg(QString::fromStdString(r.stiffest_dof));
+        stability_->setText(lines.join("<br>"));
+    } catch (const std::exception& e) {
+        stability_->setText(QString::fromUtf8(e.what()));
+    }
+}
+
+}  // namespace archet::ui

@@ -1,0 +1,89 @@
+#include "archet/ui/modes_panel.hpp"
+
+#include <qcustomplot.h>
+
+#include <QHeaderView>
+#include <QLabel>
+#include <QTableWidget>
+#include <QVBoxLayout>
+#include <cmath>
+
+#include "archet/modal_analysis.hpp"
+#include "archet/ui/model_document.hpp"
+
+namespace archet::ui {
+
+namespace {
+constexpr int kRowsShown = 40;  // the first partials are what the ear judges
+}
+
+ModesPanel::ModesPanel(ModelDocument& document, QWidget* parent)
+    : QWidget(parent), document_(document) {
+    summary_ = new QLabel;
+    summary_->setWordWrap(true);
+    table_ = new QTableWidget(0, 5);
+    table_->setHorizontalHeaderLabels(
+        {tr("mode"), tr("Hz"), tr("partial"), tr("cents"), tr("T60 s")});
+    table_->verticalHeader()->setVisible(false);
+    table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+    table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+    cents_ = new QCustomPlot;
+    cents_->setMinimumHeight(120);
+    cents_->xAxis->setLabel(tr("partial"));
+    cents_->yAxis->setLabel(tr("cents from k·f1"));
+    auto* bars = new QCPBars(cents_->xAxis, cents_->yAxis);
+    bars->setBrush(QColor(60, 110, 200, 160));
+    auto* layout = new QVBoxLayout(this);
+    layout->addWidget(summary_);
+    layout->addWidget(cents_, 1);
+    layout->addWidget(table_, 2);
+    connect(&document_, &ModelDocument::changed, this, [this](ModelDocument::Change change) {
+        if (change != ModelDocument::Change::Layout) refresh();
+    });
+    refresh();
+}
+
+int ModesPanel::mode_count() const {
+    return table_->rowCount();
+}
+
+void ModesPanel::refresh() {
+    table_->setRowCount(0);
+    auto* bars = static_cast<QCPBars*>(cents_->plottable(0));
+    bars->data()->clear();
+    fundamental_ = 0;
+    ModalAnalysis modes;
+    try {
+        modes = analyse_modes(document_.model());
+    } catch (const std::exception& e) {
+        summary_->setText(tr("No modes: %1").arg(QString::fromUtf8(e.what())));
+        cents_->replot();
+        return;
+    }
+    fundamental_ = modes.fundamental;
+    summary_->setText(tr("%1 modes at rate %2; f1 = %3 Hz")
+                          .arg(modes.modes.size())
+                          .arg(QString::fromStdString(modes.rate))
+                          .arg(modes.fundamental, 0, 'f', 3));
+    QVector<double> partials, cents;
+    int row = 0;
+    for (std::size_t i = 0; i < modes.modes.size() && row < kRowsShown; ++i, ++row) {
+        const ModeInfo& m = modes.modes[i];
+        table_->insertRow(row);
+        auto cell = [&](int column, const QString& text) {
+            table_->setItem(row, column, new QTableWidgetItem(text));
+        };
+        cell(0, QString::number(i + 1));
+        cell(1, QString::number(m.frequency, 'f', 3));
+        cell(2, m.support ? tr("support") : QString::number(m.partial));
+        cell(3, m.support ? QString() : QString::number(m.cents, 'f', 2));
+        cell(4, std::isfinite(m.t60) ? QString::number(m.t60, 'g', 4) : tr("∞"));
+        if (!m.support) partials << m.partial, cents << m.cents;
+    }
+    bars->setData(partials, cents);
+    cents_->rescaleAxes();
+    cents_->xAxis->setRange(0, std::max(2.0, partials.isEmpty() ? 2.0 : partials.back() + 1));
+    cents_->replot();
+}
+
+}  // namespace archet::ui
