@@ -3,7 +3,8 @@
 namespace archet::cli {
 
 void add_audio_options(CLI::App& cmd, AudioConfig& c) {
-    cmd.add_option("--audio", c.api, "Audio output: jack, alsa, pulse, auto (the first of those that opens) or null")
+    cmd.add_option("--audio", c.api,
+                   "Audio output: jack, alsa, pulse, auto (the first of those that opens) or null")
         ->capture_default_str();
     cmd.add_option("--device", c.device,
                    "Device index of that API (-1: its default; see archet devices)")

@@ -18,5 +18,6 @@ void add_bowing_command(CLI::App& app, Action& action);
 void add_engine_command(CLI::App& app, Action& action);
 void add_play_command(CLI::App& app, Action& action);
 void add_devices_command(CLI::App& app, Action& action);
+void add_compare_command(CLI::App& app, Action& action);
 
 }  // namespace archet::cli

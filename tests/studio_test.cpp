@@ -116,7 +116,9 @@ TEST(Studio, EditsReachTheRunningEngine) {
     window.graph().select({"friction"});
     ASSERT_EQ(window.inspector().element(), "friction");
     ASSERT_TRUE(window.inspector().edit("mu_s", 0.7));
+    window.show();
     bow(window, 0.3);
+    save_screenshot(window, "studio-inspector.png");
     EXPECT_EQ(loads, 0);
     EXPECT_TRUE(messages.isEmpty()) << messages.join("; ").toStdString();
     // A new element reloads it.

@@ -1,0 +1,134 @@
+// `archet compare MODEL --vary PARAM=V1,V2[,...] -o DIR`: one gesture played on variants of a
+// model (string damping by default in the studio; any ELEMENT.PARAM, string.damping or
+// bow.position here). Writes a WAV and a CSV per value, comparison.json and comparison.png.
+
+#include <QApplication>
+#include <QDir>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "archet/comparison.hpp"
+#include "archet/input_error.hpp"
+#include "archet/model_file.hpp"
+#include "archet/model_variants.hpp"
+#include "archet/probe_csv_writer.hpp"
+#include "archet/sound_file_writer.hpp"
+#include "archet/ui/compare_figure.hpp"
+#include "commands.hpp"
+#include "model_loading.hpp"
+
+namespace archet::cli {
+
+namespace {
+
+struct CompareArguments {
+    std::string model, gesture, vary, output;
+    double seconds = 0;
+};
+
+// A label as a file name: no path separators.
+std::string file_stem(std::string label) {
+    for (char& c : label)
+        if (c == '/' || c == '\\' || c == ' ') c = '_';
+    return label;
+}
+
+// The figure needs Qt's widgets; without a display they draw offscreen.
+void write_figure(const std::filesystem::path& path, const std::vector<ComparisonRun>& runs) {
+    if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY"))
+        qputenv("QT_QPA_PLATFORM", "offscreen");
+    int argc = 1;
+    char name[] = "archet";
+    char* argv[] = {name, nullptr};
+    QApplication app(argc, argv);
+    ui::CompareFigure figure;
+    figure.show_runs(runs);
+    if (!figure.save(QString::fromStdString(path.string())))
+        throw InputError(path.string(), "could not write the figure");
+}
+
+int run_compare(const CompareArguments& a) {
+    const auto [parameter, values] = parse_variation(a.vary);
+    const Model model = load_validated_model(a.model, {});
+    Gesture gesture;
+    if (!a.gesture.empty())
+        gesture = load_gesture_file(a.gesture);
+    else if (model.gesture)
+        gesture = *model.gesture;
+    else
+        throw InputError("--gesture", "the model has no gesture of its own; give one");
+    if (a.seconds < 0 || !std::isfinite(a.seconds))
+        throw InputError("--seconds", "must be positive seconds");
+    const double seconds = a.seconds > 0 ? a.seconds : gesture.duration();
+    if (seconds <= 0) throw InputError("--seconds", "the gesture is empty; give --seconds");
+
+    // Every variant is checked before anything is written.
+    for (double v : values) {
+        Model variant = model;
+        set_variant_parameter(variant, parameter, v);
+    }
+    const std::filesystem::path dir = a.output;
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) throw InputError(a.output, "cannot create the folder: " + ec.message());
+
+    std::vector<ComparisonRun> runs;
+    nlohmann::ordered_json summary = {{"model", model.name},
+                                      {"parameter", parameter},
+                                      {"seconds", seconds},
+                                      {"runs", nlohmann::ordered_json::array()}};
+    std::cout << std::left << std::setw(32) << "variant" << std::setw(12) << "f1 Hz"
+              << "dissipated per period (µJ)\n";
+    for (double v : values) {
+        ComparisonRun run = compare_variant(model, gesture, parameter, v, seconds);
+        const std::string stem = file_stem(run.label);
+        SoundFileWriter wav(dir / (stem + ".wav"), SoundFormat::Wav,
+                            static_cast<int>(std::lround(run.sample_rate)));
+        wav.write(run.audio.data(), run.audio.size());
+        wav.close();
+        ProbeCsvWriter csv(dir / (stem + ".csv"), {"bow_force", "displacement"});
+        for (std::size_t i = 0; i < run.audio.size(); ++i) {
+            const double row[2] = {run.bow_force[i], run.displacement[i]};
+            csv.write_row(static_cast<double>(i + 1) / run.sample_rate, row);
+        }
+        csv.close();
+        std::cout << std::setw(32) << run.label << std::setw(12) << std::fixed
+                  << std::setprecision(3) << run.fundamental << std::setprecision(4)
+                  << 1e6 * run.dissipated_per_period << std::defaultfloat << "\n";
+        summary["runs"].push_back({{"label", run.label},
+                                   {"value", v},
+                                   {"fundamental_hz", run.fundamental},
+                                   {"dissipated_per_period_j", run.dissipated_per_period},
+                                   {"wav", stem + ".wav"},
+                                   {"csv", stem + ".csv"}});
+        runs.push_back(std::move(run));
+    }
+    write_file_atomically(dir / "comparison.json", summary.dump(2) + "\n");
+    write_figure(dir / "comparison.png", runs);
+    std::cout << "wrote " << runs.size() << " variants, comparison.json and comparison.png to "
+              << dir.string() << "\n";
+    return 0;
+}
+
+}  // namespace
+
+void add_compare_command(CLI::App& app, Action& action) {
+    auto a = std::make_shared<CompareArguments>();
+    auto* cmd = app.add_subcommand(
+        "compare", "Play one gesture on variants of a model and compare them (the paper's Fig. 5)");
+    cmd->add_option("model", a->model, "Model file (.json)")->required();
+    cmd->add_option("--vary", a->vary,
+                    "PARAM=V1,V2[,...]: ELEMENT.PARAM, string.damping (N·s/m per string link) or "
+                    "bow.position (β)")
+        ->required();
+    cmd->add_option("-o,--output", a->output, "Folder for the WAVs, CSVs, JSON and figure")
+        ->required();
+    cmd->add_option("--gesture", a->gesture, "Gesture file (default: the model's own gesture)");
+    cmd->add_option("--seconds", a->seconds, "Seconds to render (default: the gesture's length)");
+    cmd->callback([&action, a] { action = [a] { return run_compare(*a); }; });
+}
+
+}  // namespace archet::cli
