@@ -12,6 +12,8 @@
 #include <QTest>
 
 #include "archet/model_file.hpp"
+#include "archet/ui/compare_figure.hpp"
+#include "archet/ui/compare_view.hpp"
 #include "archet/ui/graph_view.hpp"
 #include "archet/ui/inspector.hpp"
 #include "archet/ui/model_document.hpp"
@@ -162,6 +164,36 @@ TEST_F(Editor, TheInspectorRefusesAnUnstableValueAndSaysWhy) {
     EXPECT_EQ(text_of(document.model()), before);
     document.undo_stack().undo();
     EXPECT_EQ(document.model().find_lia("k2")->stiffness, 100) << "the applied edit undoes";
+}
+
+TEST(CompareViewTest, RendersTwoDampingsSideBySide) {
+    CompareView view(load_model_file(test::resource("models/bowed-string-220.json")));
+    view.resize(1200, 800);
+    view.show();
+    view.set_variation("string.damping", "0.0005, 0.005");
+    bool done = false;
+    QObject::connect(&view, &CompareView::rendered, [&] { done = true; });
+    view.render();
+    for (int i = 0; i < 3000 && !done; ++i) QTest::qWait(10);
+    ASSERT_TRUE(done) << "rendered off the GUI thread within 30 s";
+    ASSERT_EQ(view.runs().size(), 2u);
+    EXPECT_EQ(view.figure().columns(), 2);
+    EXPECT_GT(view.runs()[1].dissipated_per_period, view.runs()[0].dissipated_per_period);
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-compare.png")));
+    // A/B: the first variant plays (on a device, or a null sink clocked in real time).
+    view.player().play(view.runs()[0].audio, view.runs()[0].sample_rate);
+    QTest::qWait(100);
+    EXPECT_GT(view.player().position(), 1000u) << view.player().description().toStdString();
+    view.player().stop();
+}
+
+TEST(CompareViewTest, ABadVariationIsSaidAndNothingRuns) {
+    CompareView view(load_model_file(test::resource("models/bowed-string-220.json")));
+    view.set_variation("bow.position", "0.1, 0.9");
+    view.render();
+    EXPECT_FALSE(view.busy());
+    EXPECT_TRUE(view.runs().empty());
 }
 
 TEST(ModesPanelTest, FindsTheStringsFundamental) {

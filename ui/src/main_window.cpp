@@ -27,6 +27,7 @@
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
 #include "archet/model_validation.hpp"
+#include "archet/ui/compare_view.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
 #include "archet/ui/inspector.hpp"
@@ -173,6 +174,12 @@ void MainWindow::build_menus() {
     QMenu* play = menuBar()->addMenu(tr("&Play"));
     play_ = action(play, tr("&Play"), QKeySequence(Qt::Key_Space), &MainWindow::toggle_play);
     record_ = action(play, tr("&Record take"), QKeySequence(Qt::Key_R), &MainWindow::toggle_take);
+    play->addSeparator();
+    action(play, tr("&Compare settings…"), QKeySequence(Qt::CTRL | Qt::Key_K), [this] {
+        auto* view = new CompareView(document_->model(), this);
+        view->setAttribute(Qt::WA_DeleteOnClose);
+        view->show();
+    });
 
     auto* bar = addToolBar(tr("Transport"));
     bar->setObjectName("transport");
