@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
     engine.archet_binary = QDir(QApplication::applicationDirPath()).filePath("archet");
     engine.audio = parser.value(audio);
     archet::ui::MainWindow window(engine);
+    window.set_resources_folder(QStringLiteral(ARCHET_RESOURCE_DIR));
     const QStringList files = parser.positionalArguments();
     const QString shipped = QStringLiteral(ARCHET_RESOURCE_DIR "/models/bowed-string-220.json");
     if (!files.isEmpty()) {

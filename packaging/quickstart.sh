@@ -23,15 +23,9 @@ case "$mode" in
     # No studio or no display: render the paper's sound examples instead.
     out="$root/out/sound-examples"
     mkdir -p "$out"
-    archet="$root/build/bin/archet"
-    models="$root/resources/models"
-    gestures="$root/resources/gestures"
-    "$archet" render "$models/bowed-string-110.json" --gesture "$gestures/steady-bow.json" -o "$out/sound-1-110Hz-steady-bow.wav"
-    "$archet" render "$models/bowed-string-220.json" --gesture "$gestures/detache.json" -o "$out/sound-2-220Hz-detache.wav"
-    "$archet" render "$models/bowed-string-440.json" --gesture "$gestures/crescendo.json" -o "$out/sound-5-440Hz-crescendo.wav"
-    "$archet" render "$models/bowed-string-880.json" --gesture "$gestures/pressure-sweep.json" -o "$out/sound-6-880Hz-pressure-sweep.wav"
+    "$root/build/bin/archet" examples -o "$out"
     echo
-    echo "No display (or no studio yet): the paper's sound examples are in $out"
+    echo "No display: the paper's sound examples are in $out (the studio needs a display)"
     ;;
   *)
     echo "usage: $0 [run|test]" >&2

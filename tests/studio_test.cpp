@@ -8,6 +8,7 @@
 
 #include <QApplication>
 #include <QDir>
+#include <QFileInfo>
 #include <QMouseEvent>
 #include <QStandardPaths>
 #include <QTest>
@@ -17,9 +18,13 @@
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
 #include "archet/ui/inspector.hpp"
+#include "archet/ui/library_panel.hpp"
 #include "archet/ui/main_window.hpp"
 #include "archet/ui/model_document.hpp"
 #include "archet/ui/scope_panel.hpp"
+#include "archet/ui/sound_examples_dialog.hpp"
+#include "archet/ui/takes_panel.hpp"
+#include "archet/ui/widget_export.hpp"
 #include "test_support.hpp"
 
 namespace archet::ui {
@@ -130,6 +135,90 @@ TEST(Studio, EditsReachTheRunningEngine) {
     window.document().undo_stack().undo();
     EXPECT_EQ(format_model(window.document().model()),
               format_model(load_model_file(test::resource("models/bowed-string-220.json"))));
+}
+
+TEST(Studio, RecordsATakeAndPlaysAndExportsIt) {
+    const auto dir = test::temp_dir("studio-takes");
+    MainWindow window(engine_options());
+    window.set_takes_folder(QString::fromStdString((dir / "takes").string()));
+    ASSERT_TRUE(window.open_file(test::resource("models/bowed-string-220.json").c_str()));
+    window.show();
+    window.activateWindow();
+    ASSERT_TRUE(QTest::qWaitForWindowActive(&window)) << "keyboard shortcuts need it";
+    ASSERT_TRUE(
+        wait_until([&] { return window.engine().status().model == "bowed-string-220"; }, 5000));
+    bow(window, 0.3);
+    QTest::keyClick(&window, Qt::Key_R);  // record
+    bow(window, 1.0, -0.07);
+    QTest::keyClick(&window, Qt::Key_R);  // stop
+    ASSERT_TRUE(wait_until([&] { return window.takes().takes().size() == 1; }, 5000))
+        << "the written take is listed";
+    window.takes().select(window.takes().takes().front());
+    ASSERT_TRUE(window.takes().play());
+    QTest::qWait(150);
+    EXPECT_GT(window.takes().player().position(), 2000u) << "it plays back";
+    window.takes().player().stop();
+    const QString flac = QString::fromStdString((dir / "take.flac").string());
+    ASSERT_TRUE(window.takes().export_to(flac));
+    EXPECT_GT(QFileInfo(flac).size(), 10000);
+    const QString csv = QString::fromStdString((dir / "take.csv").string());
+    ASSERT_TRUE(window.takes().export_to(csv));
+    EXPECT_GT(QFileInfo(csv).size(), 100000) << "a probe row per sample";
+    // The scopes as images, for a paper.
+    for (const char* name : {"scopes.png", "scopes.pdf"}) {
+        const QString path = QString::fromStdString((dir / name).string());
+        EXPECT_TRUE(save_widget_image(window.scopes(), path)) << name;
+        EXPECT_GT(QFileInfo(path).size(), 5000) << name;
+    }
+}
+
+TEST(Studio, NewSettingsRestartTheEngineWithTheSameModel) {
+    MainWindow window(engine_options());
+    ASSERT_TRUE(window.open_file(test::resource("models/bowed-string-440.json").c_str()));
+    ASSERT_TRUE(
+        wait_until([&] { return window.engine().status().model == "bowed-string-440"; }, 5000));
+    EngineClientOptions o = window.engine().options();
+    o.buffer_frames = 256;
+    o.haptic = "none";
+    window.engine().reconfigure(o);
+    ASSERT_TRUE(wait_until(
+        [&] {
+            return window.engine().status().model == "bowed-string-440" &&
+                   window.engine().status().device.contains("256 frames");
+        },
+        5000))
+        << window.engine().status().device.toStdString();
+}
+
+TEST(Studio, TheLibraryListsTheShippedStrings) {
+    MainWindow window(engine_options());
+    window.set_resources_folder(QString::fromStdString(test::resource("").string()));
+    EXPECT_EQ(window.library().shipped_count(), 8);
+}
+
+TEST(Studio, SoundExamplesRenderWithProgressAndCancel) {
+    const auto dir = test::temp_dir("studio-examples");
+    SoundExamplesDialog dialog(QString::fromStdString(test::resource("").string()),
+                               QString::fromStdString((dir / "all").string()));
+    int rendered = -1;
+    QString error;
+    QObject::connect(&dialog, &SoundExamplesDialog::finished_rendering,
+                     [&](int n, const QString& e) { rendered = n, error = e; });
+    dialog.start();
+    ASSERT_TRUE(wait_until([&] { return rendered >= 0; }, 60000));
+    EXPECT_EQ(rendered, 8) << error.toStdString();
+    EXPECT_EQ(QDir(QString::fromStdString((dir / "all").string())).entryList({"*.wav"}).size(), 8);
+
+    SoundExamplesDialog cancelled(QString::fromStdString(test::resource("").string()),
+                                  QString::fromStdString((dir / "some").string()));
+    rendered = -1;
+    QObject::connect(&cancelled, &SoundExamplesDialog::finished_rendering,
+                     [&](int n, const QString& e) { rendered = n, error = e; });
+    cancelled.start();
+    cancelled.cancel();
+    ASSERT_TRUE(wait_until([&] { return rendered >= 0; }, 60000));
+    EXPECT_LT(rendered, 8);
+    EXPECT_EQ(error, "cancelled");
 }
 
 TEST(Studio, ThePadMapsTheMouseToTheBow) {

@@ -4,9 +4,9 @@
 
 #include <QGridLayout>
 #include <QLabel>
-#include <QPainter>
-#include <QPdfWriter>
 #include <algorithm>
+
+#include "archet/ui/widget_export.hpp"
 
 namespace archet::ui {
 
@@ -77,20 +77,7 @@ void CompareFigure::show_runs(const std::vector<ComparisonRun>& runs) {
 }
 
 bool CompareFigure::save(const QString& path, QSize size) {
-    resize(size);
-    ensurePolished();
-    if (layout()) layout()->activate();
-    if (path.endsWith(".pdf", Qt::CaseInsensitive)) {
-        QPdfWriter pdf(path);
-        pdf.setPageSize(QPageSize(QSizeF(size), QPageSize::Point));
-        QPainter painter(&pdf);
-        if (!painter.isActive()) return false;
-        const double scale = pdf.width() / static_cast<double>(size.width());
-        painter.scale(scale, scale);
-        render(&painter);
-        return true;
-    }
-    return grab().save(path);
+    return save_widget_image(*this, path, size);
 }
 
 }  // namespace archet::ui

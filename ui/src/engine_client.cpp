@@ -41,6 +41,13 @@ void EngineClient::launch() {
     emit status_changed();
 }
 
+void EngineClient::reconfigure(EngineClientOptions options) {
+    options_ = std::move(options);
+    status_.model.clear(), status_.device.clear();
+    link_.reset();
+    launch();
+}
+
 void EngineClient::restart(const QString& why) {
     emit engine_lost(why);
     status_.state = "restarting";

@@ -31,10 +31,15 @@
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
 #include "archet/ui/inspector.hpp"
+#include "archet/ui/library_panel.hpp"
 #include "archet/ui/model_document.hpp"
 #include "archet/ui/modes_panel.hpp"
 #include "archet/ui/new_string_dialog.hpp"
 #include "archet/ui/scope_panel.hpp"
+#include "archet/ui/settings_dialog.hpp"
+#include "archet/ui/sound_examples_dialog.hpp"
+#include "archet/ui/takes_panel.hpp"
+#include "archet/ui/widget_export.hpp"
 
 namespace archet::ui {
 
@@ -74,6 +79,8 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     modes_ = new ModesPanel(*document_);
     scopes_ = new ScopePanel;
     pad_ = new GesturePad;
+    takes_ = new TakesPanel;
+    library_ = new LibraryPanel;
 
     auto* left = new QSplitter(Qt::Vertical);
     left->addWidget(graph_);
@@ -83,6 +90,8 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     auto* tabs = new QTabWidget;
     tabs->addTab(inspector_, tr("Inspector"));
     tabs->addTab(modes_, tr("Modes"));
+    tabs->addTab(takes_, tr("Takes"));
+    tabs->addTab(library_, tr("Library"));
     auto* side = new QWidget;
     auto* side_layout = new QVBoxLayout(side);
     side_layout->addWidget(
@@ -106,10 +115,13 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     addToolBar(Qt::LeftToolBarArea, build_palette());
 
     const QString documents = QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation);
-    takes_folder_ = documents + "/Archet/takes";
+    set_takes_folder(documents + "/Archet/takes");
     autosave_folder_ =
         QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/autosave";
     connect(pad_, &GesturePad::moved, engine_, &EngineClient::gesture);
+    connect(library_, &LibraryPanel::open_requested, this,
+            [this](const QString& p) { open_file(p); });
+    connect(library_, &LibraryPanel::new_string_requested, this, &MainWindow::new_string);
     connect(graph_, &GraphView::selection_changed, this, [this](const QStringList& ids) {
         inspector_->show_element(ids.size() == 1 ? ids.front() : QString());
     });
@@ -120,8 +132,10 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     connect(document_, &ModelDocument::path_changed, this, [this] { update_title(); });
     connect(&document_->undo_stack(), &QUndoStack::cleanChanged, this, [this] { update_title(); });
     connect(engine_, &EngineClient::status_changed, this, &MainWindow::show_status);
-    connect(engine_, &EngineClient::message, this,
-            [this](const QString& text) { statusBar()->showMessage(text, 8000); });
+    connect(engine_, &EngineClient::message, this, [this](const QString& text) {
+        statusBar()->showMessage(text, 8000);
+        if (text.startsWith("take written")) takes_->refresh();
+    });
     connect(engine_, &EngineClient::engine_lost, this,
             [this](const QString& why) { statusBar()->showMessage(why, 10000); });
     connect(&display_, &QTimer::timeout, this, &MainWindow::refresh);
@@ -149,6 +163,16 @@ void MainWindow::build_menus() {
     action(file, tr("&Save"), QKeySequence::Save, &MainWindow::save);
     action(file, tr("Save &as…"), QKeySequence::SaveAs, &MainWindow::save_as);
     file->addSeparator();
+    action(file, tr("Render sound &examples…"), QKeySequence(), [this] {
+        auto* dialog = new SoundExamplesDialog(
+            resources_folder_,
+            QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation) +
+                "/Archet/sound-examples",
+            this);
+        dialog->setAttribute(Qt::WA_DeleteOnClose);
+        dialog->show();
+    });
+    file->addSeparator();
     action(file, tr("&Quit"), QKeySequence::Quit, &QWidget::close);
 
     QMenu* edit = menuBar()->addMenu(tr("&Edit"));
@@ -170,11 +194,21 @@ void MainWindow::build_menus() {
            [this] { graph_->fit(); });
     action(view, tr("F&reeze scopes"), QKeySequence(Qt::Key_F),
            [this] { scopes_->set_frozen(!scopes_->frozen()); });
+    action(view, tr("&Export scopes…"), QKeySequence(Qt::CTRL | Qt::Key_E), [this] {
+        const QString path = QFileDialog::getSaveFileName(this, tr("Export the scopes"),
+                                                          "scopes.png", tr("Images (*.png *.pdf)"));
+        if (!path.isEmpty() && !save_widget_image(*scopes_, path))
+            statusBar()->showMessage(tr("could not write %1").arg(path), 8000);
+    });
 
     QMenu* play = menuBar()->addMenu(tr("&Play"));
     play_ = action(play, tr("&Play"), QKeySequence(Qt::Key_Space), &MainWindow::toggle_play);
     record_ = action(play, tr("&Record take"), QKeySequence(Qt::Key_R), &MainWindow::toggle_take);
     play->addSeparator();
+    action(play, tr("Audio and &devices…"), QKeySequence(), [this] {
+        SettingsDialog dialog(engine_->options(), this);
+        if (dialog.exec() == QDialog::Accepted) engine_->reconfigure(dialog.options());
+    });
     action(play, tr("&Compare settings…"), QKeySequence(Qt::CTRL | Qt::Key_K), [this] {
         auto* view = new CompareView(document_->model(), this);
         view->setAttribute(Qt::WA_DeleteOnClose);
@@ -226,6 +260,16 @@ QToolBar* MainWindow::build_palette() {
     tool(tr("Buffer"), tr("Drag from one mass to another: a contact that only pushes"),
          [this] { graph_->set_tool(Tool::Connect, MatKind::Mass, LiaKind::Buffer); });
     return bar;
+}
+
+void MainWindow::set_takes_folder(const QString& folder) {
+    takes_folder_ = folder;
+    takes_->set_folder(folder);
+}
+
+void MainWindow::set_resources_folder(const QString& folder) {
+    resources_folder_ = folder;
+    library_->fill(folder + "/models", QSettings().value("recent").toStringList());
 }
 
 void MainWindow::open_model(const Model& model, const QString& path) {
@@ -410,6 +454,7 @@ void MainWindow::remember_recent(const QString& path) {
     while (recent.size() > kRecentFiles) recent.removeLast();
     settings.setValue("recent", recent);
     fill_recent_menu();
+    if (!resources_folder_.isEmpty()) library_->fill(resources_folder_ + "/models", recent);
 }
 
 void MainWindow::fill_recent_menu() {

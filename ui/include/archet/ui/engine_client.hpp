@@ -47,6 +47,9 @@ class EngineClient : public QObject {
     ~EngineClient() override;
 
     void start();
+    /// Restarts the engine with other options (audio, buffer, device), same model and state.
+    void reconfigure(EngineClientOptions options);
+    const EngineClientOptions& options() const { return options_; }
     /// Plays `model` (written to the session folder, then loaded by the engine).
     void load(const Model& model);
     void play();

@@ -20,6 +20,8 @@ namespace archet::ui {
 class GesturePad;
 class GraphView;
 class Inspector;
+class LibraryPanel;
+class TakesPanel;
 class ModelDocument;
 class ModesPanel;
 class ScopePanel;
@@ -43,8 +45,12 @@ class MainWindow : public QMainWindow {
     ModesPanel& modes() { return *modes_; }
     GesturePad& pad() { return *pad_; }
     ScopePanel& scopes() { return *scopes_; }
+    TakesPanel& takes() { return *takes_; }
+    LibraryPanel& library() { return *library_; }
+    /// Where the shipped models and gestures are (resources/).
+    void set_resources_folder(const QString& folder);
     /// Where takes go (a new dated folder per take) and where autosaves go.
-    void set_takes_folder(const QString& folder) { takes_folder_ = folder; }
+    void set_takes_folder(const QString& folder);
     void set_autosave_folder(const QString& folder) { autosave_folder_ = folder; }
     /// Writes the autosave now (the timer does it every 30 s when there are changes).
     QString autosave();
@@ -77,6 +83,8 @@ class MainWindow : public QMainWindow {
     ModesPanel* modes_;
     ScopePanel* scopes_;
     GesturePad* pad_;
+    TakesPanel* takes_;
+    LibraryPanel* library_;
     QLabel* engine_state_;
     QLabel* device_;
     QLabel* meters_;
@@ -87,6 +95,7 @@ class MainWindow : public QMainWindow {
     QTimer autosave_timer_;
     std::vector<int> string_points_;  ///< which shape-frame entries are the string
     QString takes_folder_;
+    QString resources_folder_;
     QString autosave_folder_;
     QString take_;  ///< the folder being recorded into
 };

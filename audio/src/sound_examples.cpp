@@ -1,0 +1,54 @@
+#include "archet/sound_examples.hpp"
+
+#include <cmath>
+
+#include "archet/compiled_model.hpp"
+#include "archet/model_file.hpp"
+#include "archet/model_validation.hpp"
+#include "archet/renderer.hpp"
+#include "archet/sound_file_writer.hpp"
+
+namespace archet {
+
+const std::vector<SoundExample>& sound_examples() {
+    static const std::vector<SoundExample> examples{
+        {"sound-1-110Hz-steady-bow.wav", "bowed-string-110.json", "steady-bow.json",
+         "110 Hz string, a steady stroke: the slow attack of a homogeneous chain"},
+        {"sound-2-110Hz-harmonic-steady-bow.wav", "bowed-string-110-harmonic.json",
+         "steady-bow.json", "the same stroke on the harmonic string: Helmholtz motion sooner"},
+        {"sound-3-220Hz-detache.wav", "bowed-string-220.json", "detache.json",
+         "220 Hz, détaché strokes"},
+        {"sound-4-220Hz-harmonic-crescendo.wav", "bowed-string-220-harmonic.json", "crescendo.json",
+         "220 Hz harmonic string, a crescendo of bow force"},
+        {"sound-5-440Hz-crescendo.wav", "bowed-string-440.json", "crescendo.json",
+         "440 Hz, a crescendo"},
+        {"sound-6-440Hz-harmonic-steady-bow.wav", "bowed-string-440-harmonic.json",
+         "steady-bow.json", "440 Hz harmonic string, a steady stroke"},
+        {"sound-7-880Hz-pressure-sweep.wav", "bowed-string-880.json", "pressure-sweep.json",
+         "880 Hz, bow force swept through Schelleng's playable band"},
+        {"sound-8-880Hz-steady-bow.wav", "bowed-string-880.json", "steady-bow.json",
+         "880 Hz, a steady stroke"},
+    };
+    return examples;
+}
+
+std::filesystem::path render_sound_example(const SoundExample& example,
+                                           const std::filesystem::path& resources,
+                                           const std::filesystem::path& folder) {
+    const Model model = load_model_file(resources / "models" / example.model);
+    validate_model(model);
+    const Gesture gesture = load_gesture_file(resources / "gestures" / example.gesture);
+    std::filesystem::create_directories(folder);
+    Simulation sim(compile(model));
+    sim.set_gesture_track(&gesture);
+    const std::filesystem::path path = folder / example.file;
+    SoundFileWriter wav(path, SoundFormat::Wav, static_cast<int>(std::lround(sim.sample_rate())));
+    RenderOptions options;
+    options.frames =
+        static_cast<std::uint64_t>(std::llround((gesture.duration() + 0.5) * sim.sample_rate()));
+    render(sim, options, [&](const RenderBlock& b) { wav.write(b.audio, b.frames); });
+    wav.close();
+    return path;
+}
+
+}  // namespace archet

@@ -1,0 +1,29 @@
+#pragma once
+// Where the engine plays: the audio output and its buffer, and what holds the bow (the pad's
+// simulated hand, the pad directly, or a joystick found through evdev or SDL). Applying it
+// restarts the engine with the same model.
+
+#include <QDialog>
+
+#include "archet/ui/engine_client.hpp"
+
+class QComboBox;
+class QSpinBox;
+
+namespace archet::ui {
+
+class SettingsDialog : public QDialog {
+    Q_OBJECT
+
+  public:
+    SettingsDialog(const EngineClientOptions& current, QWidget* parent = nullptr);
+    EngineClientOptions options() const;
+
+  private:
+    EngineClientOptions current_;
+    QComboBox* audio_;
+    QSpinBox* buffer_;
+    QComboBox* haptic_;
+};
+
+}  // namespace archet::ui

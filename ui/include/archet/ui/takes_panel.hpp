@@ -1,0 +1,39 @@
+#pragma once
+// The takes recorded so far (one folder each): play one back, export its audio as WAV or
+// FLAC, or its probes as CSV.
+
+#include <QWidget>
+
+#include "archet/ui/sound_player.hpp"
+
+class QLabel;
+class QListWidget;
+
+namespace archet::ui {
+
+class TakesPanel : public QWidget {
+    Q_OBJECT
+
+  public:
+    explicit TakesPanel(QWidget* parent = nullptr);
+
+    void set_folder(const QString& folder);
+    void refresh();
+    QStringList takes() const;
+    void select(const QString& take);
+    /// Plays the selected take; returns whether one played.
+    bool play();
+    /// Writes the selected take's audio to `path` (WAV or FLAC by suffix) or its probes (CSV).
+    bool export_to(const QString& path);
+    SoundPlayer& player() { return player_; }
+
+  private:
+    QString selected_folder() const;
+
+    QString folder_;
+    QListWidget* list_;
+    QLabel* message_;
+    SoundPlayer player_;
+};
+
+}  // namespace archet::ui

@@ -1,0 +1,67 @@
+#include "archet/ui/settings_dialog.hpp"
+
+#include <QComboBox>
+#include <QDialogButtonBox>
+#include <QFormLayout>
+#include <QLabel>
+#include <QSpinBox>
+
+#include "archet/evdev_device.hpp"
+#include "archet/sdl_device.hpp"
+
+namespace archet::ui {
+
+SettingsDialog::SettingsDialog(const EngineClientOptions& current, QWidget* parent)
+    : QDialog(parent), current_(current) {
+    setWindowTitle(tr("Audio and devices"));
+    audio_ = new QComboBox;
+    audio_->addItem(tr("First that opens (JACK, PulseAudio, ALSA)"), "auto");
+    audio_->addItem(tr("JACK"), "jack");
+    audio_->addItem(tr("PulseAudio"), "pulse");
+    audio_->addItem(tr("ALSA"), "alsa");
+    audio_->addItem(tr("None (a silent clock)"), "null");
+    audio_->setCurrentIndex(std::max(0, audio_->findData(current.audio)));
+    buffer_ = new QSpinBox;
+    buffer_->setRange(16, 4096);
+    buffer_->setSuffix(tr(" frames"));
+    buffer_->setValue(current.buffer_frames);
+    haptic_ = new QComboBox;
+    haptic_->addItem(tr("The pad moves a simulated hand"), "sim");
+    haptic_->addItem(tr("The pad sets the bow's position directly"), "none");
+    // Joysticks found now; their line reads "evdev PATH: NAME ..." or "sdl N: NAME ...".
+    for (const std::string& line : list_haptic_devices()) {
+        const auto colon = line.find(':');
+        haptic_->addItem(QString::fromStdString(line),
+                         QString::fromStdString("evdev:" + line.substr(6, colon - 6)));
+    }
+    for (const std::string& line : list_sdl_joysticks()) {
+        const auto colon = line.find(':');
+        haptic_->addItem(QString::fromStdString(line),
+                         QString::fromStdString("sdl:" + line.substr(4, colon - 4)));
+    }
+    haptic_->setCurrentIndex(std::max(0, haptic_->findData(current.haptic)));
+    auto* note =
+        new QLabel(tr("Each axis's displacement and force scaling are the gesture "
+                      "points' position_scale and force_scale: select a hand in the "
+                      "graph and edit them in the inspector, live."));
+    note->setWordWrap(true);
+    auto* form = new QFormLayout(this);
+    form->addRow(tr("Audio output"), audio_);
+    form->addRow(tr("Buffer"), buffer_);
+    form->addRow(tr("Bow held by"), haptic_);
+    form->addRow(note);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+    form->addRow(buttons);
+}
+
+EngineClientOptions SettingsDialog::options() const {
+    EngineClientOptions o = current_;
+    o.audio = audio_->currentData().toString();
+    o.buffer_frames = buffer_->value();
+    o.haptic = haptic_->currentData().toString();
+    return o;
+}
+
+}  // namespace archet::ui

@@ -1,0 +1,103 @@
+#include "archet/ui/sound_examples_dialog.hpp"
+
+#include <QFileDialog>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QListWidget>
+#include <QMetaObject>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QVBoxLayout>
+
+#include "archet/sound_examples.hpp"
+
+namespace archet::ui {
+
+SoundExamplesDialog::SoundExamplesDialog(QString resources, QString folder, QWidget* parent)
+    : QDialog(parent), resources_(std::move(resources)) {
+    setWindowTitle(tr("Render sound examples"));
+    folder_ = new QLineEdit(folder);
+    auto* browse = new QPushButton(tr("Choose…"));
+    list_ = new QListWidget;
+    for (const SoundExample& e : sound_examples())
+        list_->addItem(QString::fromStdString(e.file + " — " + e.what));
+    progress_ = new QProgressBar;
+    progress_->setRange(0, static_cast<int>(sound_examples().size()));
+    progress_->setValue(0);
+    message_ = new QLabel(tr("The shipped strings under the shipped gestures, rendered offline."));
+    message_->setWordWrap(true);
+    start_ = new QPushButton(tr("Render"));
+    cancel_ = new QPushButton(tr("Cancel"));
+    cancel_->setEnabled(false);
+    auto* where = new QHBoxLayout;
+    where->addWidget(new QLabel(tr("Folder")));
+    where->addWidget(folder_, 1);
+    where->addWidget(browse);
+    auto* buttons = new QHBoxLayout;
+    buttons->addWidget(start_);
+    buttons->addWidget(cancel_);
+    buttons->addWidget(progress_, 1);
+    auto* layout = new QVBoxLayout(this);
+    layout->addLayout(where);
+    layout->addWidget(list_, 1);
+    layout->addLayout(buttons);
+    layout->addWidget(message_);
+    connect(browse, &QPushButton::clicked, this, [this] {
+        const QString dir =
+            QFileDialog::getExistingDirectory(this, tr("Render into"), folder_->text());
+        if (!dir.isEmpty()) folder_->setText(dir);
+    });
+    connect(start_, &QPushButton::clicked, this, &SoundExamplesDialog::start);
+    connect(cancel_, &QPushButton::clicked, this, &SoundExamplesDialog::cancel);
+    resize(700, 420);
+}
+
+SoundExamplesDialog::~SoundExamplesDialog() {
+    cancel_requested_.store(true);
+    if (worker_.joinable()) worker_.join();
+}
+
+void SoundExamplesDialog::start() {
+    if (running_.load()) return;
+    if (worker_.joinable()) worker_.join();
+    cancel_requested_.store(false);
+    running_.store(true);
+    rendered_ = 0;
+    progress_->setValue(0);
+    start_->setEnabled(false);
+    cancel_->setEnabled(true);
+    message_->setText(tr("rendering…"));
+    const std::string resources = resources_.toStdString(), folder = folder_->text().toStdString();
+    worker_ = std::thread([this, resources, folder] {
+        int count = 0;
+        QString error;
+        try {
+            for (const SoundExample& e : sound_examples()) {
+                if (cancel_requested_.load()) {
+                    error = tr("cancelled");
+                    break;
+                }
+                render_sound_example(e, resources, folder);
+                ++count;
+                QMetaObject::invokeMethod(this, [this, count] { progress_->setValue(count); });
+            }
+        } catch (const std::exception& e) {
+            error = QString::fromUtf8(e.what());
+        }
+        running_.store(false);
+        QMetaObject::invokeMethod(this, [this, count, error] { done(count, error); });
+    });
+}
+
+void SoundExamplesDialog::done(int rendered, const QString& error) {
+    rendered_ = rendered;
+    start_->setEnabled(true);
+    cancel_->setEnabled(false);
+    message_->setText(error.isEmpty()
+                          ? tr("%1 examples written to %2").arg(rendered).arg(folder_->text())
+                          : tr("%1 (%2 written)").arg(error).arg(rendered));
+    emit finished_rendering(rendered, error);
+}
+
+}  // namespace archet::ui
