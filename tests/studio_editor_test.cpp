@@ -8,6 +8,7 @@
 #include <QApplication>
 #include <QDir>
 #include <QGraphicsView>
+#include <QLabel>
 #include <QStandardPaths>
 #include <QTest>
 
@@ -161,6 +162,11 @@ TEST_F(Editor, TheInspectorRefusesAnUnstableValueAndSaysWhy) {
     EXPECT_NE(inspector.warning().indexOf("stab"), -1) << inspector.warning().toStdString();
     EXPECT_EQ(text_of(document.model()), before) << "nothing changed";
     EXPECT_FALSE(inspector.edit("stiffness", -5));
+    // Its own margin is on show: how far the stiffness may go before the scheme is unstable.
+    bool margin_shown = false;
+    for (QLabel* label : inspector.findChildren<QLabel*>())
+        margin_shown = margin_shown || label->text().startsWith("below ");
+    EXPECT_TRUE(margin_shown);
     EXPECT_EQ(text_of(document.model()), before);
     document.undo_stack().undo();
     EXPECT_EQ(document.model().find_lia("k2")->stiffness, 100) << "the applied edit undoes";

@@ -9,6 +9,7 @@
 #include <QApplication>
 #include <QDir>
 #include <QFileInfo>
+#include <QListWidget>
 #include <QMouseEvent>
 #include <QStandardPaths>
 #include <QTest>
@@ -188,6 +189,23 @@ TEST(Studio, NewSettingsRestartTheEngineWithTheSameModel) {
         },
         5000))
         << window.engine().status().device.toStdString();
+}
+
+TEST(Studio, AutosaveKeepsTheEditsAndTheLibraryOffersThem) {
+    const auto dir = test::temp_dir("studio-autosave");
+    MainWindow window(engine_options());
+    window.set_autosave_folder(QString::fromStdString(dir.string()));
+    ASSERT_TRUE(window.open_file(test::resource("models/bowed-string-880.json").c_str()));
+    window.document().set_parameter("friction", "mu_s", 0.75);
+    const QString saved = window.autosave();
+    EXPECT_EQ(format_model(load_model_file(saved.toStdString())),
+              format_model(window.document().model()));
+    window.set_resources_folder(QString::fromStdString(test::resource("").string()));
+    bool offered = false;
+    for (QListWidget* list : window.library().findChildren<QListWidget*>())
+        for (int i = 0; i < list->count(); ++i)
+            offered = offered || list->item(i)->text().contains("autosaved");
+    EXPECT_TRUE(offered);
 }
 
 TEST(Studio, TheLibraryListsTheShippedStrings) {

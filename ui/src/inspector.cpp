@@ -10,6 +10,7 @@
 #include "archet/model_parameters.hpp"
 #include "archet/model_validation.hpp"
 #include "archet/stability.hpp"
+#include "archet/stability_limit.hpp"
 #include "archet/ui/model_document.hpp"
 
 namespace archet::ui {
@@ -110,7 +111,20 @@ void Inspector::rebuild() {
                 get_parameter(document_.model(), element_.toStdString(), name.toStdString());
             if (ok && value != now) edit(name, value);
         });
-        form_->addRow(tr("%1 (%2)").arg(name, QString::fromStdString(p.unit)), field);
+        const QString unit = QString::fromStdString(p.unit);
+        form_->addRow(unit.isEmpty() ? name : tr("%1 (%2)").arg(name, unit), field);
+        // This element's own margin: how far the value may go before the scheme turns unstable.
+        if (const auto limit = stability_limit(model, id, p.name)) {
+            const double room = limit->upper ? 1 - limit->current / limit->value
+                                             : 1 - limit->value / limit->current;
+            auto* margin = new QLabel(tr("%1 %2 %3 to stay stable (%4 % of room left)")
+                                          .arg(limit->upper ? tr("below") : tr("above"))
+                                          .arg(limit->value, 0, 'g', 4)
+                                          .arg(unit)
+                                          .arg(100 * room, 0, 'f', 1));
+            margin->setStyleSheet(room < 0.1 ? "color: #b03020" : "color: gray");
+            form_->addRow(QString(), margin);
+        }
     }
     show_stability();
 }

@@ -1,5 +1,6 @@
 #include "archet/ui/library_panel.hpp"
 
+#include <QDateTime>
 #include <QDir>
 #include <QFileInfo>
 #include <QLabel>
@@ -30,7 +31,8 @@ LibraryPanel::LibraryPanel(QWidget* parent) : QWidget(parent) {
     connect(build, &QPushButton::clicked, this, &LibraryPanel::new_string_requested);
 }
 
-void LibraryPanel::fill(const QString& folder, const QStringList& recent) {
+void LibraryPanel::fill(const QString& folder, const QStringList& recent,
+                        const QString& autosaves) {
     shipped_->clear();
     recent_->clear();
     const QDir dir(folder);
@@ -42,6 +44,16 @@ void LibraryPanel::fill(const QString& folder, const QStringList& recent) {
         auto* item = new QListWidgetItem(QFileInfo(path).fileName(), recent_);
         item->setData(kPathRole, path);
         item->setToolTip(path);
+    }
+    if (autosaves.isEmpty()) return;
+    const QDir saved(autosaves);
+    for (const QFileInfo& file : saved.entryInfoList({"*.json"}, QDir::Files, QDir::Time)) {
+        auto* item = new QListWidgetItem(
+            tr("%1 (autosaved %2)")
+                .arg(file.completeBaseName(), file.lastModified().toString("yyyy-MM-dd hh:mm")),
+            recent_);
+        item->setData(kPathRole, file.absoluteFilePath());
+        item->setToolTip(file.absoluteFilePath());
     }
 }
 

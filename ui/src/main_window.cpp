@@ -269,7 +269,8 @@ void MainWindow::set_takes_folder(const QString& folder) {
 
 void MainWindow::set_resources_folder(const QString& folder) {
     resources_folder_ = folder;
-    library_->fill(folder + "/models", QSettings().value("recent").toStringList());
+    library_->fill(folder + "/models", QSettings().value("recent").toStringList(),
+                   autosave_folder_);
 }
 
 void MainWindow::open_model(const Model& model, const QString& path) {
@@ -454,7 +455,8 @@ void MainWindow::remember_recent(const QString& path) {
     while (recent.size() > kRecentFiles) recent.removeLast();
     settings.setValue("recent", recent);
     fill_recent_menu();
-    if (!resources_folder_.isEmpty()) library_->fill(resources_folder_ + "/models", recent);
+    if (!resources_folder_.isEmpty())
+        library_->fill(resources_folder_ + "/models", recent, autosave_folder_);
 }
 
 void MainWindow::fill_recent_menu() {

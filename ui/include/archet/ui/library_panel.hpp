@@ -13,8 +13,9 @@ class LibraryPanel : public QWidget {
 
   public:
     explicit LibraryPanel(QWidget* parent = nullptr);
-    /// Lists the models in `folder` (resources/models) and `recent`.
-    void fill(const QString& folder, const QStringList& recent);
+    /// Lists the models in `folder` (resources/models), `recent`, and the autosaves in
+    /// `autosaves` (a folder), newest first, to recover work after a crash.
+    void fill(const QString& folder, const QStringList& recent, const QString& autosaves = {});
     int shipped_count() const;
 
   signals:
