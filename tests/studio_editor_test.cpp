@@ -12,6 +12,7 @@
 #include <QStandardPaths>
 #include <QTest>
 
+#include "archet/bowed_string.hpp"
 #include "archet/model_file.hpp"
 #include "archet/ui/compare_figure.hpp"
 #include "archet/ui/compare_view.hpp"
@@ -19,6 +20,7 @@
 #include "archet/ui/inspector.hpp"
 #include "archet/ui/model_document.hpp"
 #include "archet/ui/modes_panel.hpp"
+#include "archet/ui/new_string_dialog.hpp"
 #include "test_support.hpp"
 
 namespace archet::ui {
@@ -200,6 +202,14 @@ TEST(CompareViewTest, ABadVariationIsSaidAndNothingRuns) {
     view.render();
     EXPECT_FALSE(view.busy());
     EXPECT_TRUE(view.runs().empty());
+}
+
+TEST(NewStringDialogTest, ItsDefaultsBuildTheShippedString) {
+    NewStringDialog dialog;
+    const Model built = build_bowed_string(dialog.options());
+    EXPECT_EQ(format_model(built),
+              format_model(load_model_file(test::resource("models/bowed-string-220.json"))))
+        << "the dialog's defaults are the builder's (and the shipped 220 Hz string's)";
 }
 
 TEST(ModesPanelTest, FindsTheStringsFundamental) {

@@ -39,6 +39,19 @@ NewStringDialog::NewStringDialog(QWidget* parent) : QDialog(parent) {
     t60_->setValue(defaults.string_t60);
     t60_->setToolTip(tr("How long the first mode takes to decay by 60 dB from string damping"));
 
+    damping_ = new QDoubleSpinBox;
+    damping_->setRange(0, 10);
+    damping_->setDecimals(5);
+    damping_->setSingleStep(0.0005);
+    damping_->setSuffix(tr(" N·s/m"));
+    damping_->setSpecialValueText(tr("from the decay"));
+    damping_->setValue(0);
+    damping_->setToolTip(
+        tr("Damping of each string link; leave at \"from the decay\" to set it "
+           "from T60"));
+    connect(damping_, &QDoubleSpinBox::valueChanged, this,
+            [this](double v) { t60_->setEnabled(v == 0); });
+
     auto* form = new QFormLayout(this);
     form->addRow(tr("Pitch (first mode)"), pitch_);
     form->addRow(tr("Tuning"), tuning_);
@@ -46,6 +59,7 @@ NewStringDialog::NewStringDialog(QWidget* parent) : QDialog(parent) {
     form->addRow(tr("Masses (25–60)"), masses_);
     form->addRow(tr("Bow position β"), bow_position_);
     form->addRow(tr("String decay T60"), t60_);
+    form->addRow(tr("String damping"), damping_);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
     connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
     connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
@@ -60,6 +74,7 @@ BowedStringOptions NewStringDialog::options() const {
     o.masses = masses_->value() == masses_->minimum() ? 0 : masses_->value();
     o.bow_position = bow_position_->value();
     o.string_t60 = t60_->value();
+    if (damping_->value() > 0) o.string_damping = damping_->value();
     return o;
 }
 

@@ -26,6 +26,7 @@ class NewStringDialog : public QDialog {
     QSpinBox* masses_;
     QDoubleSpinBox* bow_position_;
     QDoubleSpinBox* t60_;
+    QDoubleSpinBox* damping_;
 };
 
 }  // namespace archet::ui
