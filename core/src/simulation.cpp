@@ -22,6 +22,16 @@ Simulation::Simulation(CompiledModel model) : model_(std::move(model)) {
     active_.assign(model_.levels.size(), 0);
     countdown_.assign(model_.levels.size(), 0);
     period_done_.assign(model_.levels.size(), 1.0);
+    // The hand links' addresses, resolved once: model_ never changes shape from here on.
+    for (int i = 0; i < model_.hand_links; ++i) {
+        CompiledCrossLink& l = model_.cross_links[i];
+        CompiledLevel& hand = model_.levels[l.hand_slot.level];
+        CompiledLevel& end = model_.levels[l.end_slot.level];
+        hand_plan_.push_back({&l, &hand, &end, l.hand_slot.level, l.hand_slot.index,
+                              l.end_slot.index, &end.external[l.end_slot.index],
+                              &hand.external[l.hand_slot.index], &hand.gestures[l.hand],
+                              l.hand_is_a ? l.a_weight : l.b_weight});
+    }
     dissipated_.assign(model_.source.lias.size() + model_.source.mats.size(), 0.0);
     set_gesture_track(model_.source.gesture ? &*model_.source.gesture : nullptr);
 }
@@ -79,7 +89,7 @@ void Simulation::step() {
         if (active_[l]) integrate(model_.levels[l]);
     // Phase 3: x[n+1] becomes x[n].
     for (std::size_t l = 0; l < model_.levels.size(); ++l)
-        if (active_[l]) model_.levels[l].current = (model_.levels[l].current + 1) % 3;
+        if (active_[l]) model_.levels[l].current = CompiledLevel::after(model_.levels[l].current);
     ++tick_;
 }
 
@@ -150,31 +160,29 @@ inline double Simulation::seen_position(MatSlot s, CompiledCrossLink::EndRate ra
 // Exact at every step, and short: they tick at every step of their level.
 void Simulation::compute_hand_link_forces() {
     double hand_work = 0;
-    for (int i = 0; i < model_.hand_links; ++i) {
-        CompiledCrossLink& l = model_.cross_links[i];
-        if (!active_[l.level]) continue;
-        CompiledLevel& hand_level = model_.levels[l.hand_slot.level];
-        CompiledLevel& end_level = model_.levels[l.end_slot.level];
-        const double from = hand_level.x_prev()[l.hand_slot.index];
-        const double to = hand_level.x()[l.hand_slot.index];
-        const double h = from + (to - from) * period_done_[l.hand_slot.level];
-        const double d = l.hand_sign * (h - end_level.x()[l.end_slot.index]);  // x(a) − x(b)
-        const double d_prev = l.d_prev, d_before = l.d_before;
+    for (HandLinkPlan& p : hand_plan_) {
+        if (!active_[p.link->level]) continue;
+        CompiledCrossLink& l = *p.link;
+        const double* hx = p.hand_level->x();
+        const double* hxp = p.hand_level->x_prev();
+        const double from = hxp[p.hand_index], to = hx[p.hand_index];
+        const double h = from + (to - from) * period_done_[p.hand_level_index];
+        const double d = l.hand_sign * (h - p.end_level->x()[p.end_index]);  // x(a) − x(b)
+        const double d_prev = l.d_prev, d_before = l.d_before, force = l.force;
         const double f = l.k * (d - l.length) + l.zdt * (d - d_prev);
-        const double work = l.hand_sign * 0.5 * (l.force + f) * (h - l.hand_seen);
+        const double work = l.hand_sign * 0.5 * (force + f) * (h - l.hand_seen);
         if (accounting_) dissipated_[l.element] += 0.25 * l.zdt * (d - d_before) * (d - d_before);
         l.d_before = d_prev, l.d_prev = d, l.force = f, l.hand_seen = h;
-        end_level.external[l.end_slot.index] += l.hand_sign * f;
+        *p.end_force += l.hand_sign * f;
         // The hand's point takes the mean force over its period when it ticks.
         l.hand_force_sum -= l.hand_sign * f;
         hand_work += work;
         l.hand_work_sum += work;
-        if (active_[l.hand_slot.level]) {
-            const double mean = l.hand_force_sum * (l.hand_is_a ? l.a_weight : l.b_weight);
-            hand_level.external[l.hand_slot.index] += mean;
-            auto& g = hand_level.gestures[l.hand];
-            g.faster_links_force += mean;
-            g.faster_links_work += l.hand_work_sum;
+        if (active_[p.hand_level_index]) {
+            const double mean = l.hand_force_sum * p.hand_weight;
+            *p.hand_force += mean;
+            p.gesture->faster_links_force += mean;
+            p.gesture->faster_links_work += l.hand_work_sum;
             l.hand_force_sum = l.hand_work_sum = 0.0;
         }
     }
@@ -243,7 +251,7 @@ __attribute__((target_clones("avx2", "default"))) void integrate_chain(CompiledL
                                                                        double* xn) {
     const int current = lv.current;
     const double* x = lv.buffer[current].data();
-    const double* xp = lv.buffer[(current + 2) % 3].data();
+    const double* xp = lv.buffer[CompiledLevel::before(current)].data();
     if (lv.has_chain_lengths)
         chain_loops<true>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(),
                           lv.chain_length.data(), lv.coeff.data(), lv.chain_force.data());

@@ -107,6 +107,17 @@ class Simulation {
     std::vector<int> active_;
     std::vector<int> countdown_;       ///< per level: steps until its next tick
     std::vector<double> period_done_;  ///< per level: share of its period gone at this step
+    struct HandLinkPlan {              ///< a hand link with its ends' addresses resolved
+        CompiledCrossLink* link;
+        CompiledLevel* hand_level;
+        CompiledLevel* end_level;
+        int hand_level_index, hand_index, end_index;
+        double* end_force;   ///< the end's `external`
+        double* hand_force;  ///< the hand point's `external`
+        CompiledGesturePoint* gesture;
+        double hand_weight;  ///< the link's share of the hand's period
+    };
+    std::vector<HandLinkPlan> hand_plan_;
 };
 
 }  // namespace archet
