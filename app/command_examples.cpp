@@ -5,13 +5,14 @@
 
 #include "archet/sound_examples.hpp"
 #include "commands.hpp"
+#include "resource_folder.hpp"
 
 namespace archet::cli {
 
 namespace {
 struct ExamplesArguments {
     std::string output = "sound-examples";
-    std::string resources = ARCHET_RESOURCE_DIR;
+    std::string resources = resource_folder().string();
 };
 
 int run_examples(const ExamplesArguments& a) {

@@ -8,6 +8,7 @@
 
 #include "archet/bowed_string.hpp"
 #include "archet/ui/main_window.hpp"
+#include "resource_folder.hpp"
 
 int main(int argc, char** argv) {
     QApplication app(argc, argv);
@@ -26,9 +27,10 @@ int main(int argc, char** argv) {
     engine.archet_binary = QDir(QApplication::applicationDirPath()).filePath("archet");
     engine.audio = parser.value(audio);
     archet::ui::MainWindow window(engine);
-    window.set_resources_folder(QStringLiteral(ARCHET_RESOURCE_DIR));
+    const QString resources = QString::fromStdString(archet::cli::resource_folder().string());
+    window.set_resources_folder(resources);
     const QStringList files = parser.positionalArguments();
-    const QString shipped = QStringLiteral(ARCHET_RESOURCE_DIR "/models/bowed-string-220.json");
+    const QString shipped = resources + "/models/bowed-string-220.json";
     if (!files.isEmpty()) {
         if (!window.open_file(files.front())) return 2;
     } else if (QFileInfo::exists(shipped)) {

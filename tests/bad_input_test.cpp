@@ -88,7 +88,21 @@ TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
         {{"new", "bowed-string", "--bow-position", "0.7", "-o", out}, "beta must be in (0, 0.5)"},
         {{"bench"}, "give either a MODEL file or --chain N"},
         {{"frobnicate"}, "subcommand"},
+        // Output where nothing can be written: under a plain file, or in /proc (even as root).
+        {{"render", model, "-o", (dir / "plain.txt" / "x.wav").string()}, "Not a directory"},
+        {{"render", model, "-o", "/proc/archet-test.wav"}, "is the folder writable"},
+        // Inputs and devices that do not exist.
+        {{"render", "--take", (dir / "no-take").string(), "-o", out}, "cannot open the file"},
+        {{"render", model, "--gesture", (dir / "none.json").string(), "-o", out},
+         "cannot open the file"},
+        {{"play", model, "--haptic", "evdev:/dev/input/no-such-event", "--duration", "0.1"},
+         "cannot open the device"},
+        {{"play", model, "--haptic", "sdl:42", "--duration", "0.1"}, "there is no joystick 42"},
+        {{"compare", model, "--vary", "string.damping=1,2", "--gesture",
+          (dir / "none.json").string(), "-o", (dir / "cmp").string()},
+         "cannot open the file"},
     };
+    { std::ofstream(dir / "plain.txt") << "a file, not a folder"; }
     for (const auto& [arguments, expected] : cases) {
         SCOPED_TRACE(arguments[0] + " " + expected);
         const auto r = test::run_archet(arguments);
@@ -96,6 +110,29 @@ TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
         EXPECT_NE((r.err + r.out).find(expected), std::string::npos) << r.err << r.out;
     }
     EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_FALSE(std::filesystem::exists(dir / "cmp")) << "nothing written for a refused compare";
+}
+
+// A disk that fills up mid-write: a 64 kB tmpfs (mounting needs root; skipped otherwise).
+TEST(BadInput, AFullDiskLeavesTheUsersFileWhole) {
+    const auto dir = test::temp_dir("full-disk");
+    const auto small = dir / "small";
+    std::filesystem::create_directories(small);
+    if (std::system(
+            ("mount -t tmpfs -o size=64k tmpfs " + small.string() + " 2>/dev/null").c_str()) != 0)
+        GTEST_SKIP() << "cannot mount a small tmpfs here (needs root)";
+    { std::ofstream(small / "take.wav") << "the user's take"; }
+    const auto r =
+        test::run_archet({"render", test::resource("models/bowed-string-220.json").string(), "-o",
+                          (small / "take.wav").string()});
+    EXPECT_NE(r.status, 0);
+    EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("the existing file is untouched"), std::string::npos) << r.err;
+    EXPECT_EQ(test::read_file(small / "take.wav"), "the user's take");
+    int files = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(small)) ++files;
+    EXPECT_EQ(files, 1) << "no half-written temporary file left behind";
+    std::system(("umount " + small.string()).c_str());
 }
 
 }  // namespace

@@ -54,10 +54,10 @@ std::string read_file(const std::filesystem::path& path) {
     return s.str();
 }
 
-CommandResult run_archet(const std::vector<std::string>& arguments) {
+CommandResult run_command(const std::vector<std::string>& arguments) {
     const auto dir = temp_dir("run");
-    std::string command = quote(ARCHET_BINARY);
-    for (const auto& a : arguments) command += " " + quote(a);
+    std::string command;
+    for (const auto& a : arguments) command += (command.empty() ? "" : " ") + quote(a);
     command += " >" + quote((dir / "out").string()) + " 2>" + quote((dir / "err").string()) +
                " </dev/null";
     const int raw = std::system(command.c_str());
@@ -67,6 +67,12 @@ CommandResult run_archet(const std::vector<std::string>& arguments) {
     r.err = read_file(dir / "err");
     std::filesystem::remove_all(dir);
     return r;
+}
+
+CommandResult run_archet(const std::vector<std::string>& arguments) {
+    std::vector<std::string> command{ARCHET_BINARY};
+    command.insert(command.end(), arguments.begin(), arguments.end());
+    return run_command(command);
 }
 
 double zero_crossing_frequency(const std::vector<double>& x, double fs) {

@@ -24,7 +24,9 @@ struct CommandResult {
     int status = -1;
     std::string out, err;
 };
-/// Runs `archet` with the arguments (each shell-quoted), capturing both streams.
+/// Runs a program with the arguments (each shell-quoted), capturing both streams.
+CommandResult run_command(const std::vector<std::string>& arguments);
+/// The same for the `archet` built here.
 CommandResult run_archet(const std::vector<std::string>& arguments);
 
 std::string read_file(const std::filesystem::path& path);

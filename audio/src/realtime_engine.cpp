@@ -16,12 +16,14 @@
 #include <memory>
 #include <optional>
 #include <thread>
+#include <variant>
 
 #include "archet/compiled_model.hpp"
 #include "archet/denormal_guard.hpp"
 #include "archet/haptic_choice.hpp"
 #include "archet/haptic_loop.hpp"
 #include "archet/input_error.hpp"
+#include "archet/ipc/command_decoder.hpp"
 #include "archet/ipc/shared_segment.hpp"
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
@@ -228,32 +230,28 @@ class Engine final : public AudioRenderer {
     }
 
     void handle(const CommandFrame& c) {
-        if (std::memchr(c.text, '\0', kTextSize) == nullptr)
-            return fail(c, "command text is not NUL-terminated");
-        const std::string text(c.text);
-        switch (static_cast<Opcode>(c.opcode)) {
+        const auto decoded = decode_command(c);  // every field checked: it came from outside
+        if (const auto* why = std::get_if<std::string>(&decoded)) return fail(c, *why);
+        const DecodedCommand& d = std::get<DecodedCommand>(decoded);
+        switch (d.opcode) {
             case Opcode::LoadModel:
-                return load(c, text);
+                return load(c, d.text);
             case Opcode::SetParameter:
-                return set_parameter(c, text);
+                return set_parameter(c, d.text);
             case Opcode::Play:
                 return send({RealtimeCommand::Play, {}, 0, 0, 0}, c);
             case Opcode::Stop:
                 return send({RealtimeCommand::Stop, {}, 0, 0, 0}, c);
             case Opcode::Gesture:
-                if (!std::isfinite(c.slide) || !std::isfinite(c.press) || std::abs(c.slide) > 100 ||
-                    std::abs(c.press) > 100)
-                    return fail(c, "gesture positions must be finite and within ±100 m");
-                return send({RealtimeCommand::Gesture, {}, 0, c.slide, c.press}, c);
+                return send({RealtimeCommand::Gesture, {}, 0, d.slide, d.press}, c);
             case Opcode::Quit:
                 quit_.store(true);
                 return;
             case Opcode::StartTake:
-                return start_take(c, text);
+                return start_take(c, d.text);
             case Opcode::StopTake:
                 return send({RealtimeCommand::StopTake, {}, 0, 0, 0}, c);
         }
-        fail(c, "unknown opcode " + std::to_string(c.opcode));
     }
 
     void send(const RealtimeCommand& r, const CommandFrame& c) {
@@ -308,9 +306,7 @@ class Engine final : public AudioRenderer {
     void set_parameter(const CommandFrame& c, const std::string& name) {
         try {
             if (current_name_.empty()) throw InputError(name, "no model is loaded");
-            const auto dot = name.rfind('.');
-            if (dot == std::string::npos || dot == 0 || dot + 1 == name.size())
-                throw InputError(name, "expected ELEMENT.PARAMETER");
+            const auto dot = name.rfind('.');  // decode_command made sure there is one
             const std::string element = name.substr(0, dot), parameter = name.substr(dot + 1);
             Model check = current_model_;
             set_parameter_checked(check, element, parameter, c.value);
@@ -338,7 +334,6 @@ class Engine final : public AudioRenderer {
             if (live_take_)
                 throw InputError(folder, "a take is already being recorded into " +
                                              live_take_->folder().string() + "; stop it first");
-            if (folder.empty()) throw InputError("StartTake", "give the take's folder");
             std::vector<std::string> probes;
             for (const auto& p : current_resolver_.probes) probes.push_back(p.id);
             const std::size_t state_size = Simulation(current_resolver_).state_size();

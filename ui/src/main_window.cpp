@@ -148,6 +148,13 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     resize(1400, 900);
 }
 
+// The children go after this window's own part is gone; none of them may call back into it.
+MainWindow::~MainWindow() {
+    for (QObject* source : std::initializer_list<QObject*>{document_, &document_->undo_stack(),
+                                                           engine_, graph_, library_, pad_})
+        disconnect(source, nullptr, this, nullptr);
+}
+
 void MainWindow::build_menus() {
     auto action = [this](QMenu* menu, const QString& text, QKeySequence keys, auto slot) {
         QAction* a = menu->addAction(text);

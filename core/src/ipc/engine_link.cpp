@@ -36,9 +36,16 @@ EngineLink::~EngineLink() {
 
 void EngineLink::start() {
     const std::string block = std::to_string(options_.block_frames);
-    std::vector<std::string> args{
-        options_.archet_binary, "engine", "--shm", segment_.name(), "--buffer", block, "--haptic",
-        options_.haptic, "--audio", options_.audio};
+    std::vector<std::string> args{options_.archet_binary,
+                                  "engine",
+                                  "--shm",
+                                  segment_.name(),
+                                  "--buffer",
+                                  block,
+                                  "--haptic",
+                                  options_.haptic,
+                                  "--audio",
+                                  options_.audio};
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

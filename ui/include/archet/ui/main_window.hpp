@@ -31,6 +31,7 @@ class MainWindow : public QMainWindow {
 
   public:
     MainWindow(EngineClientOptions engine, QWidget* parent = nullptr);
+    ~MainWindow() override;
 
     /// Edits and plays `model` (its file, if any, for Save).
     void open_model(const Model& model, const QString& path = {});

@@ -1,0 +1,25 @@
+// The model loader on arbitrary bytes: parse, validate and, when valid, compile. Anything may
+// be refused (InputError), nothing may crash, hang or read out of bounds.
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "archet/compiled_model.hpp"
+#include "archet/input_error.hpp"
+#include "archet/model_file.hpp"
+#include "archet/model_validation.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    try {
+        archet::Model model = archet::parse_model(text, "fuzz");
+        archet::validate_model(model);
+        if (model.mats.size() < 200) archet::compile(model);  // small ones: compile too
+        // Saved and loaded again it must be the same model.
+        const std::string saved = archet::format_model(model);
+        if (archet::format_model(archet::parse_model(saved)) != saved) __builtin_trap();
+    } catch (const archet::InputError&) {
+    }
+    return 0;
+}
