@@ -18,9 +18,9 @@ for target in model_loader gesture_loader command_decoder; do
     gesture_loader) cp -n resources/gestures/*.json tests/data/bad-gestures/*.json "$corpus/" 2>/dev/null || true ;;
   esac
   if compgen -G "fuzz/regressions/$target/*" >/dev/null; then
-    "build-fuzz/fuzz/fuzz_$target" fuzz/regressions/"$target"/*
+    "build-fuzz/bin/fuzz_$target" fuzz/regressions/"$target"/*
   fi
   echo "fuzzing $target for $seconds s"
-  "build-fuzz/fuzz/fuzz_$target" -max_total_time="$seconds" -max_len=65536 -timeout=10 \
+  "build-fuzz/bin/fuzz_$target" -max_total_time="$seconds" -max_len=65536 -timeout=10 \
     -artifact_prefix="build-fuzz/crashes/$target-" "$corpus" 2>&1 | tail -3
 done

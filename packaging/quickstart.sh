@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The README's two commands. `quickstart.sh` installs what is missing, builds (Release) and
-# starts Archet; `quickstart.sh test` does the same set-up and runs the whole test suite.
+# starts Archet; `quickstart.sh test` does the same set-up and runs the whole test suite, then
+# again under the sanitizers, then the fuzzers for a bounded time.
 set -euo pipefail
 
 mode=${1:-run}
@@ -14,6 +15,15 @@ cmake --build --preset release
 case "$mode" in
   test)
     ctest --preset release
+    # Then under the sanitizers: AddressSanitizer + UndefinedBehaviorSanitizer over the whole
+    # suite, ThreadSanitizer over the rings, the engine and takes; then a bounded fuzzing run.
+    cmake --preset asan >/dev/null
+    cmake --build --preset asan
+    ctest --preset asan
+    cmake --preset tsan >/dev/null
+    cmake --build --preset tsan
+    ctest --preset tsan
+    ARCHET_FUZZ_SECONDS="${ARCHET_FUZZ_SECONDS:-30}" "$root/fuzz/run.sh"
     ;;
   run)
     studio="$root/build/bin/archet-studio"

@@ -228,6 +228,14 @@ void Simulation::compute_cross_link_forces() {
     }
 }
 
+// The AVX2 and plain builds of the chain loops, chosen at load time by an ifunc resolver.
+// ThreadSanitizer instruments the resolver, which runs before it is set up: there, one build.
+#if defined(__SANITIZE_THREAD__)
+#define ARCHET_AVX2_CLONES
+#else
+#define ARCHET_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
+#endif
+
 namespace {
 // The chain links and the integration of every MAT of a level: the bulk of the work, in two
 // loops the compiler vectorises. Built for AVX2 and plain x86-64 and chosen at load time;
@@ -247,8 +255,7 @@ inline void chain_loops(int n, const double* __restrict x, const double* __restr
     for (int s = 1; s <= n; ++s) xn[s] = 2.0 * x[s] - xp[s] + c[s] * (f[s - 1] - f[s]);
 }
 
-__attribute__((target_clones("avx2", "default"))) void integrate_chain(CompiledLevel& lv,
-                                                                       double* xn) {
+ARCHET_AVX2_CLONES void integrate_chain(CompiledLevel& lv, double* xn) {
     const int current = lv.current;
     const double* x = lv.buffer[current].data();
     const double* xp = lv.buffer[CompiledLevel::before(current)].data();
