@@ -2,7 +2,6 @@
 // model (string damping by default in the studio; any ELEMENT.PARAM, string.damping or
 // bow.position here). Writes a WAV and a CSV per value, comparison.json and comparison.png.
 
-#include <QApplication>
 #include <QDir>
 #include <cmath>
 #include <filesystem>
@@ -18,6 +17,7 @@
 #include "archet/sound_file_writer.hpp"
 #include "archet/ui/compare_figure.hpp"
 #include "commands.hpp"
+#include "figure_application.hpp"
 #include "model_loading.hpp"
 
 namespace archet::cli {
@@ -36,14 +36,8 @@ std::string file_stem(std::string label) {
     return label;
 }
 
-// The figure needs Qt's widgets; without a display they draw offscreen.
 void write_figure(const std::filesystem::path& path, const std::vector<ComparisonRun>& runs) {
-    if (qEnvironmentVariableIsEmpty("DISPLAY") && qEnvironmentVariableIsEmpty("WAYLAND_DISPLAY"))
-        qputenv("QT_QPA_PLATFORM", "offscreen");
-    int argc = 1;
-    char name[] = "archet";
-    char* argv[] = {name, nullptr};
-    QApplication app(argc, argv);
+    const FigureApplication app;
     ui::CompareFigure figure;
     figure.show_runs(runs);
     if (!figure.save(QString::fromStdString(path.string())))

@@ -20,5 +20,6 @@ void add_play_command(CLI::App& app, Action& action);
 void add_devices_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);
 void add_examples_command(CLI::App& app, Action& action);
+void add_map_command(CLI::App& app, Action& action);
 
 }  // namespace archet::cli

@@ -61,8 +61,9 @@ TEST(Audio, AnUnknownApiIsRefusedAndAMissingDeviceFallsBackToTheNullSink) {
     ::unsetenv("JACK_DEFAULT_SERVER");
     ASSERT_EQ(r.status, 0) << r.err;
     const std::string output = last_json_line(r.out)["output"].get<std::string>();
-    if (output.find("null sink") != std::string::npos)
+    if (output.find("null sink") != std::string::npos) {
         EXPECT_NE(r.err.find("no audio output opened (jack: "), std::string::npos) << r.err;
+    }
 }
 
 TEST(Audio, PlaysThroughTheSimulatedHapticDevice) {

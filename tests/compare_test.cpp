@@ -56,7 +56,9 @@ TEST(Compare, BowPositionMovesTheBowAndItsProbes) {
     const Lia* bow = model.find_lia("friction");
     EXPECT_EQ(bow->to, "s12") << "round(0.2 · 61)";
     for (const auto& p : model.probes)
-        if (p.id == "bow_point_x" || p.id == "bow_point_v") EXPECT_EQ(p.element, "s12");
+        if (p.id == "bow_point_x" || p.id == "bow_point_v") {
+            EXPECT_EQ(p.element, "s12");
+        }
     set_variant_parameter(model, "string.damping", 0.003);
     const auto links = string_links(model);
     EXPECT_EQ(links.size(), 61u) << "bridge–s1, s1–s2, …, s60–nut";

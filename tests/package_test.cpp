@@ -50,13 +50,15 @@ TEST(Package, InstallsAndRunsFromATemporaryRoot) {
          {"applications/archet-studio.desktop", "icons/hicolor/scalable/apps/archet-studio.svg",
           "metainfo/org.archet.Studio.metainfo.xml", "man/man1/archet.1"})
         EXPECT_TRUE(std::filesystem::exists(share / file)) << file;
-    if (run("command -v desktop-file-validate") == 0)
+    if (run("command -v desktop-file-validate") == 0) {
         EXPECT_EQ(
             run("desktop-file-validate " + (share / "applications/archet-studio.desktop").string()),
             0);
-    if (run("command -v man") == 0)
+    }
+    if (run("command -v man") == 0) {
         EXPECT_EQ(run("man -l " + (share / "man/man1/archet.1").string() + " | grep -q compare"),
                   0);
+    }
 }
 
 }  // namespace

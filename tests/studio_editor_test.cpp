@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <qcustomplot.h>
 #include <QApplication>
 #include <QDir>
 #include <QGraphicsView>
@@ -21,6 +22,8 @@
 #include "archet/ui/model_document.hpp"
 #include "archet/ui/modes_panel.hpp"
 #include "archet/ui/new_string_dialog.hpp"
+#include "archet/ui/playability_figure.hpp"
+#include "archet/ui/playability_panel.hpp"
 #include "test_support.hpp"
 
 namespace archet::ui {
@@ -210,6 +213,38 @@ TEST(NewStringDialogTest, ItsDefaultsBuildTheShippedString) {
     EXPECT_EQ(format_model(built),
               format_model(load_model_file(test::resource("models/bowed-string-220.json"))))
         << "the dialog's defaults are the builder's (and the shipped 220 Hz string's)";
+}
+
+TEST(PlayabilityPanelTest, ComputesInTheBackgroundMarksTheGestureAndPlaysAClickedPoint) {
+    const Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    PlayabilityPanel panel(model, [] { return std::make_pair(0.115, 0.15); });
+    panel.resize(1000, 800);
+    panel.show();
+    MapGrid grid;
+    grid.force_min = 0.005, grid.force_max = 1.5, grid.force_steps = 5;
+    grid.position_min = 0.08, grid.position_max = 0.2, grid.position_steps = 3;
+    grid.duration = 0.6;
+    panel.set_grid(grid);
+    QString error = "not yet";
+    QObject::connect(&panel, &PlayabilityPanel::computed, [&](const QString& e) { error = e; });
+    panel.compute();
+    EXPECT_TRUE(panel.busy());
+    for (int i = 0; i < 3000 && error == "not yet"; ++i) QTest::qWait(10);
+    ASSERT_TRUE(error.isEmpty()) << error.toStdString();
+    ASSERT_EQ(panel.points().size(), 15u);
+    QTest::qWait(300);  // the gesture's cross is drawn by the refresh timer
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    EXPECT_TRUE(panel.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-playability.png")));
+    // A click on a point plays it.
+    auto& plot = panel.figure().plot();
+    const MapPoint& p = panel.points()[7];
+    const QPoint pixel(static_cast<int>(plot.xAxis->coordToPixel(p.position)),
+                       static_cast<int>(plot.yAxis->coordToPixel(p.force)));
+    EXPECT_EQ(panel.figure().point_at(pixel), 7);
+    panel.listen(7);
+    QTest::qWait(100);
+    EXPECT_GT(panel.player().position(), 1000u);
+    panel.player().stop();
 }
 
 TEST(ModesPanelTest, FindsTheStringsFundamental) {

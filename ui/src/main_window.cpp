@@ -27,6 +27,7 @@
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
 #include "archet/model_validation.hpp"
+#include "archet/playability.hpp"
 #include "archet/ui/compare_view.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
@@ -35,6 +36,7 @@
 #include "archet/ui/model_document.hpp"
 #include "archet/ui/modes_panel.hpp"
 #include "archet/ui/new_string_dialog.hpp"
+#include "archet/ui/playability_panel.hpp"
 #include "archet/ui/scope_panel.hpp"
 #include "archet/ui/settings_dialog.hpp"
 #include "archet/ui/sound_examples_dialog.hpp"
@@ -215,6 +217,21 @@ void MainWindow::build_menus() {
     action(play, tr("Audio and &devices…"), QKeySequence(), [this] {
         SettingsDialog dialog(engine_->options(), this);
         if (dialog.exec() == QDialog::Accepted) engine_->reconfigure(dialog.options());
+    });
+    action(play, tr("Playa&bility map…"), QKeySequence(Qt::CTRL | Qt::Key_M), [this] {
+        // Where the player bows now: the model's bow position, the pad's press as a force.
+        auto here = [this]() -> std::optional<std::pair<double, double>> {
+            try {
+                const double force = force_for_press(document_->model(), pad_->press());
+                if (force <= 0) return std::nullopt;
+                return std::make_pair(bow_position(document_->model()), force);
+            } catch (const std::exception&) {
+                return std::nullopt;
+            }
+        };
+        auto* panel = new PlayabilityPanel(document_->model(), here, this);
+        panel->setAttribute(Qt::WA_DeleteOnClose);
+        panel->show();
     });
     action(play, tr("&Compare settings…"), QKeySequence(Qt::CTRL | Qt::Key_K), [this] {
         auto* view = new CompareView(document_->model(), this);

@@ -1,0 +1,70 @@
+#pragma once
+// The playability panel: the current model's map (Schelleng diagram) computed in the
+// background on every core, the current gesture's point on it, and a click on a run to hear it.
+
+#include <QDialog>
+#include <atomic>
+#include <functional>
+#include <optional>
+#include <thread>
+
+#include "archet/model.hpp"
+#include "archet/playability.hpp"
+#include "archet/ui/sound_player.hpp"
+
+class QDoubleSpinBox;
+class QLabel;
+class QProgressBar;
+class QPushButton;
+class QSpinBox;
+class QTimer;
+
+namespace archet::ui {
+
+class PlayabilityFigure;
+
+class PlayabilityPanel : public QDialog {
+    Q_OBJECT
+
+  public:
+    /// `gesture_point` says where the player bows now: (β, force), if anywhere.
+    PlayabilityPanel(const Model& model,
+                     std::function<std::optional<std::pair<double, double>>()> gesture_point,
+                     QWidget* parent = nullptr);
+    ~PlayabilityPanel() override;
+
+    void set_grid(const MapGrid& grid);
+    void compute();
+    void cancel() { cancel_.store(true); }
+    bool busy() const { return running_.load(); }
+    const std::vector<MapPoint>& points() const { return points_; }
+    PlayabilityFigure& figure() { return *figure_; }
+    SoundPlayer& player() { return player_; }
+    /// Renders grid point `index` again and plays it.
+    void listen(long index);
+
+  signals:
+    void computed(const QString& error);
+
+  private:
+    MapGrid grid_from_fields() const;
+    void finished(std::vector<MapPoint> points, QString error);
+
+    Model model_;
+    MapGrid grid_;
+    std::function<std::optional<std::pair<double, double>>()> gesture_point_;
+    QDoubleSpinBox *force_min_, *force_max_, *position_min_, *position_max_, *speed_, *duration_;
+    QSpinBox *force_steps_, *position_steps_;
+    QPushButton *compute_, *cancel_button_;
+    QProgressBar* progress_;
+    QLabel* message_;
+    PlayabilityFigure* figure_;
+    QTimer* refresh_;
+    std::vector<MapPoint> points_;
+    std::thread worker_;
+    std::atomic<bool> cancel_{false}, running_{false};
+    std::atomic<std::size_t> done_{0}, total_{0};
+    SoundPlayer player_;
+};
+
+}  // namespace archet::ui

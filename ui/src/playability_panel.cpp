@@ -1,0 +1,175 @@
+#include "archet/ui/playability_panel.hpp"
+
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QMetaObject>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QTimer>
+#include <QVBoxLayout>
+
+#include "archet/ui/playability_figure.hpp"
+
+namespace archet::ui {
+
+namespace {
+QDoubleSpinBox* number(double lo, double hi, double value, int decimals, const QString& suffix) {
+    auto* box = new QDoubleSpinBox;
+    box->setRange(lo, hi);
+    box->setDecimals(decimals);
+    box->setValue(value);
+    box->setSuffix(suffix);
+    return box;
+}
+}  // namespace
+
+PlayabilityPanel::PlayabilityPanel(
+    const Model& model, std::function<std::optional<std::pair<double, double>>()> gesture_point,
+    QWidget* parent)
+    : QDialog(parent), model_(model), gesture_point_(std::move(gesture_point)) {
+    setWindowTitle(tr("Playability map — %1").arg(QString::fromStdString(model.name)));
+    const MapGrid d;
+    force_min_ = number(1e-4, 10, 0.002, 4, tr(" N"));
+    force_max_ = number(1e-4, 10, 2.0, 3, tr(" N"));
+    force_steps_ = new QSpinBox;
+    force_steps_->setRange(1, 60);
+    force_steps_->setValue(12);
+    position_min_ = number(0.01, 0.49, 0.05, 3, {});
+    position_max_ = number(0.01, 0.49, 0.25, 3, {});
+    position_steps_ = new QSpinBox;
+    position_steps_->setRange(1, 40);
+    position_steps_->setValue(8);
+    speed_ = number(0.005, 2, d.speed, 3, tr(" m/s"));
+    duration_ = number(0.2, 10, d.duration, 2, tr(" s"));
+    compute_ = new QPushButton(tr("Compute"));
+    cancel_button_ = new QPushButton(tr("Cancel"));
+    cancel_button_->setEnabled(false);
+    progress_ = new QProgressBar;
+    message_ = new QLabel(tr("A steady stroke on every point; click a point to hear it."));
+    message_->setWordWrap(true);
+    figure_ = new PlayabilityFigure;
+    refresh_ = new QTimer(this);
+
+    auto* ranges = new QFormLayout;
+    auto row = [](QWidget* a, QWidget* b, QWidget* c) {
+        auto* h = new QHBoxLayout;
+        h->addWidget(a), h->addWidget(new QLabel("…")), h->addWidget(b);
+        h->addWidget(new QLabel(QObject::tr("in"))), h->addWidget(c);
+        return h;
+    };
+    ranges->addRow(tr("Bow force (log steps)"), row(force_min_, force_max_, force_steps_));
+    ranges->addRow(tr("Bow position β"), row(position_min_, position_max_, position_steps_));
+    auto* speed_row = new QHBoxLayout;
+    speed_row->addWidget(speed_), speed_row->addWidget(new QLabel(tr("for"))),
+        speed_row->addWidget(duration_);
+    ranges->addRow(tr("Bow speed"), speed_row);
+    auto* buttons = new QHBoxLayout;
+    buttons->addWidget(compute_), buttons->addWidget(cancel_button_),
+        buttons->addWidget(progress_, 1);
+    auto* layout = new QVBoxLayout(this);
+    layout->addLayout(ranges);
+    layout->addLayout(buttons);
+    layout->addWidget(message_);
+    layout->addWidget(figure_, 1);
+    connect(compute_, &QPushButton::clicked, this, &PlayabilityPanel::compute);
+    connect(cancel_button_, &QPushButton::clicked, this, &PlayabilityPanel::cancel);
+    connect(figure_, &PlayabilityFigure::point_clicked, this, &PlayabilityPanel::listen);
+    connect(refresh_, &QTimer::timeout, this, [this] {
+        progress_->setMaximum(static_cast<int>(total_.load()));
+        progress_->setValue(static_cast<int>(done_.load()));
+        if (!points_.empty()) figure_->mark(gesture_point_ ? gesture_point_() : std::nullopt);
+    });
+    refresh_->start(200);
+    resize(1000, 800);
+}
+
+PlayabilityPanel::~PlayabilityPanel() {
+    cancel_.store(true);
+    if (worker_.joinable()) worker_.join();
+}
+
+void PlayabilityPanel::set_grid(const MapGrid& g) {
+    force_min_->setValue(g.force_min), force_max_->setValue(g.force_max);
+    force_steps_->setValue(g.force_steps);
+    position_min_->setValue(g.position_min), position_max_->setValue(g.position_max);
+    position_steps_->setValue(g.position_steps);
+    speed_->setValue(g.speed), duration_->setValue(g.duration);
+}
+
+MapGrid PlayabilityPanel::grid_from_fields() const {
+    MapGrid g;
+    g.force_min = force_min_->value(), g.force_max = std::max(force_max_->value(), g.force_min);
+    g.force_steps = force_steps_->value();
+    g.position_min = position_min_->value();
+    g.position_max = std::max(position_max_->value(), g.position_min);
+    g.position_steps = position_steps_->value();
+    g.speed = speed_->value(), g.duration = duration_->value();
+    return g;
+}
+
+void PlayabilityPanel::compute() {
+    if (running_.load()) return;
+    if (worker_.joinable()) worker_.join();
+    grid_ = grid_from_fields();
+    cancel_.store(false), running_.store(true);
+    done_.store(0), total_.store(grid_.size());
+    compute_->setEnabled(false), cancel_button_->setEnabled(true);
+    message_->setText(tr("computing %1 points on every core…").arg(grid_.size()));
+    worker_ = std::thread([this, grid = grid_] {
+        std::vector<MapPoint> points;
+        QString error;
+        try {
+            points = play_map(
+                model_, grid, static_cast<int>(std::max(1u, std::thread::hardware_concurrency())),
+                0, 1, [this](std::size_t done, std::size_t) { done_.store(done); }, &cancel_);
+        } catch (const std::exception& e) {
+            error = QString::fromUtf8(e.what());
+        }
+        running_.store(false);
+        QMetaObject::invokeMethod(this, [this, points = std::move(points), error]() mutable {
+            finished(std::move(points), error);
+        });
+    });
+}
+
+void PlayabilityPanel::finished(std::vector<MapPoint> points, QString error) {
+    compute_->setEnabled(true), cancel_button_->setEnabled(false);
+    if (!error.isEmpty()) {
+        message_->setText(error);
+    } else {
+        points_ = std::move(points);
+        figure_->show_map(grid_, points_, model_);
+        figure_->mark(gesture_point_ ? gesture_point_() : std::nullopt);
+        int helmholtz = 0;
+        for (const auto& p : points_) helmholtz += p.analysis.regime == Regime::Helmholtz;
+        message_->setText(tr("%1 of %2 points in Helmholtz motion; the cross is where you bow now. "
+                             "Click a point to hear it.")
+                              .arg(helmholtz)
+                              .arg(points_.size()));
+    }
+    emit computed(error);
+}
+
+void PlayabilityPanel::listen(long index) {
+    if (index < 0 || static_cast<std::size_t>(index) >= grid_.size()) return;
+    try {
+        std::vector<double> sound;
+        const MapPoint p =
+            play_map_point(model_, grid_, static_cast<std::size_t>(index), 0, &sound);
+        player_.play(std::move(sound), model_.sample_rate);
+        message_->setText(tr("β %1, %2 N: %3 (%4 slips per period, %5 cents) — playing on %6")
+                              .arg(p.position, 0, 'f', 3)
+                              .arg(p.force, 0, 'g', 3)
+                              .arg(to_string(p.analysis.regime))
+                              .arg(p.analysis.slips_per_period, 0, 'f', 2)
+                              .arg(p.analysis.pitch_cents, 0, 'f', 1)
+                              .arg(player_.description()));
+    } catch (const std::exception& e) {
+        message_->setText(QString::fromUtf8(e.what()));
+    }
+}
+
+}  // namespace archet::ui
