@@ -47,7 +47,18 @@ void print_summary(const std::vector<MapPoint>& points) {
 int run_map(const MapArguments& a) {
     if (a.model.empty()) throw InputError("MODEL", "give a model file (or: archet map merge)");
     if (a.output.empty()) throw InputError("--output", "give the map's CSV file");
-    MapGrid grid = MapGrid::parse("force=" + a.force + " position=" + a.position);
+    // Each range on its own, so that a bad one is named by its option.
+    auto range = [](const std::string& option, const std::string& key, const std::string& value) {
+        try {
+            return MapGrid::parse(key + "=" + value);
+        } catch (const InputError&) {
+            throw InputError(option, "\"" + value + "\": expected MIN:MAX:STEPS, e.g. 0.01:1:8");
+        }
+    };
+    MapGrid grid = range("--force", "force", a.force);
+    const MapGrid positions = range("--position", "position", a.position);
+    grid.position_min = positions.position_min, grid.position_max = positions.position_max;
+    grid.position_steps = positions.position_steps;
     grid.speed = a.speed, grid.duration = a.duration;
     if (!(grid.force_min > 0 && grid.force_max >= grid.force_min && grid.force_steps >= 1))
         throw InputError("--force", "expected 0 < MIN ≤ MAX and STEPS ≥ 1 (N)");

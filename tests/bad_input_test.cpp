@@ -98,6 +98,15 @@ TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
         {{"play", model, "--haptic", "evdev:/dev/input/no-such-event", "--duration", "0.1"},
          "cannot open the device"},
         {{"play", model, "--haptic", "sdl:42", "--duration", "0.1"}, "there is no joystick 42"},
+        {{"map", model, "--force", "1:0.1:3", "-o", (dir / "map.csv").string()},
+         "expected 0 < MIN ≤ MAX"},
+        {{"map", model, "--position", "0.1:0.7:3", "-o", (dir / "map.csv").string()}, "MAX < 0.5"},
+        {{"map", model, "--force", "abc", "-o", (dir / "map.csv").string()},
+         "expected MIN:MAX:STEPS"},
+        {{"map", model, "--shard", "3/2", "-o", (dir / "map.csv").string()}, "0 ≤ I < N"},
+        {{"map", "merge", (dir / "none.csv").string(), "--model", model, "-o",
+          (dir / "map.csv").string()},
+         "cannot open the file"},
         {{"compare", model, "--vary", "string.damping=1,2", "--gesture",
           (dir / "none.json").string(), "-o", (dir / "cmp").string()},
          "cannot open the file"},
@@ -111,6 +120,7 @@ TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
     }
     EXPECT_FALSE(std::filesystem::exists(out));
     EXPECT_FALSE(std::filesystem::exists(dir / "cmp")) << "nothing written for a refused compare";
+    EXPECT_FALSE(std::filesystem::exists(dir / "map.csv")) << "nor for a refused map";
 }
 
 // A disk that fills up mid-write: a 64 kB tmpfs (mounting needs root; skipped otherwise).
