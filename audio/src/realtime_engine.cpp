@@ -280,7 +280,7 @@ class Engine final : public AudioRenderer {
                 loaded->shape.push_back(slot);
         }
         loaded->sequence = sequence;
-        loaded->generation = generation_;
+        loaded->generation = generation_;  // a reset of the current model (load() counts a new one)
         return loaded;
     }
 
@@ -292,8 +292,8 @@ class Engine final : public AudioRenderer {
                 throw InputError(path, "has " + std::to_string(model.probes.size()) +
                                            " probes; the engine streams at most " +
                                            std::to_string(kMaxProbes));
-            ++generation_;
             auto loaded = prepare(model, c.sequence);
+            loaded->generation = ++generation_;  // only once it compiled
             current_resolver_ = loaded->resolver;
             current_model_ = std::move(model);
             current_name_ = current_model_.name;
