@@ -208,6 +208,16 @@ TEST(Studio, AutosaveKeepsTheEditsAndTheLibraryOffersThem) {
     EXPECT_TRUE(offered);
 }
 
+TEST(Studio, WithoutAnEngineBinaryItSaysSoAndStaysUp) {
+    EngineClientOptions o = engine_options();
+    o.archet_binary = "/nonexistent/archet";
+    MainWindow window(o);
+    ASSERT_TRUE(window.open_file(test::resource("models/bowed-string-220.json").c_str()));
+    EXPECT_EQ(window.engine().status().state, "not running");
+    window.document().set_parameter("friction", "mu_s", 0.7);  // editing still works
+    EXPECT_EQ(window.document().model().find_lia("friction")->mu_static, 0.7);
+}
+
 TEST(Studio, TheLibraryListsTheShippedStrings) {
     MainWindow window(engine_options());
     window.set_resources_folder(QString::fromStdString(test::resource("").string()));

@@ -29,8 +29,17 @@ void EngineClient::launch() {
     o.audio = options_.audio.toStdString();
     o.block_frames = options_.buffer_frames;
     o.haptic = options_.haptic.toStdString();
-    link_ = std::make_unique<ipc::EngineLink>(o);
-    link_->start();
+    try {
+        link_ = std::make_unique<ipc::EngineLink>(o);
+        link_->start();
+    } catch (const std::exception& e) {  // no engine binary, no shared memory: say so, stay up
+        link_.reset();
+        status_.state = "not running";
+        emit message(tr("cannot start the engine (%1): %2")
+                         .arg(options_.archet_binary, QString::fromUtf8(e.what())));
+        emit status_changed();
+        return;
+    }
     status_.state = "starting";
     unresponsive_since_ = {};
     if (model_) {  // a restart: the same model, playing again if it was
