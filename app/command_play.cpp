@@ -47,17 +47,16 @@ struct PlayArguments {
 // The real-time side of `play`: steps the model a block at a time into the device's buffer.
 class Player final : public AudioRenderer {
   public:
-    Player(Simulation& sim, double budget_ns, int haptic_divider, const Gesture* gesture,
-           const HapticChoice& haptic, TakeRecorder* take)
+    Player(Simulation& sim, double budget_ns, const Gesture* gesture, const HapticChoice& haptic,
+           TakeRecorder* take)
         : sim_(sim),
           limiter_(sim.sample_rate()),
           budget_ns_(budget_ns),
-          haptic_divider_(haptic_divider),
           gesture_(gesture),
           take_(take) {
         if (haptic.device) haptic_loop_.emplace(*haptic.device, haptic.hand, sim);
-        for (const auto& level : sim.model().levels)
-            if (level.divider == haptic_divider) haptic_dt_ = level.dt;
+        if (const CompiledLevel* hand = hand_level(sim.model()))
+            haptic_divider_ = static_cast<std::uint64_t>(hand->divider), haptic_dt_ = hand->dt;
         if (take_) take_->gesture(0.0, played(0.0));  // where the gesture points start
     }
 
@@ -102,7 +101,7 @@ class Player final : public AudioRenderer {
     Simulation& sim_;
     OutputLimiter limiter_;
     double budget_ns_;
-    std::uint64_t haptic_divider_;
+    std::uint64_t haptic_divider_ = 1;  ///< the gesture points' level (see hand_level())
     // What the gesture points read at t: the device with a hand on it, else the gesture file.
     GestureSample played(double t) const {
         return haptic_loop_ || !gesture_ ? sim_.device_position() : gesture_->at(t);
@@ -110,7 +109,7 @@ class Player final : public AudioRenderer {
 
     const Gesture* gesture_;
     TakeRecorder* take_;
-    double haptic_dt_ = 0;
+    double haptic_dt_ = 1.0 / sim_.sample_rate();
     std::optional<HapticLoop> haptic_loop_;
     std::atomic<std::uint64_t> haptic_ticks_{0}, haptic_late_{0};
 };
@@ -135,9 +134,6 @@ int run_play(const PlayArguments& a) {
     // Without a device the gesture file plays the gesture points directly; with one, it moves
     // the hand that holds the device.
     sim.set_gesture_track(gesture && !haptic.device ? &*gesture : nullptr);
-    int haptic_divider = 1;
-    for (const auto& level : sim.model().levels)
-        if (!level.gestures.empty()) haptic_divider = std::max(haptic_divider, level.divider);
     std::unique_ptr<TakeRecorder> take;
     if (!a.take.empty()) {
         std::vector<std::string> probes;
@@ -145,7 +141,7 @@ int run_play(const PlayArguments& a) {
         take = std::make_unique<TakeRecorder>(a.take, model, sim.sample_rate(), probes);
         take->begin(0);  // from the model's start: no state needed to re-render it
     }
-    Player player(sim, 1e9 * output->buffer_frames() / output->sample_rate(), haptic_divider,
+    Player player(sim, 1e9 * output->buffer_frames() / output->sample_rate(),
                   gesture ? &*gesture : nullptr, haptic, take.get());
     const double duration =
         a.duration > 0 ? a.duration : (gesture ? gesture->duration() + 0.5 : 5.0);

@@ -269,11 +269,9 @@ class Engine final : public AudioRenderer {
         loaded->simulation->set_gesture_track(nullptr);  // live: the device or the pad plays it
         if (haptic_.device)
             loaded->haptic.emplace(*haptic_.device, haptic_.hand, *loaded->simulation);
-        for (const auto& level : loaded->resolver.levels)
-            if (!level.gestures.empty() &&
-                static_cast<std::uint64_t>(level.divider) >= loaded->haptic_divider)
-                loaded->haptic_divider = static_cast<std::uint64_t>(level.divider),
-                loaded->haptic_dt = level.dt;
+        if (const CompiledLevel* hand = hand_level(loaded->resolver))
+            loaded->haptic_divider = static_cast<std::uint64_t>(hand->divider),
+            loaded->haptic_dt = hand->dt;
         for (const auto& m : model.mats) {
             const MatSlot slot = loaded->resolver.mat_slots.at(m.id);
             if (slot.level == 0 && loaded->shape.size() < kMaxShapePoints)

@@ -274,6 +274,14 @@ CompiledModel compile(const Model& model, double sample_rate) {
     return c;
 }
 
+const CompiledLevel* hand_level(const CompiledModel& model) {
+    const CompiledLevel* slowest = nullptr;
+    for (const auto& level : model.levels)
+        if (!level.gestures.empty() && (!slowest || level.divider >= slowest->divider))
+            slowest = &level;
+    return slowest;
+}
+
 ParameterSlot CompiledModel::resolve_parameter(const std::string& element,
                                                const std::string& name) const {
     using K = ParameterSlot::Kind;

@@ -88,9 +88,9 @@ const Lia& bow_module(const Model& model) {
     throw InputError(model.name, "has no bow module (bow_friction) to map");
 }
 
-// The steady press (m of the hand's pressure axis) that gives normal force `force`: the hand's
-// link and the bow's buffer in series.
-double press_for_force(const Model& model, double force) {
+// Newtons of steady normal force per metre of the hand's pressure axis: the hand's link and
+// the bow's buffer in series.
+double press_stiffness(const Model& model) {
     const Lia& bow = bow_module(model);
     for (const auto& l : model.lias) {
         if (l.kind == LiaKind::BowFriction) continue;
@@ -98,17 +98,12 @@ double press_for_force(const Model& model, double force) {
         const Mat* hand = model.find_mat(other);
         if (!hand || hand->kind != MatKind::Gesture || hand->axis != GestureAxis::Press) continue;
         const double series = l.stiffness * bow.stiffness / (l.stiffness + bow.stiffness);
-        return force / series / hand->position_scale;
+        return series * hand->position_scale;
     }
     throw InputError(model.name,
                      "has no hand on the bow's pressure axis (a gesture point with "
                      "axis press linked to \"" +
                          bow.press + "\")");
-}
-
-// The hand's link and the bow's buffer in series, per metre of the hand's pressure axis.
-double press_stiffness(const Model& model) {
-    return 1.0 / press_for_force(model, 1.0);
 }
 
 double first_mode(const Model& model) {
@@ -206,7 +201,7 @@ MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t ind
     set_variant_parameter(variant, "bow.position", p.position);
     validate_model(variant);
     if (!(pitch > 0)) pitch = first_mode(variant);
-    const Gesture stroke = steady_bow_gesture(grid.speed, press_for_force(variant, p.force),
+    const Gesture stroke = steady_bow_gesture(grid.speed, p.force / press_stiffness(variant),
                                               grid.duration + 0.4);  // lifts after `duration`
     Simulation sim(compile(variant));
     sim.set_gesture_track(&stroke);
@@ -241,7 +236,7 @@ std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs
     for (double beta : {grid.position_min, grid.position_max}) {
         Model check = model;
         set_variant_parameter(check, "bow.position", beta);
-        press_for_force(check, grid.force_min);
+        press_stiffness(check);
     }
     std::vector<MapPoint> points(mine.size());
     std::atomic<std::size_t> next{0}, done{0};

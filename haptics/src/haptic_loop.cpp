@@ -4,10 +4,10 @@ namespace archet {
 
 HapticLoop::HapticLoop(HapticDevice& device, SimulatedHand* hand, const Simulation& sim)
     : hand_(hand), link_(device) {
-    for (const auto& level : sim.model().levels)
-        if (!level.gestures.empty() && level.divider >= divider_)
-            divider_ = level.divider, period_ = level.dt;
-    if (period_ == 0) period_ = 1.0 / sim.sample_rate();
+    if (const CompiledLevel* hand = hand_level(sim.model()))
+        divider_ = hand->divider, period_ = hand->dt;
+    else
+        period_ = 1.0 / sim.sample_rate();
 }
 
 void HapticLoop::before_step(Simulation& sim, GestureSample target) {

@@ -32,7 +32,11 @@ Inspector::Inspector(ModelDocument& document, QWidget* parent)
     layout->addWidget(warning_label_);
     layout->addWidget(stability_);
     layout->addStretch(1);
-    connect(&document_, &ModelDocument::changed, this, [this] { rebuild(); });
+    // Moving nodes changes no parameter: the stability limits (many eigenvalue problems)
+    // are not worth redoing at every step of a drag.
+    connect(&document_, &ModelDocument::changed, this, [this](ModelDocument::Change change) {
+        if (change != ModelDocument::Change::Layout) rebuild();
+    });
     rebuild();
 }
 

@@ -202,6 +202,9 @@ struct CompiledModel {
     ParameterSlot resolve_parameter(const std::string& element, const std::string& name) const;
 };
 
+/// The level the hand is read at: the slowest level with gesture points (null without any).
+const CompiledLevel* hand_level(const CompiledModel& model);
+
 /// Compiles a model (validate it first). `sample_rate` > 0 overrides the model's master
 /// clock; all rate levels follow it.
 CompiledModel compile(const Model& model, double sample_rate = 0);
