@@ -26,6 +26,7 @@
 #include "archet/ui/sound_examples_dialog.hpp"
 #include "archet/ui/takes_panel.hpp"
 #include "archet/ui/widget_export.hpp"
+#include "deadline_witness.hpp"
 #include "test_support.hpp"
 
 namespace archet::ui {
@@ -66,7 +67,10 @@ bool wait_until(const std::function<bool()>& done, int ms) {
 }
 
 TEST(Studio, PlaysTheShippedStringAndTheScopesFollowTheBow) {
-    MainWindow window(engine_options());
+    const EngineClientOptions options = engine_options();
+    test::DeadlineWitness machine(
+        std::chrono::nanoseconds(1'000'000'000LL * options.buffer_frames / 48000));
+    MainWindow window(options);
     ASSERT_TRUE(window.open_file(test::resource("models/bowed-string-220.json").c_str()));
     window.show();
     ASSERT_TRUE(wait_until([&] { return window.engine().status().state == "running"; }, 5000));
@@ -78,9 +82,13 @@ TEST(Studio, PlaysTheShippedStringAndTheScopesFollowTheBow) {
     EXPECT_GT(std::abs(h.latest(h.channel("friction_force"))), 1e-3) << "the pad bows the string";
     EXPECT_GT(window.scopes().drawn_samples(), 900) << "20 ms of the string at 48 kHz";
     EXPECT_EQ(window.engine().shape().size(), 65u) << "every MAT of the string's rate level";
-    EXPECT_EQ(window.engine().status().xruns, 0u);
     EXPECT_EQ(window.engine().status().realtime_allocations, 0u);
     save_screenshot(window, "studio-bowing.png");
+    machine.stop();
+    if (window.engine().status().xruns > 0 && machine.missed() > 0)
+        GTEST_SKIP() << window.engine().status().xruns
+                     << " xruns cannot be judged here: " << machine.describe();
+    EXPECT_EQ(window.engine().status().xruns, 0u) << machine.describe();
 }
 
 TEST(Studio, AKilledEngineIsRestartedWithTheSameModel) {

@@ -1,0 +1,79 @@
+#include "deadline_witness.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+#include <time.h>
+
+#include <cerrno>
+#include <sstream>
+
+namespace archet::test {
+namespace {
+
+std::int64_t monotonic_ns() {
+    timespec t{};
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+}
+
+}  // namespace
+
+DeadlineWitness::DeadlineWitness(std::chrono::nanoseconds period) : period_(period) {
+    cpu_set_t cpus;
+    CPU_ZERO(&cpus);
+    sched_getaffinity(0, sizeof cpus, &cpus);
+    for (int cpu = 0; cpu < CPU_SETSIZE; ++cpu)
+        if (CPU_ISSET(cpu, &cpus)) threads_.emplace_back([this, cpu] { watch(cpu); });
+}
+
+DeadlineWitness::~DeadlineWitness() {
+    stop();
+}
+
+void DeadlineWitness::stop() {
+    running_.store(false);
+    for (auto& t : threads_)
+        if (t.joinable()) t.join();
+}
+
+void DeadlineWitness::watch(int cpu) {
+    cpu_set_t only;
+    CPU_ZERO(&only);
+    CPU_SET(cpu, &only);
+    pthread_setaffinity_np(pthread_self(), sizeof only, &only);
+    // Above the audio threads (JACK's 10, the null sink's 70): nothing in the machine but the
+    // kernel can delay it, so its lateness is the platform's.
+    sched_param param{};
+    param.sched_priority = sched_get_priority_max(SCHED_FIFO);
+    if (pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) != 0) realtime_.store(false);
+
+    const std::int64_t period = period_.count();
+    std::int64_t deadline = monotonic_ns();
+    while (running_.load(std::memory_order_relaxed)) {
+        deadline += period;
+        const timespec t{static_cast<time_t>(deadline / 1'000'000'000),
+                         static_cast<long>(deadline % 1'000'000'000)};
+        while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &t, nullptr) == EINTR) {
+        }
+        const std::int64_t late = monotonic_ns() - deadline;
+        wakeups_.fetch_add(1, std::memory_order_relaxed);
+        auto worst = worst_ns_.load(std::memory_order_relaxed);
+        while (late > static_cast<std::int64_t>(worst) &&
+               !worst_ns_.compare_exchange_weak(worst, static_cast<std::uint64_t>(late))) {
+        }
+        if (late > period / 2) missed_.fetch_add(1, std::memory_order_relaxed);
+        if (late > period) deadline = monotonic_ns();  // start afresh, as a device would
+    }
+}
+
+std::string DeadlineWitness::describe() const {
+    std::ostringstream s;
+    s << "this machine's own " << (realtime() ? "top-priority SCHED_FIFO" : "normal-priority")
+      << " witness threads (one per CPU, waking every "
+      << static_cast<double>(period_.count()) / 1000.0 << " us) missed " << missed() << " of "
+      << wakeups_.load() << " deadlines by more than half a period; worst wake-up "
+      << worst_lateness_us() << " us late";
+    return s.str();
+}
+
+}  // namespace archet::test

@@ -1,0 +1,47 @@
+#pragma once
+// A witness of the machine's own real-time behaviour, for tests that assert "no xrun".
+//
+// An xrun means a thread missed a deadline. On a virtual machine whose host takes the virtual
+// CPUs away for milliseconds at a time (steal time), every program misses deadlines, however
+// little it does. The witness runs, on every CPU, a top-priority SCHED_FIFO thread that does
+// nothing but wake on the same period, and counts the wake-ups that came more than half a period
+// late (a stall that long, at the wrong moment, costs a period's deadline; a machine that keeps
+// real-time deadlines wakes such a thread within tens of microseconds). When the witness misses
+// none, an xrun is the program's; when it misses some, the machine could not have kept the deadline
+// for anyone, and a test says so instead of blaming the code.
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace archet::test {
+
+class DeadlineWitness {
+  public:
+    explicit DeadlineWitness(std::chrono::nanoseconds period);
+    ~DeadlineWitness();
+    DeadlineWitness(const DeadlineWitness&) = delete;
+    DeadlineWitness& operator=(const DeadlineWitness&) = delete;
+
+    void stop();
+
+    /// Wake-ups, on any CPU, later than half a period.
+    std::uint64_t missed() const { return missed_.load(); }
+    double worst_lateness_us() const { return static_cast<double>(worst_ns_.load()) / 1000.0; }
+    bool realtime() const { return realtime_.load(); }
+    /// One sentence for a test's message.
+    std::string describe() const;
+
+  private:
+    void watch(int cpu);
+
+    std::chrono::nanoseconds period_;
+    std::atomic<bool> running_{true}, realtime_{true};
+    std::atomic<std::uint64_t> missed_{0}, worst_ns_{0}, wakeups_{0};
+    std::vector<std::thread> threads_;
+};
+
+}  // namespace archet::test
