@@ -28,22 +28,32 @@ nlohmann::json last_json_line(const std::string& out) {
 constexpr std::chrono::nanoseconds kPeriodOf64Frames{1'000'000'000LL * 64 / 48000};
 
 // Xruns, late blocks and a block that took longer than it lasts are archet's only when the
-// machine itself kept the same deadlines; called last, because it may skip.
-void expect_every_deadline_kept(const nlohmann::json& stats, const test::DeadlineWitness& machine) {
-    const auto xruns = stats["xruns"].get<int>();
-    const auto late = stats["haptic_late_ticks"].get<int>();
+// machine itself kept the same deadlines. When it did not, each of archet's missed deadlines
+// needs one of the machine's: more than that is still archet's. Called last: it may skip.
+void expect_every_deadline_kept(const nlohmann::json& stats, const test::DeadlineWitness& machine,
+                                int haptic_ticks_per_block) {
+    const auto xruns = stats["xruns"].get<std::uint64_t>();
+    const auto late_blocks = stats["haptic_late_ticks"].get<std::uint64_t>() /
+                             static_cast<std::uint64_t>(haptic_ticks_per_block);
     const bool slow_block =
         stats["worst_callback_us"].get<double>() >= stats["callback_budget_us"].get<double>();
-    ::testing::Test::RecordProperty("xruns", xruns);
+    ::testing::Test::RecordProperty("xruns", static_cast<int>(xruns));
     ::testing::Test::RecordProperty("machine_missed_deadlines", static_cast<int>(machine.missed()));
-    if ((xruns > 0 || late > 0 || slow_block) && machine.missed() > 0)
-        GTEST_SKIP() << "deadlines cannot be judged here: " << machine.describe()
-                     << " (a virtual machine whose host takes its CPUs away); run on a machine "
-                        "that keeps real-time deadlines. archet's figures: "
-                     << stats.dump();
-    EXPECT_EQ(xruns, 0) << stats.dump() << "; " << machine.describe();
-    EXPECT_EQ(late, 0) << stats.dump() << "; " << machine.describe();
-    EXPECT_FALSE(slow_block) << stats.dump() << "; " << machine.describe();
+    const std::string figures = stats.dump() + "; " + machine.describe();
+    if (machine.missed() > 0) {
+        EXPECT_LE(xruns, machine.missed())
+            << "more xruns than the machine's own stalls: " << figures;
+        EXPECT_LE(late_blocks, machine.missed())
+            << "more late blocks than the machine's own stalls: " << figures;
+        if (xruns > 0 || late_blocks > 0 || slow_block)
+            GTEST_SKIP() << "zero xruns cannot be asked here, only as many as the machine's own "
+                            "stalls (a virtual machine whose host takes its CPUs away; run on one "
+                            "that keeps real-time deadlines): "
+                         << figures;
+    }
+    EXPECT_EQ(xruns, 0u) << figures;
+    EXPECT_EQ(late_blocks, 0u) << figures;
+    EXPECT_FALSE(slow_block) << figures;
 }
 
 TEST(Audio, PlaysIntoTheNullSinkInRealTimeWithoutAllocating) {
@@ -62,7 +72,7 @@ TEST(Audio, PlaysIntoTheNullSinkInRealTimeWithoutAllocating) {
     for (const char* key : {"callbacks", "xruns", "worst_callback_us", "callback_budget_us",
                             "haptic_ticks", "haptic_late_ticks"})
         ASSERT_TRUE(s.contains(key)) << key;
-    expect_every_deadline_kept(s, machine);
+    expect_every_deadline_kept(s, machine, 64 * 3000 / 48000);
 }
 
 TEST(Audio, AnUnknownApiIsRefusedAndAMissingDeviceFallsBackToTheNullSink) {
@@ -158,7 +168,7 @@ TEST_F(JackServer, SixtyMassStringAt64FramesForAMinuteWithoutXruns) {
     EXPECT_NE(s["output"].get<std::string>().find("jack"), std::string::npos) << r.err;
     EXPECT_NEAR(s["callbacks"].get<double>(), 60.0 * 48000 / 64, 750);
     EXPECT_EQ(s["realtime_allocations"].get<int>(), 0);
-    expect_every_deadline_kept(s, machine);
+    expect_every_deadline_kept(s, machine, 64 * 3000 / 48000);
 }
 
 }  // namespace

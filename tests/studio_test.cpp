@@ -85,10 +85,14 @@ TEST(Studio, PlaysTheShippedStringAndTheScopesFollowTheBow) {
     EXPECT_EQ(window.engine().status().realtime_allocations, 0u);
     save_screenshot(window, "studio-bowing.png");
     machine.stop();
-    if (window.engine().status().xruns > 0 && machine.missed() > 0)
-        GTEST_SKIP() << window.engine().status().xruns
-                     << " xruns cannot be judged here: " << machine.describe();
-    EXPECT_EQ(window.engine().status().xruns, 0u) << machine.describe();
+    // As in audio_test: on a machine that stalls, no more xruns than its own stalls.
+    const auto xruns = window.engine().status().xruns;
+    if (machine.missed() > 0) {
+        EXPECT_LE(xruns, machine.missed()) << machine.describe();
+        if (xruns > 0)
+            GTEST_SKIP() << xruns << " xruns: zero cannot be asked here; " << machine.describe();
+    }
+    EXPECT_EQ(xruns, 0u) << machine.describe();
 }
 
 TEST(Studio, AKilledEngineIsRestartedWithTheSameModel) {
