@@ -64,9 +64,11 @@ TEST(Audio, PlaysIntoTheNullSinkInRealTimeWithoutAllocating) {
     machine.stop();
     ASSERT_EQ(r.status, 0) << r.err;
     const auto s = last_json_line(r.out);
-    EXPECT_NEAR(s["callbacks"].get<double>(), 1.5 * 48000 / 64, 60);
+    // A stall the device would have heard as an xrun drops its blocks (a few per stall here).
+    EXPECT_NEAR(s["callbacks"].get<double>(), 1.5 * 48000 / 64, 60 + 4 * s["xruns"].get<double>());
     EXPECT_EQ(s["realtime_allocations"].get<int>(), 0);
-    EXPECT_NEAR(s["haptic_ticks"].get<double>(), 1.5 * 3000, 100) << "the gesture link at 3 kHz";
+    EXPECT_NEAR(s["haptic_ticks"].get<double>(), 1.5 * 3000, 100 + 16 * s["xruns"].get<double>())
+        << "the gesture link at 3 kHz, 4 ticks a block";
     EXPECT_NE(r.err.find("real-time scheduling"), std::string::npos)
         << "says whether it got it: " << r.err;
     for (const char* key : {"callbacks", "xruns", "worst_callback_us", "callback_budget_us",
@@ -106,7 +108,7 @@ TEST(Audio, PlaysThroughTheSimulatedHapticDevice) {
                           "--haptic", "sim", "--duration", "1", "--stats"});
     ASSERT_EQ(r.status, 0) << r.err;
     const auto s = last_json_line(r.out);
-    EXPECT_NEAR(s["haptic_ticks"].get<double>(), 3000, 100);
+    EXPECT_NEAR(s["haptic_ticks"].get<double>(), 3000, 100 + 16 * s["xruns"].get<double>());
     EXPECT_EQ(s["realtime_allocations"].get<int>(), 0)
         << "hand, link and model in the callback, allocation-free";
     const std::string model = test::resource("models/bowed-string-220.json").string();
@@ -166,7 +168,8 @@ TEST_F(JackServer, SixtyMassStringAt64FramesForAMinuteWithoutXruns) {
     ASSERT_EQ(r.status, 0) << r.err;
     const auto s = last_json_line(r.out);
     EXPECT_NE(s["output"].get<std::string>().find("jack"), std::string::npos) << r.err;
-    EXPECT_NEAR(s["callbacks"].get<double>(), 60.0 * 48000 / 64, 750);
+    EXPECT_NEAR(s["callbacks"].get<double>(), 60.0 * 48000 / 64,
+                750 + 4 * s["xruns"].get<double>());
     EXPECT_EQ(s["realtime_allocations"].get<int>(), 0);
     expect_every_deadline_kept(s, machine, 64 * 3000 / 48000);
 }

@@ -38,7 +38,8 @@ void expect_reproduced(const std::vector<std::string>& play_extra, const std::st
     auto r = test::run_archet(play);
     ASSERT_EQ(r.status, 0) << r.err;
     const sf_count_t frames = frames_of(dir / "take" / "take.wav");
-    ASSERT_GT(frames, 40000);
+    // Most of the second: a machine that stalls loses whole blocks, which the take never had.
+    ASSERT_GT(frames, 24000);
     std::ostringstream duration;
     duration << std::setprecision(17) << static_cast<double>(frames) / 48000.0;
     r = test::run_archet({"render", model, "--gesture", (dir / "take" / "gesture.json").string(),
