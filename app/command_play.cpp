@@ -65,10 +65,11 @@ class Player final : public AudioRenderer {
         const std::int64_t start = monotonic_ns();
         const std::uint64_t first = sim_.tick();
         for (int i = 0; i < frames; ++i) {
-            // A device: a simulated hand follows the gesture, the link closes the loop.
+            // A device: a simulated hand follows the gesture, the link closes the loop. One
+            // model for the whole run: its time is the device's clock.
             if (haptic_loop_)
-                haptic_loop_->before_step(sim_,
-                                          gesture_ ? gesture_->at(sim_.time()) : GestureSample{});
+                haptic_loop_->before_step(
+                    sim_, gesture_ ? gesture_->at(sim_.time()) : GestureSample{}, sim_.time());
             if (take_ && sim_.tick() % haptic_divider_ == 0) {
                 // The gesture points read their next position now, at time + their period.
                 const double t_next = sim_.time() + haptic_dt_;

@@ -27,6 +27,7 @@
 #include "archet/ui/takes_panel.hpp"
 #include "archet/ui/widget_export.hpp"
 #include "deadline_witness.hpp"
+#include "studio_test_support.hpp"
 #include "test_support.hpp"
 
 namespace archet::ui {
@@ -56,15 +57,7 @@ void bow(MainWindow& window, double seconds, double start_slide = -0.1) {
     }
 }
 
-bool wait_until(const std::function<bool()>& done, int ms) {
-    QElapsedTimer clock;
-    clock.start();
-    while (clock.elapsed() < ms) {
-        if (done()) return true;
-        QTest::qWait(10);
-    }
-    return done();
-}
+using test::wait_until;
 
 TEST(Studio, PlaysTheShippedStringAndTheScopesFollowTheBow) {
     const EngineClientOptions options = engine_options();
@@ -81,7 +74,7 @@ TEST(Studio, PlaysTheShippedStringAndTheScopesFollowTheBow) {
     EXPECT_GT(h.frames_received(), 40000u) << "the probe stream runs at the audio rate";
     EXPECT_GT(std::abs(h.latest(h.channel("friction_force"))), 1e-3) << "the pad bows the string";
     EXPECT_GT(window.scopes().drawn_samples(), 900) << "20 ms of the string at 48 kHz";
-    EXPECT_EQ(window.engine().shape().size(), 65u) << "every MAT of the string's rate level";
+    EXPECT_EQ(window.engine().shape().size(), 62u) << "the string's bridges and masses";
     EXPECT_EQ(window.engine().status().realtime_allocations, 0u);
     save_screenshot(window, "studio-bowing.png");
     machine.stop();
@@ -275,8 +268,13 @@ TEST(Studio, ThePadMapsTheMouseToTheBow) {
     QTest::mouseMove(&pad, centre + QPoint(100, 0));  // dragging
     EXPECT_NEAR(slide, 100.0 / 376 * 2 * GesturePad::kSlideRange, 1e-9);
     QTest::mouseRelease(&pad, Qt::LeftButton, {}, centre + QPoint(100, 0));
+    EXPECT_EQ(press, 0.0) << "letting go lifts the bow off the string";
     QTest::mouseMove(&pad, centre);  // no button held: the bow stays
     EXPECT_NEAR(slide, 100.0 / 376 * 2 * GesturePad::kSlideRange, 1e-9);
+    // Shift held as the mouse lets go keeps the bow pressed.
+    QTest::mousePress(&pad, Qt::LeftButton, {}, centre);
+    QTest::mouseRelease(&pad, Qt::LeftButton, Qt::ShiftModifier, centre);
+    EXPECT_NEAR(press, middle, 1e-12);
     QWheelEvent up(QPointF(200, 100), QPointF(200, 100), {}, QPoint(0, 120), Qt::NoButton, {},
                    Qt::NoScrollPhase, false);
     QApplication::sendEvent(&pad, &up);

@@ -21,16 +21,17 @@ namespace {
 
 // Shared measurement of callbacks (written on the real-time thread only).
 struct CallbackMeter {
-    std::atomic<std::uint64_t> callbacks{0}, xruns{0}, worst_ns{0};
+    std::atomic<std::uint64_t> callbacks{0}, xruns{0}, worst_ns{0}, busy_ns{0};
     void record(std::int64_t spent) {
         callbacks.fetch_add(1, std::memory_order_relaxed);
         const auto ns = static_cast<std::uint64_t>(std::max<std::int64_t>(spent, 0));
+        busy_ns.fetch_add(ns, std::memory_order_relaxed);
         if (ns > worst_ns.load(std::memory_order_relaxed))
             worst_ns.store(ns, std::memory_order_relaxed);
     }
     AudioStats stats(double budget_us) const {
         return {callbacks.load(), xruns.load(), static_cast<double>(worst_ns.load()) / 1000.0,
-                budget_us};
+                budget_us, static_cast<double>(busy_ns.load()) / 1000.0};
     }
 };
 

@@ -32,6 +32,7 @@
 #include "archet/parameter_smoother.hpp"
 #include "archet/realtime_allocations.hpp"
 #include "archet/simulation.hpp"
+#include "archet/string_points.hpp"
 #include "archet/take_recorder.hpp"
 
 namespace archet {
@@ -42,10 +43,9 @@ using namespace ipc;
 
 // Everything the real-time thread needs of a model, built by the control thread.
 struct LoadedModel {
-    Model model;
     CompiledModel resolver;  ///< names → slots, on the control thread
     std::unique_ptr<Simulation> simulation;
-    std::vector<MatSlot> shape;        ///< MATs of the fastest level, in model order
+    std::vector<MatSlot> shape;        ///< the string's MATs (string_points), in model order
     std::optional<HapticLoop> haptic;  ///< with a device: its loop and link for this model
     std::uint64_t haptic_divider = 1;  ///< the gesture points' level, for takes
     double haptic_dt = 0;
@@ -92,7 +92,10 @@ class Engine final : public AudioRenderer {
         haptic_ = open_haptic_device(options_.haptic);
         std::string warning;
         output_ = open_audio_output(options_.audio, &warning);
-        limiter_ = std::make_unique<OutputLimiter>(output_->sample_rate());
+        sample_rate_ = output_->sample_rate();
+        fade_samples_ = std::max(1, static_cast<int>(std::lround(kFadeSeconds * sample_rate_)));
+        header.sample_rate.store(sample_rate_);
+        limiter_ = std::make_unique<OutputLimiter>(sample_rate_);
         said +=
             output_->description() + ", " + std::to_string(output_->buffer_frames()) + " frames";
         if (!warning.empty()) said = warning + "; " + said;
@@ -146,11 +149,13 @@ class Engine final : public AudioRenderer {
                     // Both play for a few milliseconds and cross-fade: no click.
                     fading_from_ = running_model_;
                     fade_done_ = 0;
-                    next->simulation->set_device_position(
-                        running_model_->simulation->device_position());
                 } else {
                     retired_.store(running_model_, std::memory_order_release);
                 }
+                // The bow is where the hand holds it: the device's (or the pad's) position
+                // carries over, whichever model had it before.
+                next->simulation->set_device_position(
+                    running_model_ ? running_model_->simulation->device_position() : pad_);
                 end_take();  // the take's model is gone
                 running_model_ = next;
                 muted_ = false;
@@ -217,12 +222,30 @@ class Engine final : public AudioRenderer {
         const AudioStats audio = output_ ? output_->stats() : AudioStats{};
         f.xruns = audio.xruns;
         f.dropped = probes_.dropped();
-        f.load =
+        f.load = measure_load(audio);
+        f.worst_load =
             audio.callback_budget_us > 0 ? audio.worst_callback_us / audio.callback_budget_us : 0;
+        f.sample_rate = sample_rate_;
         f.energy = energy_.load();
         f.realtime_allocations = realtime_allocations();
         copy_text(f.text, text);
         status_.try_push(f);
+    }
+
+    // The real-time thread's share of its budget: the time it spent rendering over the wall
+    // time that passed, since the last measurement at least kLoadWindow ago (as JACK's DSP
+    // load). One block the machine stalled in weighs as what it is, a moment, not forever.
+    double measure_load(const AudioStats& audio) {
+        const auto now = std::chrono::steady_clock::now();
+        const double elapsed_us =
+            std::chrono::duration<double, std::micro>(now - load_measured_at_).count();
+        if (elapsed_us >= kLoadWindowUs) {
+            if (load_measured_at_ != std::chrono::steady_clock::time_point{})
+                load_ = (audio.busy_us - load_busy_us_) / elapsed_us;
+            load_measured_at_ = now;
+            load_busy_us_ = audio.busy_us;
+        }
+        return load_;
     }
 
     void fail(const CommandFrame& c, const std::string& message) {
@@ -262,7 +285,6 @@ class Engine final : public AudioRenderer {
     // Compiles a validated model into what the real-time thread runs: off the real-time path.
     std::unique_ptr<LoadedModel> prepare(const Model& model, std::uint32_t sequence) const {
         auto loaded = std::make_unique<LoadedModel>();
-        loaded->model = model;
         loaded->resolver =
             compile(model, output_->sample_rate());  // the device's clock is the master
         loaded->simulation = std::make_unique<Simulation>(loaded->resolver);
@@ -272,11 +294,9 @@ class Engine final : public AudioRenderer {
         if (const CompiledLevel* hand = hand_level(loaded->resolver))
             loaded->haptic_divider = static_cast<std::uint64_t>(hand->divider),
             loaded->haptic_dt = hand->dt;
-        for (const auto& m : model.mats) {
-            const MatSlot slot = loaded->resolver.mat_slots.at(m.id);
-            if (slot.level == 0 && loaded->shape.size() < kMaxShapePoints)
-                loaded->shape.push_back(slot);
-        }
+        for (const std::string& id : string_points(model))
+            if (loaded->shape.size() < kMaxShapePoints)
+                loaded->shape.push_back(loaded->resolver.mat_slots.at(id));
         loaded->sequence = sequence;
         loaded->generation = generation_;  // a reset of the current model (load() counts a new one)
         return loaded;
@@ -306,10 +326,8 @@ class Engine final : public AudioRenderer {
             if (current_name_.empty()) throw InputError(name, "no model is loaded");
             const auto dot = name.rfind('.');  // decode_command made sure there is one
             const std::string element = name.substr(0, dot), parameter = name.substr(dot + 1);
-            Model check = current_model_;
-            set_parameter_checked(check, element, parameter, c.value);
             const ParameterSlot slot = current_resolver_.resolve_parameter(element, parameter);
-            current_model_ = std::move(check);
+            set_parameter_checked(current_model_, element, parameter, c.value);
             RealtimeCommand r{RealtimeCommand::SetParameter, slot, c.value, 0, 0};
             if (live_take_) r.name = live_take_->parameter_name(name);
             send(r, c);
@@ -318,10 +336,18 @@ class Engine final : public AudioRenderer {
         }
     }
 
+    // The studio checked the value, but commands come from another process: names, range and
+    // stability again, in place, and the model as it was when the value is refused.
     static void set_parameter_checked(Model& model, const std::string& element,
                                       const std::string& parameter, double value) {
+        const double before = get_parameter(model, element, parameter);
         archet::set_parameter(model, element, parameter, value);  // names and range
-        validate_model(model);                                    // and stability
+        try {
+            validate_model(model);  // and stability
+        } catch (const std::exception&) {
+            archet::set_parameter(model, element, parameter, before);
+            throw;
+        }
     }
 
     // Opens the take's files here, off the real-time path, and hands the recorder over; the
@@ -413,8 +439,8 @@ class Engine final : public AudioRenderer {
         Simulation& old = *fading_from_->simulation;
         old.step();
         const double outgoing = old.output();
-        const double a = static_cast<double>(++fade_done_) / kFadeSamples;
-        if (fade_done_ >= kFadeSamples || !std::isfinite(outgoing)) {
+        const double a = static_cast<double>(++fade_done_) / fade_samples_;
+        if (fade_done_ >= fade_samples_ || !std::isfinite(outgoing)) {
             retired_.store(fading_from_, std::memory_order_release);
             fading_from_ = nullptr;
             return incoming;
@@ -422,16 +448,19 @@ class Engine final : public AudioRenderer {
         return (1.0 - a) * outgoing + a * incoming;
     }
 
+    double device_time() const { return static_cast<double>(device_ticks_) / sample_rate_; }
+
     void run_block(LoadedModel& m, float* out, int frames, int channels) {
         const DenormalGuard no_denormals;
         Simulation& sim = *m.simulation;
         const std::size_t probes = sim.probe_count();
         for (int i = 0; i < frames; ++i) {
             smoother_.advance(sim);
-            if (m.haptic) m.haptic->before_step(sim, pad_);
+            if (m.haptic) m.haptic->before_step(sim, pad_, device_time());
             if (recording_ && sim.tick() % m.haptic_divider == 0)  // the points read it now
                 recording_->gesture(sim.time() + m.haptic_dt, sim.device_position());
             sim.step();
+            ++device_ticks_;
             ProbeFrame f;
             f.tick = sim.tick();
             f.count = static_cast<std::uint32_t>(probes);
@@ -491,6 +520,9 @@ class Engine final : public AudioRenderer {
     LoadedModel* running_model_ = nullptr;  ///< owned by the real-time thread while it runs
     bool muted_ = false, playing_ = false;  ///< real-time thread only
     int shape_countdown_ = 0;               ///< real-time thread only
+    /// Real-time thread: samples played since the engine started, whatever the model. The
+    /// device's clock: a new model's own time starts again at 0, the device's does not.
+    std::uint64_t device_ticks_ = 0;
     GestureSample pad_{};                   ///< real-time thread: the pad's latest position
     TakeRecorder* waiting_take_ = nullptr;  ///< real-time thread: to begin when it can
     std::uint64_t waiting_generation_ = 0;  ///< real-time thread: the model it was made for
@@ -501,10 +533,16 @@ class Engine final : public AudioRenderer {
     static constexpr double kGlideSeconds = 0.01;  ///< parameter changes arrive over 10 ms
     LoadedModel* fading_from_ = nullptr;           ///< real-time thread: the model being faded out
     int fade_done_ = 0;
-    static constexpr int kFadeSamples = 480;  ///< 10 ms at 48 kHz
+    static constexpr double kFadeSeconds = 0.01;  ///< models swap over a 10 ms cross-fade
+    int fade_samples_ = 1;                        ///< kFadeSeconds at the device's rate
+    double sample_rate_ = 48000;  ///< the device's clock, the master: set once it is open
     /// A bowed string holds millijoules: a thousand joules means the numbers ran away.
     static constexpr double kRunawayEnergy = 1e3;
     std::atomic<std::uint64_t> tick_{0}, blocks_{0};
+    // Control thread: the load's last measurement.
+    static constexpr double kLoadWindowUs = 200'000;
+    std::chrono::steady_clock::time_point load_measured_at_{};
+    double load_busy_us_ = 0, load_ = 0;
     std::atomic<double> energy_{0};
     // Control thread's view of the model, for names and checks.
     Model current_model_;

@@ -10,13 +10,13 @@ HapticLoop::HapticLoop(HapticDevice& device, SimulatedHand* hand, const Simulati
         period_ = 1.0 / sim.sample_rate();
 }
 
-void HapticLoop::before_step(Simulation& sim, GestureSample target) {
-    const double t = sim.time();
+void HapticLoop::before_step(Simulation& sim, GestureSample target, double device_time) {
     if (hand_) {
         hand_->set_target(target);
-        hand_->advance(t, 1.0 / sim.sample_rate());
+        hand_->advance(device_time, 1.0 / sim.sample_rate());
     }
-    if (sim.tick() % static_cast<std::uint64_t>(divider_) == 0) link_.tick(sim, t, period_);
+    if (sim.tick() % static_cast<std::uint64_t>(divider_) == 0)
+        link_.tick(sim, device_time, period_);
 }
 
 }  // namespace archet

@@ -2,6 +2,8 @@
 
 #include <signal.h>
 
+#include <QTime>
+
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
 
@@ -29,6 +31,7 @@ void EngineClient::launch() {
     o.audio = options_.audio.toStdString();
     o.block_frames = options_.buffer_frames;
     o.haptic = options_.haptic.toStdString();
+    o.sample_rate = options_.sample_rate;
     try {
         link_ = std::make_unique<ipc::EngineLink>(o);
         link_->start();
@@ -42,7 +45,8 @@ void EngineClient::launch() {
     }
     status_.state = "starting";
     unresponsive_since_ = {};
-    if (model_) {  // a restart: the same model, playing again if it was
+    if (model_) {               // a restart: the same model, playing again if it was
+        write_session_model();  // with the parameters set since it was loaded
         link_->load_model(session_.filePath("model.json").toStdString());
         if (playing_) link_->play();
         link_->gesture(slide_, press_);
@@ -59,6 +63,7 @@ void EngineClient::reconfigure(EngineClientOptions options) {
 
 void EngineClient::restart(const QString& why) {
     emit engine_lost(why);
+    status_.last_restart = tr("%1 at %2").arg(why, QTime::currentTime().toString("HH:mm:ss"));
     status_.state = "restarting";
     status_.model.clear(), status_.device.clear();  // until the new engine says
     ++status_.restarts;
@@ -68,9 +73,14 @@ void EngineClient::restart(const QString& why) {
 }
 
 void EngineClient::load(const Model& model) {
-    write_file_atomically(session_.filePath("model.json").toStdString(), format_model(model));
     model_ = model;
+    write_session_model();
     if (link_) link_->load_model(session_.filePath("model.json").toStdString());
+}
+
+// The engine reads models from a file: written when it loads one, not at every parameter.
+void EngineClient::write_session_model() {
+    write_file_atomically(session_.filePath("model.json").toStdString(), format_model(*model_));
 }
 
 void EngineClient::play() {
@@ -89,13 +99,10 @@ void EngineClient::set_parameter(const QString& name, double value) {
     // Remembered, so that a restarted engine plays what the user set.
     const auto dot = name.lastIndexOf('.');
     try {
-        Model changed = *model_;
-        archet::set_parameter(changed, name.left(dot).toStdString(),
+        archet::set_parameter(*model_, name.left(dot).toStdString(),
                               name.mid(dot + 1).toStdString(), value);
-        write_file_atomically(session_.filePath("model.json").toStdString(), format_model(changed));
-        model_ = std::move(changed);
     } catch (const std::exception&) {
-        // The engine answers with the reason; nothing to remember.
+        // Unknown or out of range: set_parameter changed nothing; the engine says why.
     }
 }
 
@@ -161,6 +168,7 @@ void EngineClient::read_status() {
     while (status.try_pop(f)) {
         const QString text = QString::fromUtf8(f.text);
         status_.xruns = f.xruns, status_.dropped = f.dropped, status_.load = f.load;
+        status_.worst_load = f.worst_load, status_.sample_rate = f.sample_rate;
         status_.energy = f.energy, status_.realtime_allocations = f.realtime_allocations;
         changed = true;
         switch (static_cast<ipc::StatusKind>(f.kind)) {

@@ -31,7 +31,10 @@ void arrow(QPainter& p, QPointF from, QPointF to) {
 GesturePad::GesturePad(QWidget* parent) : QWidget(parent) {
     setMinimumSize(240, 160);
     setFocusPolicy(Qt::WheelFocus);
-    setToolTip(tr("Drag across to bow, down to press the bow into the string (or use the wheel)"));
+    setToolTip(
+        tr("Drag across to bow, down to press the bow into the string (or use the "
+           "wheel); let go to lift the bow, or hold Shift as you let go to keep it "
+           "pressed"));
 }
 
 QRectF GesturePad::area() const {
@@ -74,6 +77,16 @@ void GesturePad::mouseMoveEvent(QMouseEvent* e) {
     if (e->buttons() & Qt::LeftButton) move_to(e->position());
 }
 
+void GesturePad::mouseReleaseEvent(QMouseEvent* e) {
+    if (e->button() == Qt::LeftButton && !(e->modifiers() & Qt::ShiftModifier) && press_ > 0)
+        set_position(slide_, 0);
+}
+
+void GesturePad::set_notice(const QString& notice) {
+    notice_ = notice;
+    update();
+}
+
 void GesturePad::wheelEvent(QWheelEvent* e) {
     const double notches = e->angleDelta().y() / 120.0;
     set_position(slide_, press_ - notches * kWheelStep);  // wheel up lifts the bow
@@ -110,6 +123,13 @@ void GesturePad::paintEvent(QPaintEvent*) {
                    .arg(press_ * 1000, 0, 'f', 2)
                    .arg(slide_force_, 0, 'f', 2)
                    .arg(press_force_, 0, 'f', 2));
+    if (!notice_.isEmpty()) {
+        QColor veil = palette().window().color();
+        veil.setAlpha(220);
+        p.fillRect(a, veil);
+        p.setPen(palette().windowText().color());
+        p.drawText(a.adjusted(16, 16, -16, -16), Qt::AlignCenter | Qt::TextWordWrap, notice_);
+    }
 }
 
 }  // namespace archet::ui

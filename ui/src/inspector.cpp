@@ -8,7 +8,6 @@
 #include <QVBoxLayout>
 
 #include "archet/model_parameters.hpp"
-#include "archet/model_validation.hpp"
 #include "archet/stability.hpp"
 #include "archet/stability_limit.hpp"
 #include "archet/ui/model_document.hpp"
@@ -48,20 +47,16 @@ void Inspector::show_element(const QString& id) {
 }
 
 bool Inspector::edit(const QString& parameter, double value) {
-    const Model& current = document_.model();
-    Model candidate = current;
+    warning_.clear();
+    warning_label_->clear();
     try {
-        archet::set_parameter(candidate, element_.toStdString(), parameter.toStdString(), value);
-        validate_model(candidate);  // names, ranges, and the stability bound
+        document_.set_parameter(element_, parameter, value);  // names, range and stability
     } catch (const std::exception& e) {
         warning_ = tr("Not applied: %1").arg(QString::fromUtf8(e.what()));
         warning_label_->setText(warning_);
         rebuild();  // the field shows the value still in force
         return false;
     }
-    warning_.clear();
-    warning_label_->clear();
-    document_.set_parameter(element_, parameter, value);
     return true;
 }
 

@@ -6,12 +6,14 @@
 #include <QClipboard>
 #include <QCloseEvent>
 #include <QDateTime>
+#include <QDesktopServices>
 #include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
+#include <QScrollArea>
 #include <QSettings>
 #include <QSplitter>
 #include <QStandardPaths>
@@ -19,16 +21,18 @@
 #include <QTabWidget>
 #include <QToolBar>
 #include <QUndoStack>
+#include <QUrl>
 #include <QVBoxLayout>
-#include <set>
+#include <algorithm>
+#include <numeric>
 
 #include "archet/bowed_string.hpp"
-#include "archet/compiled_model.hpp"
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
 #include "archet/model_validation.hpp"
 #include "archet/playability.hpp"
 #include "archet/ui/compare_view.hpp"
+#include "archet/ui/elided_label.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
 #include "archet/ui/inspector.hpp"
@@ -40,36 +44,79 @@
 #include "archet/ui/scope_panel.hpp"
 #include "archet/ui/settings_dialog.hpp"
 #include "archet/ui/sound_examples_dialog.hpp"
+#include "archet/ui/studio_settings.hpp"
 #include "archet/ui/takes_panel.hpp"
 #include "archet/ui/widget_export.hpp"
 
 namespace archet::ui {
 
 namespace {
-constexpr double kScopeRate = 48000;  // the engine's master clock (its --rate)
-constexpr int kDisplayMs = 33;        // scopes at 30 frames a second
-constexpr int kAutosaveMs = 30000;
+constexpr int kDisplayMs = 33;          // scopes at 30 frames a second
+constexpr int kAutosaveDelayMs = 2000;  // after the newest edit
 constexpr int kRecentFiles = 8;
 
-// The engine's shape frames list the MATs of the fastest level in model order; the string is
-// those that are not part of a bow module (bow, pressure mass, surface).
-std::vector<int> string_points(const Model& model) {
-    std::set<std::string> bow_parts;
-    for (const auto& l : model.lias)
-        if (l.kind == LiaKind::BowFriction) bow_parts.insert({l.from, l.press, l.surface});
-    std::vector<int> points;
-    try {
-        const CompiledModel compiled = compile(model);
-        int entry = 0;
-        for (const auto& m : model.mats) {
-            if (compiled.mat_slots.at(m.id).level != 0) continue;
-            if (!bow_parts.count(m.id)) points.push_back(entry);
-            ++entry;
-        }
-    } catch (const std::exception&) {
-        // A model being edited may not compile yet; the scope shows nothing until it does.
-    }
-    return points;
+// What the pad can play on this model, when it cannot: said on the pad, not left silent.
+QString unplayable_reason(const Model& model) {
+    const bool hand = std::any_of(model.mats.begin(), model.mats.end(),
+                                  [](const Mat& m) { return m.kind == MatKind::Gesture; });
+    const bool bow = std::any_of(model.lias.begin(), model.lias.end(),
+                                 [](const Lia& l) { return l.kind == LiaKind::BowFriction; });
+    if (!hand)
+        return QObject::tr(
+            "This model has no hand (gesture point): the pad has nothing to move. "
+            "Add a Hand from the palette and link it to a mass.");
+    if (!bow)
+        return QObject::tr(
+            "This model has no bow: the pad moves its hand, but nothing bows "
+            "a string.");
+    return {};
+}
+QString shortcut_table() {
+    const std::pair<const char*, const char*> rows[] = {
+        {"Space", "play / stop"},
+        {"R", "record a take / stop recording"},
+        {"F", "freeze the scopes"},
+        {"Ctrl+E", "export the scopes (PNG, PDF)"},
+        {"Ctrl+M", "playability map"},
+        {"Ctrl+K", "compare settings"},
+        {"Ctrl+N", "new bowed string"},
+        {"Ctrl+O", "open a model"},
+        {"Ctrl+S", "save (a shipped model: save a copy in your documents)"},
+        {"Ctrl+Shift+S", "save as"},
+        {"Ctrl+Z / Ctrl+Shift+Z", "undo / redo"},
+        {"Ctrl+C / Ctrl+V", "copy / paste elements"},
+        {"Delete", "delete the selected elements"},
+        {"Ctrl+0", "fit the graph"},
+        {"Pad: drag", "bow across, press down; let go lifts the bow, Shift keeps it"},
+        {"F1", "this table"}};
+    QString html = "<table cellspacing=6>";
+    for (const auto& [keys, what] : rows)
+        html += QString("<tr><td><b>%1</b></td><td>%2</td></tr>")
+                    .arg(QString(keys).toHtmlEscaped(), QObject::tr(what).toHtmlEscaped());
+    return html + "</table>";
+}
+
+QString about_text() {
+    return QObject::tr(
+               "<h3>Archet studio %1</h3>"
+               "<p>Physically modelled bowed strings in the CORDIS-ANIMA mass-interaction "
+               "formalism, played live through a force-feedback gesture.</p>"
+               "<p>Built with Qt %2 (LGPL-3.0), QCustomPlot (GPL-3.0), Eigen (MPL-2.0), "
+               "RtAudio (MIT-style), libsndfile (LGPL-2.1), nlohmann-json (MIT), CLI11 "
+               "(BSD-3-Clause), SDL2 (zlib), libevdev (MIT) and JACK (LGPL-2.1).</p>")
+        .arg(QApplication::applicationVersion().isEmpty() ? QStringLiteral(ARCHET_VERSION)
+                                                          : QApplication::applicationVersion(),
+             qVersion());
+}
+
+// The user guide: installed with the package, else in the source tree beside the binaries.
+QString user_guide_path() {
+    const QString beside = QApplication::applicationDirPath();
+    for (const QString& candidate :
+         {QStringLiteral("/usr/share/doc/archet/user-guide.md"),
+          beside + "/../../docs/user-guide.md", beside + "/../share/doc/archet/user-guide.md"})
+        if (QFileInfo::exists(candidate)) return QFileInfo(candidate).canonicalFilePath();
+    return {};
 }
 }  // namespace
 
@@ -85,15 +132,27 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     library_ = new LibraryPanel;
 
     auto* left = new QSplitter(Qt::Vertical);
+    left->setObjectName("graph-scopes");
     left->addWidget(graph_);
     left->addWidget(scopes_);
     left->setStretchFactor(0, 1);
     left->setStretchFactor(1, 3);
-    auto* tabs = new QTabWidget;
-    tabs->addTab(inspector_, tr("Inspector"));
-    tabs->addTab(modes_, tr("Modes"));
-    tabs->addTab(takes_, tr("Takes"));
-    tabs->addTab(library_, tr("Library"));
+    tabs_ = new QTabWidget;
+    // In scroll areas: what a tab shows (a long inspector, a long message) never widens the
+    // side column, resizes the window or moves the pad under the cursor.
+    auto scrolled = [](QWidget* page) {
+        auto* area = new QScrollArea;
+        area->setWidget(page);
+        area->setWidgetResizable(true);
+        area->setFrameShape(QFrame::NoFrame);
+        area->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+        return area;
+    };
+    tabs_->addTab(scrolled(inspector_), tr("Inspector"));
+    tabs_->addTab(modes_, tr("Modes"));
+    tabs_->addTab(takes_, tr("Takes"));
+    tabs_->addTab(library_, tr("Library"));
+    auto* tabs = tabs_;
     auto* side = new QWidget;
     auto* side_layout = new QVBoxLayout(side);
     side_layout->addWidget(
@@ -101,14 +160,16 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     side_layout->addWidget(pad_, 2);
     side_layout->addWidget(tabs, 3);
     auto* split = new QSplitter;
+    split->setObjectName("main-side");
     split->addWidget(left);
     split->addWidget(side);
     split->setStretchFactor(0, 3);
     split->setStretchFactor(1, 1);
     setCentralWidget(split);
+    splitters_ = {left, split};
 
     engine_state_ = new QLabel;
-    device_ = new QLabel;
+    device_ = new ElidedLabel;
     meters_ = new QLabel;
     statusBar()->addPermanentWidget(engine_state_);
     statusBar()->addPermanentWidget(device_, 1);
@@ -144,10 +205,23 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     connect(&autosave_timer_, &QTimer::timeout, this, [this] {
         if (document_->modified()) autosave();
     });
+    // The newest edit is autosaved a moment after it is made, not up to 30 s later.
+    autosave_timer_.setSingleShot(true);
+    connect(document_, &ModelDocument::changed, this, [this] {
+        if (document_->modified()) autosave_timer_.start(kAutosaveDelayMs);
+    });
+    recording_clock_ = new QLabel;
+    recording_clock_->setObjectName("recording");
+    recording_clock_->setStyleSheet(
+        "QLabel { color: white; background: #c0392b; border-radius: 4px; padding: 1px 8px; "
+        "font-weight: bold; }");
+    recording_clock_->hide();
+    statusBar()->insertPermanentWidget(0, recording_clock_);
+    connect(&recording_timer_, &QTimer::timeout, this, &MainWindow::show_recording_time);
     engine_->start();
     display_.start(kDisplayMs);
-    autosave_timer_.start(kAutosaveMs);
     resize(1400, 900);
+    restore_layout();
 }
 
 // The children go after this window's own part is gone; none of them may call back into it.
@@ -170,7 +244,8 @@ void MainWindow::build_menus() {
     recent_ = file->addMenu(tr("Open &recent"));
     fill_recent_menu();
     action(file, tr("&Save"), QKeySequence::Save, &MainWindow::save);
-    action(file, tr("Save &as…"), QKeySequence::SaveAs, &MainWindow::save_as);
+    action(file, tr("Save &as…"), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S),
+           &MainWindow::save_as);
     file->addSeparator();
     action(file, tr("Render sound &examples…"), QKeySequence(), [this] {
         auto* dialog = new SoundExamplesDialog(
@@ -216,7 +291,9 @@ void MainWindow::build_menus() {
     play->addSeparator();
     action(play, tr("Audio and &devices…"), QKeySequence(), [this] {
         SettingsDialog dialog(engine_->options(), this);
-        if (dialog.exec() == QDialog::Accepted) engine_->reconfigure(dialog.options());
+        if (dialog.exec() != QDialog::Accepted) return;
+        engine_->reconfigure(dialog.options());
+        save_engine_options(dialog.options());
     });
     action(play, tr("Playa&bility map…"), QKeySequence(Qt::CTRL | Qt::Key_M), [this] {
         // Where the player bows now: the model's bow position, the pad's press as a force.
@@ -238,6 +315,20 @@ void MainWindow::build_menus() {
         view->setAttribute(Qt::WA_DeleteOnClose);
         view->show();
     });
+
+    QMenu* help = menuBar()->addMenu(tr("&Help"));
+    action(help, tr("&Keyboard shortcuts"), QKeySequence(Qt::Key_F1),
+           [this] { QMessageBox::information(this, tr("Keyboard shortcuts"), shortcut_table()); });
+    action(help, tr("&User guide"), QKeySequence(), [this] {
+        const QString guide = user_guide_path();
+        if (guide.isEmpty() || !QDesktopServices::openUrl(QUrl::fromLocalFile(guide)))
+            statusBar()->showMessage(
+                tr("The user guide is docs/user-guide.md in the source tree, or "
+                   "/usr/share/doc/archet/user-guide.md once installed."),
+                10000);
+    });
+    action(help, tr("&About Archet studio"), QKeySequence(),
+           [this] { QMessageBox::about(this, tr("About Archet studio"), about_text()); });
 
     auto* bar = addToolBar(tr("Transport"));
     bar->setObjectName("transport");
@@ -303,12 +394,40 @@ void MainWindow::open_model(const Model& model, const QString& path) {
     if (!engine_->playing()) toggle_play();
 }
 
+bool MainWindow::may_drop_edits() {
+    if (!document_->modified()) return true;
+    const auto answer = QMessageBox::question(
+        this, tr("Unsaved changes"),
+        tr("%1 has changes that are not saved. Save them first?")
+            .arg(QString::fromStdString(document_->model().name)),
+        QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel, QMessageBox::Save);
+    if (answer == QMessageBox::Cancel) return false;
+    if (answer == QMessageBox::Save) {
+        save();
+        return !document_->modified();  // saving was cancelled or failed: keep the edits
+    }
+    return true;
+}
+
+bool MainWindow::is_template(const QString& path) const {
+    if (path.isEmpty() || resources_folder_.isEmpty()) return false;
+    const QString shipped = QFileInfo(resources_folder_).canonicalFilePath();
+    const QString file = QFileInfo(path).canonicalFilePath();
+    return !shipped.isEmpty() && file.startsWith(shipped + "/");
+}
+
+QString MainWindow::documents_folder() const {
+    return QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation) + "/Archet";
+}
+
 bool MainWindow::open_file(const QString& path) {
+    if (!may_drop_edits()) return false;
     try {
         Model model = load_model_file(path.toStdString());
         validate_model(model);
         open_model(model, path);
         remember_recent(path);
+        save_last_model_path(QFileInfo(path).absoluteFilePath());
         return true;
     } catch (const std::exception& e) {
         QMessageBox::warning(this, tr("Cannot open the model"), QString::fromUtf8(e.what()));
@@ -322,6 +441,7 @@ bool MainWindow::save_to(const QString& path) {
         document_->set_path(path);
         document_->mark_saved();
         remember_recent(path);
+        save_last_model_path(QFileInfo(path).absoluteFilePath());
         statusBar()->showMessage(tr("saved %1").arg(path), 5000);
         return true;
     } catch (const std::exception& e) {
@@ -345,6 +465,7 @@ QString MainWindow::autosave() {
 }
 
 void MainWindow::new_string() {
+    if (!may_drop_edits()) return;
     NewStringDialog dialog(this);
     if (dialog.exec() != QDialog::Accepted) return;
     try {
@@ -361,33 +482,72 @@ void MainWindow::open_dialog() {
     if (!path.isEmpty()) open_file(path);
 }
 
+// A shipped model is a template: saving it writes a copy among the user's documents.
 void MainWindow::save() {
-    if (document_->path().isEmpty()) return save_as();
+    if (document_->path().isEmpty() || is_template(document_->path())) return save_as();
     save_to(document_->path());
 }
 
 void MainWindow::save_as() {
-    QString path = QFileDialog::getSaveFileName(this, tr("Save the model"), document_->path(),
+    QString suggested = document_->path();
+    if (suggested.isEmpty() || is_template(suggested)) {
+        QDir().mkpath(documents_folder() + "/models");
+        const QString name = QString::fromStdString(document_->model().name);
+        suggested =
+            documents_folder() + "/models/" + (name.isEmpty() ? "untitled" : name) + ".json";
+    }
+    QString path = QFileDialog::getSaveFileName(this, tr("Save the model"), suggested,
                                                 tr("Archet models (*.json)"));
     if (path.isEmpty()) return;
     if (!path.endsWith(".json")) path += ".json";
+    if (is_template(path)) {
+        QMessageBox::warning(this, tr("Cannot save"),
+                             tr("%1 is a shipped model, kept as it came. Save your version "
+                                "under another name or folder.")
+                                 .arg(path));
+        return;
+    }
     save_to(path);
 }
 
 void MainWindow::closeEvent(QCloseEvent* e) {
-    if (document_->modified()) {
-        const auto answer =
-            QMessageBox::question(this, tr("Unsaved changes"),
-                                  tr("Save the changes to %1 before closing?")
-                                      .arg(QString::fromStdString(document_->model().name)),
-                                  QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel);
-        if (answer == QMessageBox::Cancel) return e->ignore();
-        if (answer == QMessageBox::Save) {
-            save();
-            if (document_->modified()) return e->ignore();
-        }
-    }
+    if (!may_drop_edits()) return e->ignore();
+    save_layout();
     e->accept();
+}
+
+// Window geometry, splitters, the open tab and the graph's zoom, as the user left them.
+void MainWindow::save_layout() {
+    QSettings s;
+    s.beginGroup("window");
+    s.setValue("geometry", saveGeometry());
+    s.setValue("state", saveState());
+    for (QSplitter* splitter : splitters_)
+        s.setValue("splitter/" + splitter->objectName(), splitter->saveState());
+    s.setValue("tab", tabs_->currentIndex());
+    s.setValue("zoom", graph_->transform().m11());
+    s.setValue("zoom_model", QString::fromStdString(document_->model().name));
+}
+
+void MainWindow::restore_layout() {
+    QSettings s;
+    s.beginGroup("window");
+    if (s.contains("geometry")) restoreGeometry(s.value("geometry").toByteArray());
+    if (s.contains("state")) restoreState(s.value("state").toByteArray());
+    for (QSplitter* splitter : splitters_)
+        if (s.contains("splitter/" + splitter->objectName()))
+            splitter->restoreState(s.value("splitter/" + splitter->objectName()).toByteArray());
+    tabs_->setCurrentIndex(s.value("tab", 0).toInt());
+    saved_zoom_ = s.value("zoom", 0.0).toDouble();
+    saved_zoom_model_ = s.value("zoom_model").toString();
+}
+
+void MainWindow::restore_zoom() {
+    if (saved_zoom_ <= 0 || saved_zoom_model_ != QString::fromStdString(document_->model().name))
+        return;
+    QTransform t = graph_->transform();
+    graph_->setTransform(QTransform::fromScale(saved_zoom_, saved_zoom_) *
+                         QTransform::fromTranslate(t.dx(), t.dy()));
 }
 
 void MainWindow::copy() {
@@ -402,23 +562,27 @@ void MainWindow::paste() {
 
 // The engine follows the document: a parameter glides in, anything else reloads the model.
 // A model that does not validate stays in the editor (the engine keeps the last good one).
+// The document has already checked a parameter edit; only a new structure is validated here.
 void MainWindow::model_changed(int change, const QString& element, const QString& parameter) {
     update_title();
-    if (static_cast<ModelDocument::Change>(change) == ModelDocument::Change::Layout) return;
+    const auto kind = static_cast<ModelDocument::Change>(change);
+    if (kind == ModelDocument::Change::Layout) return;
     const Model& model = document_->model();
-    try {
-        validate_model(model);
-    } catch (const std::exception& e) {
-        statusBar()->showMessage(tr("not played yet: %1").arg(QString::fromUtf8(e.what())), 10000);
-        return;
-    }
-    if (static_cast<ModelDocument::Change>(change) == ModelDocument::Change::Parameter) {
+    if (kind == ModelDocument::Change::Parameter && !engine_behind_) {
         engine_->set_parameter(
             element + "." + parameter,
             get_parameter(model, element.toStdString(), parameter.toStdString()));
         return;
     }
-    string_points_ = string_points(model);
+    try {
+        validate_model(model);
+    } catch (const std::exception& e) {
+        engine_behind_ = true;
+        statusBar()->showMessage(tr("Not played yet: %1").arg(QString::fromUtf8(e.what())), 10000);
+        return;
+    }
+    engine_behind_ = false;
+    pad_->set_notice(unplayable_reason(model));
     engine_->load(model);
 }
 
@@ -438,16 +602,38 @@ void MainWindow::toggle_take() {
         statusBar()->showMessage(tr("finishing the take in %1").arg(take_), 5000);
         take_.clear();
         record_->setText(tr("&Record take"));
+        show_recording_time();
         return;
     }
     take_ = takes_folder_ + "/" + QDateTime::currentDateTime().toString("yyyy-MM-dd-HHmmss-zzz");
     QDir().mkpath(take_);
     engine_->start_take(take_);
     record_->setText(tr("Stop &recording"));
+    recording_since_.start();
+    recording_timer_.start(200);
+    show_recording_time();
+}
+
+// While a take records: a red "● REC m:ss" in the status bar, gone when it stops.
+void MainWindow::show_recording_time() {
+    if (take_.isEmpty()) {
+        recording_timer_.stop();
+        recording_clock_->hide();
+        return;
+    }
+    const qint64 seconds = recording_since_.elapsed() / 1000;
+    recording_clock_->setText(
+        tr("● REC %1:%2").arg(seconds / 60).arg(seconds % 60, 2, 10, QLatin1Char('0')));
+    recording_clock_->show();
 }
 
 void MainWindow::refresh() {
-    scopes_->refresh(engine_->history(), engine_->shape(), string_points_, kScopeRate);
+    const double rate = engine_->status().sample_rate;  // the engine's, once it says
+    if (rate <= 0) return;
+    // The engine's shape frames hold the string's points only (string_points()).
+    std::vector<int> string(engine_->shape().size());
+    std::iota(string.begin(), string.end(), 0);
+    scopes_->refresh(engine_->history(), engine_->shape(), string, rate);
     const ProbeHistory& h = engine_->history();
     pad_->set_feedback(h.latest(h.channel("hand_force_slide")),
                        h.latest(h.channel("hand_force_press")));
@@ -455,13 +641,26 @@ void MainWindow::refresh() {
 
 void MainWindow::show_status() {
     const EngineStatus& s = engine_->status();
-    engine_state_->setText(tr("engine: %1").arg(s.state));
-    device_->setText(s.device);
-    meters_->setText(tr("xruns %1   load %2 %   energy %3 mJ%4")
+    QString state = tr("engine: %1").arg(s.state);
+    if (s.state == "running" && s.sample_rate > 0)
+        state += tr(" at %1 kHz").arg(s.sample_rate / 1000, 0, 'g', 4);
+    engine_state_->setText(state);
+    QString device = s.device;
+    if (s.restarts > 0)
+        device = (s.restarts == 1 ? tr("The engine was restarted once: %1.")
+                                  : tr("The engine was restarted %2 times, last: %1."))
+                     .arg(s.last_restart)
+                     .arg(s.restarts) +
+                 "  " + device;
+    device_->set_full_text(device);
+    meters_->setText(tr("xruns %1   load %2 %   energy %3 mJ")
                          .arg(s.xruns)
                          .arg(100 * s.load, 0, 'f', 1)
-                         .arg(1000 * s.energy, 0, 'f', 3)
-                         .arg(s.restarts ? tr("   restarts %1").arg(s.restarts) : QString()));
+                         .arg(1000 * s.energy, 0, 'f', 3));
+    meters_->setToolTip(
+        tr("Load: the real-time thread's share of its time budget over the last 0.2 s "
+           "(the longest block so far took %1 % of a block's period).")
+            .arg(100 * s.worst_load, 0, 'f', 0));
 }
 
 void MainWindow::update_title() {

@@ -9,6 +9,7 @@
 #include "archet/input_error.hpp"
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
+#include "archet/model_validation.hpp"
 
 namespace archet::ui {
 
@@ -48,6 +49,28 @@ class ModelEdit : public QUndoCommand {
     int merge_;
 };
 
+// One parameter's change: its value before and after, not two copies of the model (a long
+// string edited value by value would otherwise copy it twice per keystroke).
+class ParameterEdit : public QUndoCommand {
+  public:
+    ParameterEdit(ModelDocument& document, QString element, QString name, double before,
+                  double after)
+        : QUndoCommand(QObject::tr("Set %1.%2").arg(element, name)),
+          document_(document),
+          element_(std::move(element)),
+          name_(std::move(name)),
+          before_(before),
+          after_(after) {}
+
+    void redo() override { document_.apply_parameter(element_, name_, after_); }
+    void undo() override { document_.apply_parameter(element_, name_, before_); }
+
+  private:
+    ModelDocument& document_;
+    QString element_, name_;
+    double before_, after_;
+};
+
 ModelDocument::ModelDocument(QObject* parent) : QObject(parent) {}
 
 void ModelDocument::reset(const Model& model, const QString& path) {
@@ -66,6 +89,11 @@ void ModelDocument::apply(const Model& model, Change change, const QString& elem
                           const QString& name) {
     model_ = model;
     emit changed(change, element, name);
+}
+
+void ModelDocument::apply_parameter(const QString& element, const QString& name, double value) {
+    archet::set_parameter(model_, element.toStdString(), name.toStdString(), value);
+    emit changed(Change::Parameter, element, name);
 }
 
 void ModelDocument::push(const QString& text, Model after, Change change, const QString& element,
@@ -175,9 +203,18 @@ void ModelDocument::move(const QStringList& ids, QPointF delta, bool continuing_
 }
 
 void ModelDocument::set_parameter(const QString& id, const QString& name, double value) {
-    Model after = model_;
-    archet::set_parameter(after, id.toStdString(), name.toStdString(), value);  // may throw
-    push(tr("Set %1.%2").arg(id, name), std::move(after), Change::Parameter, id, name);
+    const std::string element = id.toStdString(), parameter = name.toStdString();
+    const double before = get_parameter(model_, element, parameter);  // throws for a bad name
+    // Checked once, in place: the range, then the whole model with the new value (stability).
+    archet::set_parameter(model_, element, parameter, value);
+    try {
+        validate_model(model_);
+    } catch (const std::exception&) {
+        archet::set_parameter(model_, element, parameter, before);
+        throw;
+    }
+    archet::set_parameter(model_, element, parameter, before);  // the edit's redo() sets it
+    undo_.push(new ParameterEdit(*this, id, name, before, value));
 }
 
 void ModelDocument::set_rate(const QString& id, const QString& rate) {

@@ -25,6 +25,13 @@ SettingsDialog::SettingsDialog(const EngineClientOptions& current, QWidget* pare
     buffer_->setRange(16, 4096);
     buffer_->setSuffix(tr(" frames"));
     buffer_->setValue(current.buffer_frames);
+    rate_ = new QComboBox;
+    for (const double hz : {44100.0, 48000.0, 88200.0, 96000.0})
+        rate_->addItem(tr("%1 kHz").arg(hz / 1000, 0, 'g', 4), hz);
+    rate_->setCurrentIndex(std::max(0, rate_->findData(current.sample_rate)));
+    rate_->setToolTip(
+        tr("Asked of the device; the model runs at the rate the device gives "
+           "(the status bar says which)"));
     haptic_ = new QComboBox;
     haptic_->addItem(tr("The pad moves a simulated hand"), "sim");
     haptic_->addItem(tr("The pad sets the bow's position directly"), "none");
@@ -48,6 +55,7 @@ SettingsDialog::SettingsDialog(const EngineClientOptions& current, QWidget* pare
     auto* form = new QFormLayout(this);
     form->addRow(tr("Audio output"), audio_);
     form->addRow(tr("Buffer"), buffer_);
+    form->addRow(tr("Sample rate"), rate_);
     form->addRow(tr("Bow held by"), haptic_);
     form->addRow(note);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
@@ -60,6 +68,7 @@ EngineClientOptions SettingsDialog::options() const {
     EngineClientOptions o = current_;
     o.audio = audio_->currentData().toString();
     o.buffer_frames = buffer_->value();
+    o.sample_rate = rate_->currentData().toDouble();
     o.haptic = haptic_->currentData().toString();
     return o;
 }

@@ -31,6 +31,7 @@ struct AudioStats {
     std::uint64_t xruns = 0;        ///< reported by the device, or missed deadlines
     double worst_callback_us = 0;   ///< longest time spent rendering one block
     double callback_budget_us = 0;  ///< one block's duration
+    double busy_us = 0;             ///< all the time spent rendering blocks so far
 };
 
 class AudioOutput {

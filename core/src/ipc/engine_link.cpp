@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -36,6 +37,8 @@ EngineLink::~EngineLink() {
 
 void EngineLink::start() {
     const std::string block = std::to_string(options_.block_frames);
+    std::ostringstream rate;
+    rate << options_.sample_rate;
     std::vector<std::string> args{options_.archet_binary,
                                   "engine",
                                   "--shm",
@@ -45,7 +48,9 @@ void EngineLink::start() {
                                   "--haptic",
                                   options_.haptic,
                                   "--audio",
-                                  options_.audio};
+                                  options_.audio,
+                                  "--rate",
+                                  rate.str()};
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

@@ -16,7 +16,10 @@ class HapticLoop {
     HapticLoop(HapticDevice& device, SimulatedHand* hand, const Simulation& simulation);
 
     /// `target` moves a simulated hand; a real device ignores it (the player's hand is real).
-    void before_step(Simulation& simulation, GestureSample target);
+    /// `device_time` (s) is the device's own clock: it runs on when the engine swaps in a new
+    /// model, whose own time starts again at 0. A device judged on model time would wait for
+    /// the old model's time to come round again before it reported a new position.
+    void before_step(Simulation& simulation, GestureSample target, double device_time);
 
     const HapticLink& link() const { return link_; }
 

@@ -18,6 +18,7 @@ struct EngineLinkOptions {
     int block_frames = 64;
     std::string audio = "null";   ///< passed to the engine's --audio (auto: the first that opens)
     std::string haptic = "none";  ///< passed to the engine's --haptic
+    double sample_rate = 48000;   ///< Hz, passed to the engine's --rate (a device may differ)
     std::uint32_t probe_capacity = 1u << 16;
     std::chrono::milliseconds unresponsive_after{300};
 };
@@ -51,6 +52,8 @@ class EngineLink {
     SpscRing<ShapeFrame> shapes() { return segment_.shapes(); }
     SpscRing<StatusFrame> status() { return segment_.status(); }
     SegmentHeader& header() { return segment_.header(); }
+    /// Hz: the rate the engine runs at, once its device is open (0 before).
+    double sample_rate() { return segment_.header().sample_rate.load(); }
 
     /// The studio is alive: call it from the GUI's timer.
     void heartbeat() { segment_.header().studio_heartbeat.fetch_add(1); }

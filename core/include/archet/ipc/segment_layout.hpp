@@ -10,9 +10,11 @@
 
 namespace archet::ipc {
 
-inline constexpr std::uint32_t kMagic = 0x54454843;   // "CHET" little-endian
-inline constexpr std::uint16_t kProtocolVersion = 2;  ///< 2: takes (StartTake, StopTake)
-inline constexpr std::uint16_t kMinimumCompatibleVersion = 1;
+inline constexpr std::uint32_t kMagic = 0x54454843;  // "CHET" little-endian
+/// 2: takes (StartTake, StopTake); 3: the running sample rate in the header and status frames,
+/// the load as a share of the budget.
+inline constexpr std::uint16_t kProtocolVersion = 3;
+inline constexpr std::uint16_t kMinimumCompatibleVersion = 3;
 
 inline constexpr std::size_t kMaxProbes = 16;        ///< probe values per probe frame
 inline constexpr std::size_t kMaxShapePoints = 512;  ///< string positions per shape frame
@@ -53,10 +55,13 @@ struct SegmentHeader {
     alignas(64) std::atomic<std::uint64_t> studio_heartbeat;  ///< counts up while the studio lives
     alignas(64) std::atomic<std::uint64_t> engine_heartbeat;  ///< counts up while the engine lives
     std::atomic<std::uint32_t> engine_state;                  ///< an EngineState
-    RingDescriptor commands;                                  ///< studio → engine: CommandFrame
-    RingDescriptor probes;  ///< engine → studio: ProbeFrame, one per audio sample
-    RingDescriptor shapes;  ///< engine → studio: ShapeFrame, the string's positions
-    RingDescriptor status;  ///< engine → studio: StatusFrame
+    /// Hz: the rate the engine runs the model at, its device's (0 until the device is open).
+    /// Every time constant of the studio (scopes, spectra, fades) derives from it.
+    std::atomic<double> sample_rate;
+    RingDescriptor commands;  ///< studio → engine: CommandFrame
+    RingDescriptor probes;    ///< engine → studio: ProbeFrame, one per audio sample
+    RingDescriptor shapes;    ///< engine → studio: ShapeFrame, the string's positions
+    RingDescriptor status;    ///< engine → studio: StatusFrame
 };
 
 // ---- Frames --------------------------------------------------------------------------------
@@ -111,7 +116,9 @@ struct StatusFrame {
     std::uint64_t blocks;   ///< audio blocks processed
     std::uint64_t xruns;    ///< blocks that missed their deadline
     std::uint64_t dropped;  ///< probe frames dropped because the studio read too slowly
-    double load;            ///< worst fraction of the block period used lately
+    double load;            ///< share of the real-time budget used over the last 0.2 s
+    double worst_load;      ///< the longest block so far, as a fraction of one block's period
+    double sample_rate;     ///< Hz: the rate the model runs at (the device's)
     double energy;          ///< J stored in the model
     std::uint64_t realtime_allocations;  ///< made on the real-time thread: must stay 0
     char text[kTextSize];                ///< model name, or what went wrong
@@ -120,6 +127,7 @@ struct StatusFrame {
 static_assert(std::atomic<std::uint64_t>::is_always_lock_free,
               "rings need lock-free 64-bit atomics");
 static_assert(std::atomic<std::uint32_t>::is_always_lock_free);
+static_assert(std::atomic<double>::is_always_lock_free);
 static_assert(sizeof(RingControl) == 192);
 static_assert(alignof(SegmentHeader) == 64);
 static_assert(sizeof(CommandFrame) == 288);

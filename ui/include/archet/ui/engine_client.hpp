@@ -26,7 +26,8 @@ struct EngineClientOptions {
     /// sim: the pad moves a simulated hand (mass and damping) that holds the bow, so the
     /// mouse's coarse steps reach the string smoothly; or a joystick (evdev:PATH, sdl:N).
     QString haptic = "sim";
-    int poll_ms = 15;  ///< display rate
+    double sample_rate = 48000;  ///< Hz asked of the device; the engine says what it got
+    int poll_ms = 15;            ///< display rate
 };
 
 struct EngineStatus {
@@ -34,9 +35,12 @@ struct EngineStatus {
     QString device;             ///< what the engine said about its audio and scheduling
     QString model;              ///< the model it plays
     std::uint64_t xruns = 0, dropped = 0, realtime_allocations = 0;
-    double load = 0;    ///< worst fraction of the block period used lately
-    double energy = 0;  ///< J stored in the string
+    double load = 0;         ///< share of the real-time budget used lately (1: all of it)
+    double worst_load = 0;   ///< the longest block so far, as a fraction of a block's period
+    double sample_rate = 0;  ///< Hz the engine runs at (0 until it says)
+    double energy = 0;       ///< J stored in the string
     int restarts = 0;
+    QString last_restart;  ///< why and when the engine was last restarted, in words
 };
 
 class EngineClient : public QObject {
@@ -52,9 +56,14 @@ class EngineClient : public QObject {
     const EngineClientOptions& options() const { return options_; }
     /// Plays `model` (written to the session folder, then loaded by the engine).
     void load(const Model& model);
+    /// The model the engine plays, with the parameters set since it was loaded.
+    const std::optional<Model>& model() const { return model_; }
     void play();
     void stop();
     bool playing() const { return playing_; }
+    /// Glides a parameter of the playing model to `value` (already validated by the caller;
+    /// the engine checks it again). Remembered for a restarted engine, without a copy of the
+    /// model or a file written per edit.
     void set_parameter(const QString& element_dot_parameter, double value);
     void gesture(double slide, double press);
     void start_take(const QString& folder);
@@ -76,6 +85,7 @@ class EngineClient : public QObject {
     void launch();
     void restart(const QString& why);
     void read_status();
+    void write_session_model();
 
     EngineClientOptions options_;
     std::unique_ptr<ipc::EngineLink> link_;

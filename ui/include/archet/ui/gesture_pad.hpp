@@ -3,6 +3,7 @@
 // wheel) presses the bow into the string. The force the model feeds back is drawn as arrows
 // at the bow: the visual stand-in for a force-feedback device.
 
+#include <QString>
 #include <QWidget>
 
 namespace archet::ui {
@@ -19,6 +20,9 @@ class GesturePad : public QWidget {
     double press() const { return press_; }
     /// The force the model returns on each axis (N), drawn at the bow.
     void set_feedback(double slide_force, double press_force);
+    /// Why the pad cannot bow the model (no hand, no bow), written across it; empty when it can.
+    void set_notice(const QString& notice);
+    const QString& notice() const { return notice_; }
 
     static constexpr double kSlideRange = 0.15;                     ///< m either side of centre
     static constexpr double kPressMin = -0.003, kPressMax = 0.006;  ///< m; below 0 lifted
@@ -32,6 +36,8 @@ class GesturePad : public QWidget {
     void paintEvent(QPaintEvent*) override;
     void mousePressEvent(QMouseEvent*) override;
     void mouseMoveEvent(QMouseEvent*) override;
+    /// Letting go lifts the bow off the string (press back to 0), unless Shift holds it there.
+    void mouseReleaseEvent(QMouseEvent*) override;
     void wheelEvent(QWheelEvent*) override;
 
   private:
@@ -42,6 +48,7 @@ class GesturePad : public QWidget {
 
     double slide_ = 0, press_ = 0;
     double slide_force_ = 0, press_force_ = 0;
+    QString notice_;
 };
 
 }  // namespace archet::ui

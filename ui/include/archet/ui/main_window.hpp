@@ -4,19 +4,24 @@
 // the status bar. Every edit goes through the ModelDocument (undoable) and reaches the
 // running engine: a parameter glides in, a new element reloads the model.
 
+#include <QElapsedTimer>
 #include <QMainWindow>
 #include <QString>
 #include <QTimer>
+#include <vector>
 
 #include "archet/model.hpp"
 #include "archet/ui/engine_client.hpp"
 
 class QAction;
+class QSplitter;
+class QTabWidget;
 class QLabel;
 class QMenu;
 
 namespace archet::ui {
 
+class ElidedLabel;
 class GesturePad;
 class GraphView;
 class Inspector;
@@ -53,8 +58,18 @@ class MainWindow : public QMainWindow {
     /// Where takes go (a new dated folder per take) and where autosaves go.
     void set_takes_folder(const QString& folder);
     void set_autosave_folder(const QString& folder) { autosave_folder_ = folder; }
-    /// Writes the autosave now (the timer does it every 30 s when there are changes).
+    /// Writes the autosave now (a timer does it 2 s after the newest edit).
     QString autosave();
+    /// Asks before unsaved edits would be dropped (Save / Discard / Cancel); true to go on.
+    bool may_drop_edits();
+    /// A shipped model (under the resources folder): Save writes a copy elsewhere.
+    bool is_template(const QString& path) const;
+    /// Where Save As proposes a shipped model's copy: the user's documents, Archet/.
+    QString documents_folder() const;
+    /// The zoom the graph had when the studio last closed, if it showed the same model.
+    void restore_zoom();
+    void save();
+    void save_as();
 
   protected:
     void closeEvent(QCloseEvent*) override;
@@ -64,8 +79,9 @@ class MainWindow : public QMainWindow {
     QToolBar* build_palette();
     void new_string();
     void open_dialog();
-    void save();
-    void save_as();
+    void save_layout();
+    void restore_layout();
+    void show_recording_time();
     void toggle_play();
     void toggle_take();
     void copy();
@@ -87,14 +103,23 @@ class MainWindow : public QMainWindow {
     TakesPanel* takes_;
     LibraryPanel* library_;
     QLabel* engine_state_;
-    QLabel* device_;
+    ElidedLabel* device_;
     QLabel* meters_;
     QAction* play_;
     QAction* record_;
     QMenu* recent_;
     QTimer display_;
     QTimer autosave_timer_;
-    std::vector<int> string_points_;  ///< which shape-frame entries are the string
+    QTimer recording_timer_;
+    QElapsedTimer recording_since_;
+    QLabel* recording_clock_;
+    QTabWidget* tabs_;
+    std::vector<QSplitter*> splitters_;
+    double saved_zoom_ = 0;
+    QString saved_zoom_model_;
+    /// The document changed into a model that does not validate: the engine still plays an
+    /// older one, so the next valid change reloads rather than glides.
+    bool engine_behind_ = false;
     QString takes_folder_;
     QString resources_folder_;
     QString autosave_folder_;

@@ -41,7 +41,9 @@ class ModelDocument : public QObject {
     void remove(const QStringList& ids);
     /// Moves MATs on the canvas; a drag's successive moves merge into one step.
     void move(const QStringList& ids, QPointF delta, bool continuing_drag);
-    /// Throws InputError (with the reason) for an unknown name or a value out of range.
+    /// Throws InputError (with the reason) for an unknown name, a value out of range, or one
+    /// that makes the model fail validation (e.g. the scheme's stability bound). A parameter
+    /// change keeps a valid model valid: listeners need not check it again.
     void set_parameter(const QString& id, const QString& name, double value);
     void set_rate(const QString& id, const QString& rate);
 
@@ -63,7 +65,9 @@ class ModelDocument : public QObject {
 
   private:
     friend class ModelEdit;
+    friend class ParameterEdit;
     void apply(const Model& model, Change change, const QString& element, const QString& name);
+    void apply_parameter(const QString& element, const QString& name, double value);
     void push(const QString& text, Model after, Change change, const QString& element = {},
               const QString& name = {}, int merge = -1);
     QString fresh_id(const QString& stem) const;

@@ -23,6 +23,7 @@ class SettingsDialog : public QDialog {
     EngineClientOptions current_;
     QComboBox* audio_;
     QSpinBox* buffer_;
+    QComboBox* rate_;
     QComboBox* haptic_;
 };
 

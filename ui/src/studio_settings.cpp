@@ -1,0 +1,36 @@
+#include "archet/ui/studio_settings.hpp"
+
+#include <QFileInfo>
+#include <QSettings>
+
+namespace archet::ui {
+
+EngineClientOptions restore_engine_options(EngineClientOptions o) {
+    QSettings s;
+    s.beginGroup("engine");
+    o.audio = s.value("audio", o.audio).toString();
+    o.buffer_frames = s.value("buffer_frames", o.buffer_frames).toInt();
+    o.sample_rate = s.value("sample_rate", o.sample_rate).toDouble();
+    o.haptic = s.value("haptic", o.haptic).toString();
+    return o;
+}
+
+void save_engine_options(const EngineClientOptions& o) {
+    QSettings s;
+    s.beginGroup("engine");
+    s.setValue("audio", o.audio);
+    s.setValue("buffer_frames", o.buffer_frames);
+    s.setValue("sample_rate", o.sample_rate);
+    s.setValue("haptic", o.haptic);
+}
+
+QString last_model_path() {
+    const QString path = QSettings().value("last_model").toString();
+    return !path.isEmpty() && QFileInfo::exists(path) ? path : QString();
+}
+
+void save_last_model_path(const QString& path) {
+    QSettings().setValue("last_model", path);
+}
+
+}  // namespace archet::ui
