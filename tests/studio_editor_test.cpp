@@ -158,6 +158,127 @@ TEST_F(Editor, CopyAndPasteDuplicateMassesAndTheLinksAmongThem) {
     EXPECT_EQ(text_of(document.model()), text_of(little_model()));
 }
 
+TEST_F(Editor, UndoTextsCountElementsInWords) {
+    document.paste(document.copy({"a"}), {0, 80});
+    EXPECT_EQ(document.undo_stack().text(document.undo_stack().count() - 1), "Paste 1 element");
+    document.paste(document.copy({"a", "b", "k2"}), {0, 160});
+    EXPECT_EQ(document.undo_stack().text(document.undo_stack().count() - 1), "Paste 3 elements");
+    document.remove({"a_2", "b_2"});
+    EXPECT_EQ(document.undo_stack().text(document.undo_stack().count() - 1), "Delete 2 elements");
+}
+
+TEST_F(Editor, ARefusedValueReadsAsASentence) {
+    Inspector inspector(document);
+    inspector.show_element("a");
+    EXPECT_FALSE(inspector.edit("mass", 0));
+    const std::string said = inspector.warning().toStdString();
+    EXPECT_NE(said.find("a.mass: must be above 0 kg (is 0)"), std::string::npos) << said;
+    EXPECT_EQ(said.find("0.000000"), std::string::npos) << said;
+    Model model = little_model();
+    try {
+        set_parameter(model, "k1", "damping", -0.25);
+        ADD_FAILURE() << "a negative damping is refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("must be at least 0 N·s/m (is -0.25)"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+// The shipped 110 Hz string as a model that has never been drawn: no display positions.
+Model undrawn_long_string() {
+    Model m = load_model_file(test::resource("models/bowed-string-110.json"));
+    for (Mat& mat : m.mats) mat.display.reset();
+    return m;
+}
+
+TEST(PasteTest, PastedElementsLandNextToTheOriginalsAndNotOnAnEarlierPaste) {
+    ModelDocument document;
+    document.reset(undrawn_long_string());
+    const QStringList originals{"s30", "s31"};
+    const QString copied = document.copy(originals);
+    const QStringList first = document.paste(copied, {40, 40});
+    const QStringList second = document.paste(copied, {40, 40});
+    // The two masses, then the link between them.
+    ASSERT_EQ(first.size(), 3) << first.join(",").toStdString();
+    ASSERT_EQ(second.size(), 3) << second.join(",").toStdString();
+    const auto& model = document.model();
+    auto at = [&](const QString& id) {
+        return document.position_of(*model.find_mat(id.toStdString()));
+    };
+    for (int i = 0; i < 2; ++i) {
+        const QPointF original = at(originals[i]);
+        EXPECT_LT(QLineF(at(first[i]), original).length(), 100)
+            << first[i].toStdString() << " beside " << originals[i].toStdString();
+        EXPECT_LT(QLineF(at(second[i]), original).length(), 200);
+        EXPECT_GT(QLineF(at(second[i]), at(first[i])).length(), 20)
+            << "a second paste is not drawn over the first";
+    }
+}
+
+TEST(GraphLabelsTest, ALongStringFitsWithReadableLabelsAndZoomingInShowsThemAll) {
+    ModelDocument document;
+    GraphView view(document);
+    view.resize(800, 400);
+    view.show();
+    document.reset(load_model_file(test::resource("models/bowed-string-110.json")));
+    view.fit();
+    ASSERT_GT(document.model().mats.size(), 60u);
+    ASSERT_EQ(view.labels().size(), document.model().mats.size());
+
+    auto on_screen_font_pixels = [&](const QGraphicsSimpleTextItem& label) {
+        const double scale = view.label_on_screen(label).height() / label.boundingRect().height();
+        return QFontInfo(label.font()).pixelSize() * scale;
+    };
+    auto shown = [&] {
+        std::vector<const QGraphicsSimpleTextItem*> visible;
+        for (const auto* label : view.labels())
+            if (label->isVisible()) visible.push_back(label);
+        return visible;
+    };
+    auto expect_readable_and_apart = [&](const char* when) {
+        const auto visible = shown();
+        for (std::size_t i = 0; i < visible.size(); ++i) {
+            EXPECT_GE(on_screen_font_pixels(*visible[i]), 8) << when;
+            for (std::size_t j = i + 1; j < visible.size(); ++j)
+                EXPECT_FALSE(
+                    view.label_on_screen(*visible[i]).intersects(view.label_on_screen(*visible[j])))
+                    << when << ": " << visible[i]->text().toStdString() << " over "
+                    << visible[j]->text().toStdString();
+        }
+    };
+    expect_readable_and_apart("fitted");
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-graph-fitted.png")));
+    EXPECT_GE(shown().size(), 5u) << "some labels stay on a fitted long string";
+    EXPECT_LT(shown().size(), view.labels().size()) << "too dense to show all at once";
+
+    // A selected node shows its id even where labels were thinned out.
+    const QGraphicsSimpleTextItem* hidden = nullptr;
+    for (const auto* label : view.labels())
+        if (!label->isVisible()) hidden = label;
+    ASSERT_NE(hidden, nullptr);
+    view.select({hidden->text()});
+    EXPECT_TRUE(hidden->isVisible());
+    view.select({});
+
+    // The wheel zooms in on the middle: every node in view then has its label.
+    const QPointF middle = view.viewport()->rect().center();
+    QWheelEvent wheel(middle, view.viewport()->mapToGlobal(middle), {}, {0, 1200}, Qt::NoButton,
+                      Qt::NoModifier, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(view.viewport(), &wheel);
+    expect_readable_and_apart("zoomed in");
+    int in_view = 0;
+    for (const auto* label : view.labels()) {
+        const QPoint node = view.mapFromScene(label->parentItem()->scenePos());
+        if (!view.viewport()->rect().contains(node)) continue;
+        ++in_view;
+        EXPECT_TRUE(label->isVisible()) << label->text().toStdString();
+    }
+    EXPECT_GE(in_view, 3);
+    EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-graph-zoomed.png")));
+}
+
 TEST_F(Editor, AnEditedModelSavesAndReloadsIdentically) {
     document.add_mat(MatKind::Oscillator, {50, 60});
     document.set_parameter("k2", "stiffness", 250);
