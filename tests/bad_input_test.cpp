@@ -72,7 +72,8 @@ TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
         {{"render", model, "-o", out, "--set", "s3.mas=1"}, "has no parameter \"mas\""},
         {{"render", model, "-o", out, "--set", "nothing.mass=1"}, "no mass or link has this id"},
-        {{"render", model, "-o", out, "--set", "s3.mass=-2"}, "s3.mass: must be > 0"},
+        {{"render", model, "-o", out, "--set", "s3.mass=-2"},
+         "s3.mass: must be above 0 kg (is -2)"},
         {{"render", model, "-o", out, "--set", "s3.mass"}, "expected ID.PARAM=VALUE"},
         {{"render", model, "-o", out, "--set", "k3.stiffness=1e12"}, "unstable"},
         {{"render", model, "-o", out, "--format", "mp3"}, "use wav or flac"},

@@ -10,6 +10,7 @@
 
 #include "archet/discrete_modes.hpp"
 #include "archet/input_error.hpp"
+#include "archet/number_text.hpp"
 
 namespace archet {
 
@@ -45,7 +46,7 @@ ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
         if (!(sys.mass[i] > 0.0) || !std::isfinite(sys.mass[i]))
             throw InputError("mass \"" + sys.dofs[i] + "\"",
                              "the mass matrix is singular here (mass " +
-                                 std::to_string(sys.mass[i]) + " kg); give it a positive mass");
+                                 format_number(sys.mass[i]) + " kg); give it a positive mass");
     const double dt = sys.dt;
     Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), true);
 

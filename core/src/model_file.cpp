@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "archet/json_reader.hpp"
+#include "archet/number_text.hpp"
 
 namespace archet {
 
@@ -413,8 +414,8 @@ Gesture parse_gesture(const std::string& text, const std::string& source) {
     for (std::size_t i = 1; i < frames.size(); ++i)
         if (!(frames[i].time > frames[i - 1].time))
             throw InputError(source + " keyframe #" + std::to_string(i + 1),
-                             "times must increase strictly (t = " + std::to_string(frames[i].time) +
-                                 " s follows t = " + std::to_string(frames[i - 1].time) + " s)");
+                             "times must increase strictly (t = " + format_number(frames[i].time) +
+                                 " s follows t = " + format_number(frames[i - 1].time) + " s)");
     if (frames.front().time < 0.0)
         throw InputError(source + " keyframe #1", "time must not be negative");
     return Gesture(name, std::move(frames));

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "archet/input_error.hpp"
+#include "archet/number_text.hpp"
 
 namespace archet {
 
@@ -103,8 +104,9 @@ void set_parameter(Model& model, const std::string& element, const std::string& 
     if (!std::isfinite(value)) throw InputError(where, "value must be a finite number");
     if (value < f.info.minimum || (f.info.strictly_positive && value <= f.info.minimum))
         throw InputError(where, std::string("must be ") +
-                                    (f.info.strictly_positive ? "> " : ">= ") +
-                                    std::to_string(f.info.minimum) + " " + f.info.unit);
+                                    (f.info.strictly_positive ? "above " : "at least ") +
+                                    format_number(f.info.minimum) + " " + f.info.unit + " (is " +
+                                    format_number(value) + ")");
     *f.value = value;
 }
 

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <map>
 #include <set>
-#include <sstream>
 #include <unordered_map>
 
 #include "archet/input_error.hpp"
 #include "archet/model_parameters.hpp"
+#include "archet/number_text.hpp"
 #include "archet/stability.hpp"
 
 namespace archet {
@@ -17,12 +17,6 @@ namespace {
 
 std::string quoted(const std::string& kind, const std::string& id) {
     return kind + " \"" + id + "\"";
-}
-
-std::string number(double x) {
-    std::ostringstream s;
-    s << x;
-    return s.str();
 }
 
 class Checker {
@@ -53,7 +47,7 @@ class Checker {
 
     void check_header() {
         if (!(model_.sample_rate >= 1000.0 && model_.sample_rate <= 1e6))
-            add("model", "sample_rate " + number(model_.sample_rate) +
+            add("model", "sample_rate " + format_number(model_.sample_rate) +
                              " Hz is out of range; use 1000 to 1000000 Hz");
         if (!std::isfinite(model_.output_gain)) add("model", "output_gain must be a finite number");
         if (model_.rates.empty())
@@ -94,11 +88,13 @@ class Checker {
 
     void positive(const std::string& where, const char* name, double value, const char* unit) {
         if (!(value > 0.0))
-            add(where, std::string(name) + " must be > 0 " + unit + " (is " + number(value) + ")");
+            add(where, std::string(name) + " must be above 0 " + unit + " (is " +
+                           format_number(value) + ")");
     }
     void non_negative(const std::string& where, const char* name, double value, const char* unit) {
         if (!(value >= 0.0))
-            add(where, std::string(name) + " must be >= 0 " + unit + " (is " + number(value) + ")");
+            add(where, std::string(name) + " must be at least 0 " + unit + " (is " +
+                           format_number(value) + ")");
     }
 
     void check_mat(const Mat& m) {
@@ -125,9 +121,9 @@ class Checker {
     void check_modal_point(const std::string& where, const Mat& m) {
         if (m.modes.empty()) add(where, "a modal point needs at least one mode in \"modes\"");
         if (m.modes.size() != m.weights.size())
-            add(where, "has " + std::to_string(m.modes.size()) + " modes but " +
-                           std::to_string(m.weights.size()) +
-                           " weights; give one weight (mode shape value) per mode");
+            add(where, "has " + count_of(m.modes.size(), "mode", "modes") + " but " +
+                           count_of(m.weights.size(), "weight", "weights") +
+                           "; give one weight (mode shape value) per mode");
         for (double w : m.weights)
             if (!std::isfinite(w)) add(where, "has a non-finite weight");
         for (const auto& id : m.modes) {
@@ -175,14 +171,14 @@ class Checker {
         }
         positive(where, "buffer_stiffness", l.stiffness, "N/m");
         if (!(l.mu_static > 0.0 && l.mu_static <= 10.0))
-            add(where,
-                "mu_s must be in (0, 10] (is " + number(l.mu_static) + "; rosin is about 0.8)");
+            add(where, "mu_s must be in (0, 10] (is " + format_number(l.mu_static) +
+                           "; rosin is about 0.8)");
         if (!(l.mu_dynamic >= 0.0 && l.mu_dynamic <= l.mu_static))
-            add(where, "mu_d must be in [0, mu_s] (is " + number(l.mu_dynamic) + ", mu_s " +
-                           number(l.mu_static) + ")");
+            add(where, "mu_d must be in [0, mu_s] (is " + format_number(l.mu_dynamic) + ", mu_s " +
+                           format_number(l.mu_static) + ")");
         if (!(l.v0 > 0.0 && l.v0 <= 100.0))
-            add(where,
-                "v0 must be in (0, 100] m/s (is " + number(l.v0) + "; about 0.1 m/s for rosin)");
+            add(where, "v0 must be in (0, 100] m/s (is " + format_number(l.v0) +
+                           "; about 0.1 m/s for rosin)");
         const std::pair<const char*, const std::string*> roles[] = {{"\"bow\"", &l.from},
                                                                     {"\"string\"", &l.to},
                                                                     {"\"press\"", &l.press},
@@ -230,8 +226,8 @@ class Checker {
             add(where,
                 "crosses rate levels (\"" + a.rate + "\", \"" + l.rate + "\", \"" + b.rate +
                     "\"): its held force adds energy unless its damping is at least K·T/2 = " +
-                    number(needed) + " N·s/m for T = " + number(period) + " s (is " +
-                    number(l.damping) +
+                    format_number(needed) + " N·s/m for T = " + format_number(period) + " s (is " +
+                    format_number(l.damping) +
                     "); raise its damping or run the link and its masses at one rate");
     }
 
@@ -272,7 +268,7 @@ class Checker {
             }
         if (!(c.minimum <= c.maximum)) add(where, "range minimum must not exceed its maximum");
         if (c.minimum < info.minimum || (info.strictly_positive && c.minimum <= info.minimum))
-            add(where, "range minimum " + number(c.minimum) + " is outside what " +
+            add(where, "range minimum " + format_number(c.minimum) + " is outside what " +
                            c.target_parameter + " accepts");
         if (c.source == Control::Source::Envelope) {
             if (c.envelope.empty()) add(where, "an envelope needs at least one point");
@@ -290,7 +286,7 @@ class Checker {
             set_parameter(copy, c.target_element, c.target_parameter, value);
             const auto before = problems_.size();
             check_stability(copy, "when control \"" + c.id + "\" sets " + c.target_element + "." +
-                                      c.target_parameter + " to " + number(value) + ", ");
+                                      c.target_parameter + " to " + format_number(value) + ", ");
             if (problems_.size() != before) return;
         }
     }
@@ -336,10 +332,11 @@ class Checker {
             if (r.stable()) continue;
             const double fs = 1.0 / r.dt;
             add(quoted("mass", r.stiffest_dof),
-                context + "the model is unstable at rate level \"" + r.rate + "\" (" + number(fs) +
+                context + "the model is unstable at rate level \"" + r.rate + "\" (" +
+                    format_number(fs) +
                     " Hz): the largest eigenvalue of the normalised stiffness M^-1/2 (K T^2 + 2 Z "
                     "T) M^-1/2 is " +
-                    number(r.largest_eigenvalue) +
+                    format_number(r.largest_eigenvalue) +
                     ", it must stay below 4. The stiffest point is this mass; "
                     "lower the stiffness or damping of its links, raise its mass, or run the level "
                     "faster");

@@ -9,6 +9,7 @@
 
 #include "archet/input_error.hpp"
 #include "archet/model_file.hpp"
+#include "archet/number_text.hpp"
 
 namespace archet {
 
@@ -41,8 +42,8 @@ std::vector<double> read_state_file(const std::filesystem::path& path) {
     const auto bytes = static_cast<std::size_t>(in.tellg() - start);
     if (count > (1u << 28) || bytes != count * sizeof(double))
         throw InputError(path.string(), "is truncated or damaged: it announces " +
-                                            std::to_string(count) + " numbers but holds " +
-                                            std::to_string(bytes) + " bytes");
+                                            count_of(count, "number", "numbers") + " but holds " +
+                                            count_of(bytes, "byte", "bytes"));
     in.seekg(start);
     std::vector<double> state(count);
     in.read(reinterpret_cast<char*>(state.data()), static_cast<std::streamsize>(bytes));

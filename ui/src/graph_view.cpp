@@ -7,6 +7,7 @@
 #include <QMouseEvent>
 #include <QScrollBar>
 #include <QWheelEvent>
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -18,6 +19,26 @@ namespace {
 
 constexpr double kRadius = 9;
 constexpr int kIdRole = 0;  // QGraphicsItem::data key holding the element id
+// Labels keep their size on screen whatever the zoom; where they would overlap, some are
+// hidden (the tooltip and the selection still show every id).
+constexpr int kLabelPixels = 11;
+constexpr int kBadgePixels = 9;
+constexpr double kLabelGap = 4;  // px between two labels shown side by side
+
+// A label drawn at screen size under its node, centred on it.
+QGraphicsSimpleTextItem* add_label(QGraphicsItem* node, const QString& text, int pixels,
+                                   const QColor& colour, double below) {
+    auto* label = new QGraphicsSimpleTextItem(text, node);
+    QFont font = label->font();
+    font.setPixelSize(pixels);
+    label->setFont(font);
+    label->setBrush(colour);
+    label->setFlag(QGraphicsItem::ItemIgnoresTransformations);
+    label->setPos(0, below);
+    const QRectF box = label->boundingRect();
+    label->setTransform(QTransform::fromTranslate(-box.width() / 2, below < 0 ? -box.height() : 0));
+    return label;
+}
 
 QColor colour_of(MatKind kind) {
     switch (kind) {
@@ -60,8 +81,14 @@ GraphView::GraphView(ModelDocument& document, QWidget* parent)
     setTransformationAnchor(QGraphicsView::AnchorUnderMouse);
     setMinimumHeight(160);
     connect(&document_, &ModelDocument::changed, this, [this] { rebuild(); });
-    connect(&scene_, &QGraphicsScene::selectionChanged, this,
-            [this] { emit selection_changed(selected_ids()); });
+    connect(&document_, &ModelDocument::replaced, this, [this] {
+        fitting_ = true;
+        fit();
+    });
+    connect(&scene_, &QGraphicsScene::selectionChanged, this, [this] {
+        thin_labels();
+        emit selection_changed(selected_ids());
+    });
     rebuild();
 }
 
@@ -80,6 +107,7 @@ void GraphView::rebuild() {
     const QStringList keep = selected_ids();
     const QSignalBlocker quiet(&scene_);
     scene_.clear();
+    labels_.clear(), badges_.clear();
     rubber_line_ = nullptr;
     const Model& model = document_.model();
     std::map<std::string, QPointF> at;
@@ -128,22 +156,52 @@ void GraphView::rebuild() {
         node->setToolTip(tr("%1: %2 at rate %3")
                              .arg(QString::fromStdString(m.id), to_string(m.kind),
                                   QString::fromStdString(m.rate)));
-        auto* label = new QGraphicsSimpleTextItem(QString::fromStdString(m.id), node);
-        label->setFont(QFont(font().family(), 7));
-        label->setPos(-label->boundingRect().width() / 2, kRadius + 1);
+        labels_.push_back(
+            add_label(node, QString::fromStdString(m.id), kLabelPixels, Qt::black, kRadius + 1));
         const QString badge = rate_badge(model, m.rate);
-        if (!badge.isEmpty()) {
-            auto* rate = new QGraphicsSimpleTextItem(badge, node);
-            rate->setFont(QFont(font().family(), 6));
-            rate->setBrush(QColor(230, 140, 30));
-            rate->setPos(-rate->boundingRect().width() / 2, -kRadius - 11);
-        }
+        if (!badge.isEmpty())
+            badges_.push_back(add_label(node, badge, kBadgePixels, QColor(230, 140, 30), -kRadius));
     }
     select(keep);
+    thin_labels();
 }
 
 void GraphView::fit() {
-    fitInView(scene_.itemsBoundingRect().adjusted(-30, -30, 30, 30), Qt::KeepAspectRatio);
+    // Labels keep their screen size, so the margin that leaves room for them is in pixels.
+    constexpr double kMarginPixels = 40;
+    const QRectF graph = scene_.itemsBoundingRect();
+    fitInView(graph, Qt::KeepAspectRatio);
+    const double margin = kMarginPixels / std::max(transform().m11(), 1e-9);
+    fitInView(graph.adjusted(-margin, -margin, margin, margin), Qt::KeepAspectRatio);
+    thin_labels();
+}
+
+// Shows the labels that fit on screen without overlapping: the selected nodes' ids first, then
+// the others in model order, then the rate badges.
+void GraphView::thin_labels() {
+    std::vector<QGraphicsSimpleTextItem*> order;
+    for (QGraphicsSimpleTextItem* label : labels_)
+        if (label->parentItem()->isSelected()) order.push_back(label);
+    const std::size_t always_shown = order.size();
+    for (QGraphicsSimpleTextItem* label : labels_)
+        if (!label->parentItem()->isSelected()) order.push_back(label);
+    order.insert(order.end(), badges_.begin(), badges_.end());
+    std::vector<QRectF> shown;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        const QRectF box = label_on_screen(*order[i]).adjusted(-kLabelGap, 0, kLabelGap, 0);
+        const bool free = std::none_of(shown.begin(), shown.end(),
+                                       [&](const QRectF& other) { return other.intersects(box); });
+        order[i]->setVisible(free || i < always_shown);
+        if (order[i]->isVisible()) shown.push_back(box);
+    }
+}
+
+QRectF GraphView::label_on_screen(const QGraphicsSimpleTextItem& label) const {
+    return label.deviceTransform(viewportTransform()).mapRect(label.boundingRect());
+}
+
+std::vector<const QGraphicsSimpleTextItem*> GraphView::labels() const {
+    return {labels_.begin(), labels_.end()};
 }
 
 QStringList GraphView::selected_ids() const {
@@ -177,7 +235,7 @@ QString GraphView::mat_at(QPointF p) const {
 void GraphView::mousePressEvent(QMouseEvent* e) {
     const QPointF p = mapToScene(e->position().toPoint());
     if (e->button() == Qt::MiddleButton) {
-        panning_ = true, pan_last_ = e->position().toPoint();
+        panning_ = true, pan_last_ = e->position().toPoint(), fitting_ = false;
         return;
     }
     if (e->button() != Qt::LeftButton) return QGraphicsView::mousePressEvent(e);
@@ -248,6 +306,13 @@ void GraphView::mouseReleaseEvent(QMouseEvent* e) {
 void GraphView::wheelEvent(QWheelEvent* e) {
     const double factor = std::pow(1.0015, e->angleDelta().y());
     scale(factor, factor);
+    fitting_ = false;
+    thin_labels();
+}
+
+void GraphView::resizeEvent(QResizeEvent* e) {
+    QGraphicsView::resizeEvent(e);
+    if (fitting_) fit();
 }
 
 void GraphView::keyPressEvent(QKeyEvent* e) {

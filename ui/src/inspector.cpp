@@ -8,6 +8,7 @@
 #include <QVBoxLayout>
 
 #include "archet/model_parameters.hpp"
+#include "archet/number_text.hpp"
 #include "archet/stability.hpp"
 #include "archet/stability_limit.hpp"
 #include "archet/ui/model_document.hpp"
@@ -68,11 +69,12 @@ void Inspector::rebuild() {
     const Lia* lia = model.find_lia(id);
     if (!mat && !lia) {
         element_.clear();
-        title_->setText(tr("<b>%1</b><br>%2 masses and points, %3 links. Select an element to "
-                           "edit it.")
-                            .arg(QString::fromStdString(model.name))
-                            .arg(model.mats.size())
-                            .arg(model.lias.size()));
+        title_->setText(
+            tr("<b>%1</b><br>%2, %3. Select an element to edit it.")
+                .arg(QString::fromStdString(model.name),
+                     QString::fromStdString(
+                         count_of(model.mats.size(), "mass or point", "masses and points")),
+                     QString::fromStdString(count_of(model.lias.size(), "link", "links"))));
         show_stability();
         return;
     }

@@ -10,11 +10,16 @@
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
 #include "archet/model_validation.hpp"
+#include "archet/number_text.hpp"
 
 namespace archet::ui {
 
 namespace {
 constexpr int kMoveMerge = 1;  // QUndoCommand::id() of a drag's moves
+
+QString elements(qsizetype count) {
+    return QString::fromStdString(count_of(static_cast<std::size_t>(count), "element", "elements"));
+}
 }  // namespace
 
 // One edit: the model before and after it.
@@ -78,6 +83,7 @@ void ModelDocument::reset(const Model& model, const QString& path) {
     model_ = model;
     set_path(path);
     emit changed(Change::Structure, {}, {});
+    emit replaced();
 }
 
 void ModelDocument::set_path(const QString& path) {
@@ -187,7 +193,7 @@ void ModelDocument::remove(const QStringList& ids) {
     });
     if (after.mats.size() == model_.mats.size() && after.lias.size() == model_.lias.size()) return;
     push(ids.size() == 1 ? tr("Delete %1").arg(ids.front())
-                         : tr("Delete %1 elements").arg(ids.size()),
+                         : tr("Delete %1").arg(elements(ids.size())),
          std::move(after), Change::Structure);
 }
 
@@ -232,8 +238,13 @@ QString ModelDocument::copy(const QStringList& ids) const {
     Model part;
     part.name = "clipboard";
     part.rates = model_.rates;
-    for (const auto& m : model_.mats)
-        if (chosen.count(m.id)) part.mats.push_back(m);
+    // Each with where it is drawn, so that the copy is pasted beside it.
+    for (Mat m : model_.mats)
+        if (chosen.count(m.id)) {
+            const QPointF at = position_of(m);
+            m.display = std::make_pair(at.x(), at.y());
+            part.mats.push_back(std::move(m));
+        }
     for (const auto& l : model_.lias)
         if (l.kind != LiaKind::BowFriction && chosen.count(l.from) && chosen.count(l.to))
             part.lias.push_back(l);
@@ -256,6 +267,7 @@ QStringList ModelDocument::paste(const QString& text, QPointF offset) {
             candidate = id + "_" + std::to_string(n);
         return candidate;
     };
+    const QPointF shift = paste_shift(part, offset);
     for (Mat m : part.mats) {
         if (!after.find_rate(m.rate)) m.rate = after.rates.front().id;
         m.kind = m.kind == MatKind::ModalPoint ? MatKind::Mass : m.kind;
@@ -265,7 +277,7 @@ QStringList ModelDocument::paste(const QString& text, QPointF offset) {
         renamed[m.id] = id;
         m.id = id;
         const QPointF p =
-            QPointF(m.display ? m.display->first : 0, m.display ? m.display->second : 0) + offset;
+            QPointF(m.display ? m.display->first : 0, m.display ? m.display->second : 0) + shift;
         m.display = std::make_pair(p.x(), p.y());
         added << QString::fromStdString(id);
         after.mats.push_back(m);
@@ -279,8 +291,26 @@ QStringList ModelDocument::paste(const QString& text, QPointF offset) {
         after.lias.push_back(l);
     }
     if (added.isEmpty()) return {};
-    push(tr("Paste %1 elements").arg(added.size()), std::move(after), Change::Structure);
+    push(tr("Paste %1").arg(elements(added.size())), std::move(after), Change::Structure);
     return added;
+}
+
+// `offset` from the originals, or a multiple of it where an earlier paste already lies there.
+QPointF ModelDocument::paste_shift(const Model& part, QPointF offset) const {
+    constexpr double kSamePlace = 1;  // scene units
+    constexpr int kMostPastes = 50;
+    auto taken = [&](QPointF shift) {
+        for (const Mat& pasted : part.mats) {
+            if (!pasted.display) continue;
+            const QPointF at = QPointF(pasted.display->first, pasted.display->second) + shift;
+            for (const Mat& m : model_.mats)
+                if ((position_of(m) - at).manhattanLength() < kSamePlace) return true;
+        }
+        return false;
+    };
+    QPointF shift = offset;
+    for (int n = 1; n < kMostPastes && taken(shift); ++n) shift += offset;
+    return shift;
 }
 
 }  // namespace archet::ui

@@ -9,13 +9,26 @@
 #include <cmath>
 
 #include "archet/modal_analysis.hpp"
+#include "archet/number_text.hpp"
 #include "archet/ui/model_document.hpp"
+#include "archet/ui/scope_axis.hpp"
 
 namespace archet::ui {
 
 namespace {
 constexpr int kRowsShown = 40;  // the first partials are what the ear judges
+
+// A frequency as one reads it: "220.0 Hz", one decimal (a tenth of a hertz is a cent at 170 Hz).
+QString hertz(double frequency) {
+    return QObject::tr("%1 Hz").arg(frequency, 0, 'f', 1);
 }
+
+// Signed, to a tenth of a cent: "+0.0", "-15.5"; -0.0 reads as +0.0.
+QString cents_text(double cents) {
+    const double shown = std::round(cents * 10) / 10;
+    return (shown < 0 ? QString() : QStringLiteral("+")) + QString::number(shown + 0.0, 'f', 1);
+}
+}  // namespace
 
 ModesPanel::ModesPanel(ModelDocument& document, QWidget* parent)
     : QWidget(parent), document_(document) {
@@ -23,7 +36,7 @@ ModesPanel::ModesPanel(ModelDocument& document, QWidget* parent)
     summary_->setWordWrap(true);
     table_ = new QTableWidget(0, 5);
     table_->setHorizontalHeaderLabels(
-        {tr("mode"), tr("Hz"), tr("partial"), tr("cents"), tr("T60 s")});
+        {tr("mode"), tr("frequency"), tr("partial"), tr("cents"), tr("T60 s")});
     table_->verticalHeader()->setVisible(false);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
     table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
@@ -61,10 +74,10 @@ void ModesPanel::refresh() {
         return;
     }
     fundamental_ = modes.fundamental;
-    summary_->setText(tr("%1 modes at rate %2; f1 = %3 Hz")
-                          .arg(modes.modes.size())
-                          .arg(QString::fromStdString(modes.rate))
-                          .arg(modes.fundamental, 0, 'f', 3));
+    summary_->setText(
+        tr("%1 at rate %2; f1 = %3")
+            .arg(QString::fromStdString(count_of(modes.modes.size(), "mode", "modes")),
+                 QString::fromStdString(modes.rate), hertz(modes.fundamental)));
     QVector<double> partials, cents;
     int row = 0;
     for (std::size_t i = 0; i < modes.modes.size() && row < kRowsShown; ++i, ++row) {
@@ -74,14 +87,17 @@ void ModesPanel::refresh() {
             table_->setItem(row, column, new QTableWidgetItem(text));
         };
         cell(0, QString::number(i + 1));
-        cell(1, QString::number(m.frequency, 'f', 3));
+        cell(1, hertz(m.frequency));
         cell(2, m.support ? tr("support") : QString::number(m.partial));
-        cell(3, m.support ? QString() : QString::number(m.cents, 'f', 2));
+        cell(3, m.support ? QString() : cents_text(m.cents));
         cell(4, std::isfinite(m.t60) ? QString::number(m.t60, 'g', 4) : tr("∞"));
         if (!m.support) partials << m.partial, cents << m.cents;
     }
     bars->setData(partials, cents);
-    cents_->rescaleAxes();
+    // The bars stand on 0, so 0 is in view; a harmonic string's round-off stays flat.
+    double lowest = 0, highest = 0;
+    for (double c : cents) lowest = std::min(lowest, c), highest = std::max(highest, c);
+    fit_axis(*cents_->yAxis, lowest, highest, kCentsSpan);
     cents_->xAxis->setRange(0, std::max(2.0, partials.isEmpty() ? 2.0 : partials.back() + 1));
     cents_->replot();
 }

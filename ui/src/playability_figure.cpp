@@ -25,6 +25,22 @@ QColor regime_colour(Regime regime) {
     return Qt::black;
 }
 
+QString regime_name(Regime regime) {
+    switch (regime) {
+        case Regime::Helmholtz:
+            return QObject::tr("Helmholtz");
+        case Regime::MultipleSlip:
+            return QObject::tr("multiple slip");
+        case Regime::Raucous:
+            return QObject::tr("raucous");
+        case Regime::AnomalousLow:
+            return QObject::tr("anomalous low");
+        case Regime::Silent:
+            return QObject::tr("silent");
+    }
+    return QObject::tr("unknown");
+}
+
 PlayabilityFigure::PlayabilityFigure(QWidget* parent) : QWidget(parent) {
     plot_ = new QCustomPlot;
     plot_->setMinimumSize(400, 300);
@@ -58,7 +74,7 @@ void PlayabilityFigure::show_map(const MapGrid& grid, const std::vector<MapPoint
             if (p.analysis.regime == r) x << p.position, y << p.force;
         if (x.isEmpty()) continue;
         QCPGraph* g = plot_->addGraph();
-        g->setName(to_string(r));
+        g->setName(regime_name(r));
         g->setLineStyle(QCPGraph::lsNone);
         g->setScatterStyle(
             QCPScatterStyle(QCPScatterStyle::ssSquare, regime_colour(r), regime_colour(r), 14));

@@ -11,6 +11,7 @@
 #include <QTimer>
 #include <QVBoxLayout>
 
+#include "archet/number_text.hpp"
 #include "archet/ui/playability_figure.hpp"
 
 namespace archet::ui {
@@ -117,7 +118,8 @@ void PlayabilityPanel::compute() {
     cancel_.store(false), running_.store(true);
     done_.store(0), total_.store(grid_.size());
     compute_->setEnabled(false), cancel_button_->setEnabled(true);
-    message_->setText(tr("computing %1 points on every core…").arg(grid_.size()));
+    message_->setText(tr("computing %1 on every core…")
+                          .arg(QString::fromStdString(count_of(grid_.size(), "point", "points"))));
     worker_ = std::thread([this, grid = grid_] {
         std::vector<MapPoint> points;
         QString error;
@@ -163,7 +165,7 @@ void PlayabilityPanel::listen(long index) {
         message_->setText(tr("β %1, %2 N: %3 (%4 slips per period, %5 cents) — playing on %6")
                               .arg(p.position, 0, 'f', 3)
                               .arg(p.force, 0, 'g', 3)
-                              .arg(to_string(p.analysis.regime))
+                              .arg(regime_name(p.analysis.regime))
                               .arg(p.analysis.slips_per_period, 0, 'f', 2)
                               .arg(p.analysis.pitch_cents, 0, 'f', 1)
                               .arg(player_.description()));

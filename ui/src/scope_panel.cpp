@@ -14,6 +14,8 @@
 #include <numbers>
 #include <unsupported/Eigen/FFT>
 
+#include "archet/ui/scope_axis.hpp"
+
 namespace archet::ui {
 
 namespace {
@@ -34,13 +36,6 @@ QCustomPlot* make_plot(const QString& title, const QString& x_label, const QStri
 
 QVector<double> to_vector(const std::vector<double>& v) {
     return QVector<double>(v.begin(), v.end());
-}
-
-void fit_y(QCustomPlot* plot, const std::vector<double>& values, double minimum_span) {
-    if (values.empty()) return;
-    const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
-    const double centre = 0.5 * (*lo + *hi), half = std::max(0.55 * (*hi - *lo), minimum_span);
-    plot->yAxis->setRange(centre - half, centre + half);
 }
 
 }  // namespace
@@ -165,14 +160,15 @@ void ScopePanel::refresh(const ProbeHistory& h, const std::vector<float>& shape,
     velocity_->graph(1)->setData(t, to_vector(v_bow_), true);
     for (QCustomPlot* plot : {displacement_, force_, velocity_})
         plot->xAxis->setRange(0, time_base);
-    fit_y(displacement_, x_mm_, 0.01);
-    fit_y(force_, force_n_, 0.01);
+    fit_axis(*displacement_->yAxis, x_mm_, kDisplacementSpanMm);
+    fit_axis(*force_->yAxis, force_n_, kForceSpanN);
     std::vector<double> both = v_string_;
     both.insert(both.end(), v_bow_.begin(), v_bow_.end());
-    fit_y(velocity_, both, 0.01);
+    fit_axis(*velocity_->yAxis, both, kVelocitySpanMPerS);
 
     xy_curve_->setData(to_vector(x_mm_), to_vector(force_n_));
-    xy_->rescaleAxes();
+    fit_axis(*xy_->xAxis, x_mm_, kDisplacementSpanMm);
+    fit_axis(*xy_->yAxis, force_n_, kForceSpanN);
 
     QVector<double> index, position;
     for (int i : string)
@@ -181,28 +177,71 @@ void ScopePanel::refresh(const ProbeHistory& h, const std::vector<float>& shape,
                 position.push_back(1000.0 * shape[i]);
     shape_->graph(0)->setData(index, position, true);
     shape_->xAxis->setRange(0, std::max<double>(1, static_cast<double>(index.size()) - 1));
-    fit_y(shape_, std::vector<double>(position.begin(), position.end()), 0.05);
+    fit_axis(*shape_->yAxis, std::vector<double>(position.begin(), position.end()), kShapeSpanMm);
 
-    // The sound's spectrum over the last 8192 samples, Hann-windowed.
-    constexpr std::size_t kSpectrum = 8192;
-    const std::vector<double> sound = h.window(ProbeHistory::kOutput, kSpectrum);
-    if (sound.size() == kSpectrum) {
-        std::vector<double> windowed(kSpectrum);
-        for (std::size_t i = 0; i < kSpectrum; ++i)
-            windowed[i] = sound[i] * 0.5 *
-                          (1 - std::cos(2 * std::numbers::pi * static_cast<double>(i) / kSpectrum));
-        Eigen::FFT<double> fft;
-        std::vector<std::complex<double>> bins;
-        fft.fwd(bins, windowed);
-        QVector<double> hz, db;
-        for (std::size_t k = 1; k < kSpectrum / 2; ++k) {
-            hz.push_back(k * sample_rate / kSpectrum);
-            db.push_back(20 * std::log10(std::abs(bins[k]) / (kSpectrum / 4.0) + 1e-12));
-        }
-        spectrum_->graph(0)->setData(hz, db, true);
-    }
+    refresh_spectrum(h, sample_rate);
     for (QCustomPlot* plot : {displacement_, force_, velocity_, xy_, shape_, spectrum_})
         plot->replot(QCustomPlot::rpQueuedReplot);
+}
+
+QCustomPlot& ScopePanel::plot(Scope scope) const {
+    switch (scope) {
+        case Scope::Displacement:
+            return *displacement_;
+        case Scope::Force:
+            return *force_;
+        case Scope::Velocity:
+            return *velocity_;
+        case Scope::ForceAgainstDisplacement:
+            return *xy_;
+        case Scope::Shape:
+            return *shape_;
+        case Scope::Spectrum:
+            break;
+    }
+    return *spectrum_;
+}
+
+std::size_t ScopePanel::spectrum_window(double sample_rate) {
+    constexpr std::size_t kLongest = std::size_t{1} << 16;  // 1.4 s at 48 kHz
+    std::size_t n = 1024;
+    while (n < kLongest && sample_rate / static_cast<double>(n) > kSpectrumResolutionHz) n *= 2;
+    return n;
+}
+
+// The sound's spectrum over the newest window, Hann-windowed; its axis says the resolution
+// that window gives, or how much sound it still waits for.
+void ScopePanel::refresh_spectrum(const ProbeHistory& h, double sample_rate) {
+    const std::size_t n = spectrum_window(sample_rate);
+    const double seconds = static_cast<double>(n) / sample_rate;
+    const std::vector<double> sound = h.window(ProbeHistory::kOutput, n);
+    if (sound.size() < n) {
+        spectrum_->graph(0)->data()->clear();
+        spectrum_->xAxis->setLabel(tr("Hz (the spectrum waits for %1 s of sound: %2 of %3 samples)")
+                                       .arg(seconds, 0, 'f', 2)
+                                       .arg(sound.size())
+                                       .arg(n));
+        return;
+    }
+    std::vector<double> windowed(n);
+    for (std::size_t i = 0; i < n; ++i)
+        windowed[i] =
+            sound[i] * 0.5 *
+            (1 - std::cos(2 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n)));
+    Eigen::FFT<double> fft;
+    std::vector<std::complex<double>> bins;
+    fft.fwd(bins, windowed);
+    const double bin_hz = sample_rate / static_cast<double>(n);
+    QVector<double> hz, db;
+    for (std::size_t k = 1; k < n / 2; ++k) {
+        hz.push_back(static_cast<double>(k) * bin_hz);
+        db.push_back(20 * std::log10(std::abs(bins[k]) / (static_cast<double>(n) / 4) + 1e-12));
+    }
+    spectrum_->graph(0)->setData(hz, db, true);
+    spectrum_->xAxis->setLabel(tr("Hz (resolution %1 Hz: %2-sample Hann window, %3 s)")
+                                   .arg(bin_hz, 0, 'f', 1)
+                                   .arg(n)
+                                   .arg(seconds, 0, 'f', 2));
 }
 
 void ScopePanel::show_cursor(double time_ms) {

@@ -10,6 +10,7 @@
 #include <QPushButton>
 #include <QVBoxLayout>
 
+#include "archet/number_text.hpp"
 #include "archet/sound_examples.hpp"
 
 namespace archet::ui {
@@ -94,9 +95,12 @@ void SoundExamplesDialog::done(int rendered, const QString& error) {
     rendered_ = rendered;
     start_->setEnabled(true);
     cancel_->setEnabled(false);
-    message_->setText(error.isEmpty()
-                          ? tr("%1 examples written to %2").arg(rendered).arg(folder_->text())
-                          : tr("%1 (%2 written)").arg(error).arg(rendered));
+    message_->setText(
+        error.isEmpty() ? tr("%1 written to %2")
+                              .arg(QString::fromStdString(count_of(
+                                       static_cast<std::size_t>(rendered), "example", "examples")),
+                                   folder_->text())
+                        : tr("%1 (%2 written)").arg(error).arg(rendered));
     emit finished_rendering(rendered, error);
 }
 

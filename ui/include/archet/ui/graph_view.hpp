@@ -8,8 +8,11 @@
 #include <QGraphicsView>
 #include <QStringList>
 #include <optional>
+#include <vector>
 
 #include "archet/model.hpp"
+
+class QGraphicsSimpleTextItem;
 
 namespace archet::ui {
 
@@ -28,11 +31,15 @@ class GraphView : public QGraphicsView {
     Tool tool() const { return tool_; }
     QStringList selected_ids() const;
     void select(const QStringList& ids);
-    /// Fits the whole graph in view.
+    /// Fits the whole graph in view. It does so by itself on a new model and, until the
+    /// user zooms or pans, when resized.
     void fit();
 
     /// For tests and scripting: the canvas position of a MAT's node.
     QPointF node_position(const QString& id) const;
+    /// The MATs' id labels (some hidden where they would overlap) and where each is on screen.
+    std::vector<const QGraphicsSimpleTextItem*> labels() const;
+    QRectF label_on_screen(const QGraphicsSimpleTextItem& label) const;
 
   signals:
     void selection_changed(const QStringList& ids);
@@ -42,10 +49,12 @@ class GraphView : public QGraphicsView {
     void mouseMoveEvent(QMouseEvent*) override;
     void mouseReleaseEvent(QMouseEvent*) override;
     void wheelEvent(QWheelEvent*) override;
+    void resizeEvent(QResizeEvent*) override;
     void keyPressEvent(QKeyEvent*) override;
 
   private:
     void rebuild();
+    void thin_labels();
     QString mat_at(QPointF scene_point) const;
 
     ModelDocument& document_;
@@ -57,6 +66,9 @@ class GraphView : public QGraphicsView {
     QGraphicsLineItem* rubber_line_ = nullptr;
     std::optional<QPointF> drag_start_;
     bool panning_ = false;
+    bool fitting_ = true;  ///< follows the view's size until the user zooms or pans
+    std::vector<QGraphicsSimpleTextItem*> labels_;  ///< the MATs' ids
+    std::vector<QGraphicsSimpleTextItem*> badges_;  ///< their rate levels, where not audio
     QPoint pan_last_;
 };
 

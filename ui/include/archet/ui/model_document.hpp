@@ -49,7 +49,8 @@ class ModelDocument : public QObject {
 
     /// The selected MATs and the links among them, as model JSON (for the clipboard).
     QString copy(const QStringList& ids) const;
-    /// Adds what copy() produced, renamed where ids are taken and moved by `offset`;
+    /// Adds what copy() produced, renamed where ids are taken, `offset` from where the
+    /// originals are drawn (again `offset` further while an earlier paste lies there);
     /// returns the new ids.
     QStringList paste(const QString& text, QPointF offset);
 
@@ -62,6 +63,8 @@ class ModelDocument : public QObject {
     void changed(archet::ui::ModelDocument::Change change, const QString& element,
                  const QString& name);
     void path_changed(const QString& path);
+    /// After reset(): another model, not an edit of this one.
+    void replaced();
 
   private:
     friend class ModelEdit;
@@ -71,6 +74,7 @@ class ModelDocument : public QObject {
     void push(const QString& text, Model after, Change change, const QString& element = {},
               const QString& name = {}, int merge = -1);
     QString fresh_id(const QString& stem) const;
+    QPointF paste_shift(const Model& part, QPointF offset) const;
 
     Model model_;
     QString path_;

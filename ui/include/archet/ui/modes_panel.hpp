@@ -16,6 +16,9 @@ class ModesPanel : public QWidget {
     Q_OBJECT
 
   public:
+    /// The cents chart shows at least ±5 cents: finer deviations the ear does not hear.
+    static constexpr double kCentsSpan = 10;
+
     explicit ModesPanel(ModelDocument& document, QWidget* parent = nullptr);
     int mode_count() const;
     double fundamental() const { return fundamental_; }

@@ -36,5 +36,7 @@ class PlayabilityFigure : public QWidget {
 };
 
 QColor regime_colour(Regime regime);
+/// The regime in words, for the legend and messages ("multiple slip", not "multiple_slip").
+QString regime_name(Regime regime);
 
 }  // namespace archet::ui

@@ -23,6 +23,17 @@ class ScopePanel : public QWidget {
     Q_OBJECT
 
   public:
+    enum class Scope { Displacement, Force, Velocity, ForceAgainstDisplacement, Shape, Spectrum };
+
+    // The least span an axis shows, in its unit: below it, what moves is numerical noise.
+    static constexpr double kDisplacementSpanMm = 0.01;
+    static constexpr double kForceSpanN = 1e-3;
+    static constexpr double kVelocitySpanMPerS = 1e-3;
+    static constexpr double kShapeSpanMm = 0.1;  // the whole string at rest reads as a line
+    // The spectrum's window resolves partials this close (Hz) at any sample rate: the lowest
+    // shipped string's are 110 Hz apart, and Hann's main lobe is four bins wide.
+    static constexpr double kSpectrumResolutionHz = 6;
+
     explicit ScopePanel(QWidget* parent = nullptr);
 
     /// `string` picks the string's points out of the shape frame (the engine sends every MAT
@@ -36,10 +47,14 @@ class ScopePanel : public QWidget {
 
     /// Samples drawn in the last refresh (0 while nothing arrives).
     int drawn_samples() const { return drawn_; }
+    QCustomPlot& plot(Scope scope) const;
+    /// Samples in the spectrum's window at `sample_rate`: a power of two, for the FFT.
+    static std::size_t spectrum_window(double sample_rate);
 
   private:
     void show_cursor(double time_ms);
     std::size_t trigger_back(const ProbeHistory& history, std::size_t span) const;
+    void refresh_spectrum(const ProbeHistory& history, double sample_rate);
 
     QCustomPlot* displacement_;
     QCustomPlot* force_;
