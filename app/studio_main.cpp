@@ -8,6 +8,7 @@
 #include <QFileInfo>
 
 #include "archet/bowed_string.hpp"
+#include "archet/ui/appearance.hpp"
 #include "archet/ui/main_window.hpp"
 #include "archet/ui/studio_settings.hpp"
 #include "resource_folder.hpp"
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
                              "auto");
     parser.addOption(audio);
     parser.process(app);
+    archet::ui::apply_appearance(archet::ui::saved_appearance());
 
     archet::ui::EngineClientOptions engine = archet::ui::restore_engine_options({});
     engine.archet_binary = QDir(QApplication::applicationDirPath()).filePath("archet");

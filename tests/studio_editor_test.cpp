@@ -489,9 +489,7 @@ TEST(ScopePanelTest, ANearlyConstantSignalKeepsEveryAxisReadable) {
     panel.set_trigger_on_slip(false);
     const ProbeHistory history = history_of(4000, 48000, two_partials);
     std::vector<float> shape(62, 1e-9f);
-    std::vector<int> string(shape.size());
-    for (std::size_t i = 0; i < string.size(); ++i) string[i] = static_cast<int>(i);
-    panel.refresh(history, shape, string, 48000);
+    panel.refresh(history, shape, 48000);
     using Scope = ScopePanel::Scope;
     const struct {
         const char* name;
@@ -545,12 +543,12 @@ TEST(ScopePanelTest, TheSpectrumResolvesTheLowestStringsPartialsAndSaysItsResolu
         EXPECT_LE(resolution, 12) << "partials 110 Hz apart stay apart under a Hann window";
         QCustomPlot& spectrum = panel.plot(ScopePanel::Scope::Spectrum);
 
-        panel.refresh(history_of(window / 2, rate, two_partials), {}, {}, rate);
+        panel.refresh(history_of(window / 2, rate, two_partials), {}, rate);
         EXPECT_TRUE(spectrum.graph(0)->data()->isEmpty()) << "no spectrum from half a window";
         EXPECT_NE(spectrum.xAxis->label().indexOf("waits"), -1)
             << spectrum.xAxis->label().toStdString();
 
-        panel.refresh(history_of(window + 100, rate, two_partials), {}, {}, rate);
+        panel.refresh(history_of(window + 100, rate, two_partials), {}, rate);
         const QString said = QString("resolution %1 Hz").arg(resolution, 0, 'f', 1);
         EXPECT_NE(spectrum.xAxis->label().indexOf(said), -1)
             << spectrum.xAxis->label().toStdString() << " should say " << said.toStdString();

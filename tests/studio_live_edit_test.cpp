@@ -7,12 +7,16 @@
 
 #include <gtest/gtest.h>
 
+#include <qcustomplot.h>
+
+#include <sys/stat.h>
 #include <QApplication>
 #include <QDialogButtonBox>
 #include <QListWidget>
 #include <QPushButton>
 #include <QTest>
 #include <QTimer>
+
 #include <cmath>
 
 #include "archet/bowed_string.hpp"
@@ -26,6 +30,7 @@
 #include "archet/ui/main_window.hpp"
 #include "archet/ui/model_document.hpp"
 #include "archet/ui/new_string_dialog.hpp"
+#include "archet/ui/scope_panel.hpp"
 #include "archet/ui/takes_panel.hpp"
 #include "studio_test_support.hpp"
 #include "test_support.hpp"
@@ -53,9 +58,10 @@ double bow(MainWindow& window, const QElapsedTimer& stroke, double seconds) {
     return most;
 }
 
-class LiveEdit : public ::testing::Test {
+class LiveEditing : public ::testing::Test {
   protected:
-    void SetUp() override {
+    // The studio on the shipped 220 Hz string with the engine at `rate`, bowed for a second.
+    void start(double rate) {
         dir = test::temp_dir(
             "studio-live-edit-" +
             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
@@ -63,6 +69,7 @@ class LiveEdit : public ::testing::Test {
         o.archet_binary = ARCHET_BINARY;
         o.audio = "null";  // clocked in real time, like a sound card
         o.haptic = "sim";  // the pad moves a simulated hand that holds the bow
+        o.sample_rate = rate;
         window = std::make_unique<MainWindow>(o);
         window->set_autosave_folder(QString::fromStdString((dir / "autosave").string()));
         window->set_takes_folder(QString::fromStdString((dir / "takes").string()));
@@ -112,6 +119,19 @@ class LiveEdit : public ::testing::Test {
         EXPECT_GT(sound, 1e-4) << "the bowed string sounds";
     }
 
+    // R, a second of bowing, R again: the take's sound as written (empty if none was).
+    SoundData record_a_take() {
+        QTest::keyClick(window.get(), Qt::Key_R);
+        bow(*window, stroke, 1.0);
+        QTest::keyClick(window.get(), Qt::Key_R);
+        if (!wait_until([&] { return window->takes().takes().size() == 1; }, 10000)) {
+            ADD_FAILURE() << "no take was written; " << said();
+            return {};
+        }
+        return read_sound_file(dir / "takes" / window->takes().takes().front().toStdString() /
+                               "take.wav");
+    }
+
     // A bowed 220 Hz string holds about a millijoule; a string at rest, nothing.
     static constexpr double kBowedEnergy = 1e-5;
 
@@ -123,8 +143,15 @@ class LiveEdit : public ::testing::Test {
     QElapsedTimer stroke;
 };
 
+class LiveEdit : public LiveEditing {
+  protected:
+    void SetUp() override { start(48000); }
+};
+
 TEST_F(LiveEdit, AddingAMass) {
     expect_the_pad_bows_after([&] { window->document().add_mat(MatKind::Mass, {200, 300}); });
+    EXPECT_EQ(window->engine().shape().size(), 62u)
+        << "the free mass is not drawn as a point of the string";
 }
 
 TEST_F(LiveEdit, AddingALink) {
@@ -200,21 +227,61 @@ TEST_F(LiveEdit, AParameterGlidesInWhileBowing) {
     EXPECT_EQ(loads, 1) << "no reload for a parameter";
 }
 
+// A parameter edit is remembered in memory (for a restart), not written to the session's
+// model file each time: the file the engine loads is the one of the last load.
+TEST_F(LiveEdit, AParameterEditWritesNoFile) {
+    const auto session = window->engine().session_model_path().toStdString();
+    const auto written = std::filesystem::last_write_time(session);
+    struct stat before {};
+    ASSERT_EQ(::stat(session.c_str(), &before), 0);
+    window->graph().select({"friction"});
+    for (double mu : {0.7, 0.72, 0.74, 0.76}) ASSERT_TRUE(window->inspector().edit("mu_s", mu));
+    struct stat after {};
+    ASSERT_EQ(::stat(session.c_str(), &after), 0);
+    EXPECT_EQ(after.st_ino, before.st_ino) << "not replaced";
+    EXPECT_EQ(std::filesystem::last_write_time(session), written);
+    EXPECT_EQ(window->engine().model()->find_lia("friction")->mu_static, 0.76)
+        << "remembered for a restart";
+    EXPECT_EQ(window->document().undo_stack().count(), 4);
+    window->document().undo_stack().undo();
+    EXPECT_EQ(window->engine().model()->find_lia("friction")->mu_static, 0.74) << "undo glides";
+    EXPECT_EQ(loads, 1);
+}
+
 TEST_F(LiveEdit, ATakeRecordedAfterAnEditHoldsSound) {
     window->document().add_mat(MatKind::Mass, {200, 300});
     ASSERT_TRUE(wait_until([&] { return loads == 2; }, 10000)) << said();
     bow(*window, stroke, 0.5);
-    QTest::keyClick(window.get(), Qt::Key_R);
-    bow(*window, stroke, 1.0);
-    QTest::keyClick(window.get(), Qt::Key_R);
-    ASSERT_TRUE(wait_until([&] { return window->takes().takes().size() == 1; }, 10000)) << said();
-    const SoundData take =
-        read_sound_file(dir / "takes" / window->takes().takes().front().toStdString() / "take.wav");
+    const SoundData take = record_a_take();
     double peak = 0;
     for (double s : take.samples) peak = std::max(peak, std::abs(s));
     EXPECT_GT(take.samples.size(), 24000u);
     EXPECT_GT(peak, 1e-3) << "the bowed string is heard in the take";
 }
+
+// The sample rate is the engine's: the studio's scopes, spectrum, fades and takes follow it.
+class LiveEditAtRate : public LiveEditing, public ::testing::WithParamInterface<double> {};
+
+TEST_P(LiveEditAtRate, TheWholeLoopRunsAtTheDevicesRate) {
+    const double rate = GetParam();
+    start(rate);
+    ASSERT_EQ(window->engine().status().sample_rate, rate);
+    ASSERT_EQ(window->engine().history().newest_tick() > 0, true);
+    expect_the_pad_bows_after([&] { window->document().add_mat(MatKind::Mass, {200, 300}); });
+    const QString spectrum = window->scopes().plot(ScopePanel::Scope::Spectrum).xAxis->label();
+    EXPECT_TRUE(spectrum.contains("resolution")) << spectrum.toStdString();
+    const double resolution = spectrum.section("resolution ", 1).section(" Hz", 0, 0).toDouble();
+    const double window_samples = spectrum.section(": ", 1).section("-sample", 0, 0).toDouble();
+    EXPECT_NEAR(resolution, rate / window_samples, 0.05) << spectrum.toStdString();
+    const SoundData take = record_a_take();
+    EXPECT_EQ(take.sample_rate, rate);
+    EXPECT_GT(static_cast<double>(take.samples.size()), 0.5 * rate);
+}
+
+INSTANTIATE_TEST_SUITE_P(Rates, LiveEditAtRate, ::testing::Values(44100.0, 96000.0),
+                         [](const auto& info) {
+                             return std::to_string(static_cast<int>(info.param)) + "Hz";
+                         });
 
 }  // namespace
 }  // namespace archet::ui

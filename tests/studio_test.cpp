@@ -16,6 +16,7 @@
 #include <QWheelEvent>
 
 #include "archet/model_file.hpp"
+#include "archet/ui/elided_label.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
 #include "archet/ui/inspector.hpp"
@@ -100,6 +101,11 @@ TEST(Studio, AKilledEngineIsRestartedWithTheSameModel) {
     ASSERT_TRUE(wait_until([&] { return window.engine().status().restarts == 1; }, 3000))
         << "the studio noticed";
     EXPECT_NE(window.engine().engine_pid(), first);
+    auto* status = window.findChild<ElidedLabel*>();
+    ASSERT_NE(status, nullptr);
+    EXPECT_TRUE(status->full_text().contains("The engine was restarted once: the engine exited"))
+        << status->full_text().toStdString();
+    EXPECT_EQ(status->toolTip(), status->full_text()) << "the whole text, however long";
     ASSERT_TRUE(wait_until(
         [&] {
             return window.engine().status().state == "running" &&

@@ -6,6 +6,7 @@
 #include <QLabel>
 #include <algorithm>
 
+#include "archet/ui/plot_palette.hpp"
 #include "archet/ui/widget_export.hpp"
 
 namespace archet::ui {
@@ -67,6 +68,8 @@ void CompareFigure::show_runs(const std::vector<ComparisonRun>& runs) {
         curve->setPen(QPen(QColor(120, 40, 160), 1.2));
         xy->rescaleAxes();
         xy->yAxis->setRange(force_lo * 1.1 - 0.01, force_hi * 1.1 + 0.01);
+        follow_palette(*trace);
+        follow_palette(*xy);
         grid_->addWidget(title, 0, c);
         grid_->addWidget(trace, 1, c);
         grid_->addWidget(xy, 2, c);

@@ -11,7 +11,8 @@ namespace archet::ui {
 
 namespace {
 constexpr auto kGiveUpUnresponsive = std::chrono::seconds(2);
-}
+constexpr double kHistorySeconds = 4;  // what the scopes and spectrum may look back on
+}  // namespace
 
 EngineClient::EngineClient(EngineClientOptions options, QObject* parent)
     : QObject(parent), options_(std::move(options)) {
@@ -47,7 +48,7 @@ void EngineClient::launch() {
     unresponsive_since_ = {};
     if (model_) {               // a restart: the same model, playing again if it was
         write_session_model();  // with the parameters set since it was loaded
-        link_->load_model(session_.filePath("model.json").toStdString());
+        link_->load_model(session_model_path().toStdString());
         if (playing_) link_->play();
         link_->gesture(slide_, press_);
     }
@@ -75,12 +76,12 @@ void EngineClient::restart(const QString& why) {
 void EngineClient::load(const Model& model) {
     model_ = model;
     write_session_model();
-    if (link_) link_->load_model(session_.filePath("model.json").toStdString());
+    if (link_) link_->load_model(session_model_path().toStdString());
 }
 
 // The engine reads models from a file: written when it loads one, not at every parameter.
 void EngineClient::write_session_model() {
-    write_file_atomically(session_.filePath("model.json").toStdString(), format_model(*model_));
+    write_file_atomically(session_model_path().toStdString(), format_model(*model_));
 }
 
 void EngineClient::play() {
@@ -180,6 +181,10 @@ void EngineClient::read_status() {
                 std::vector<std::string> names;
                 if (model_)
                     for (const auto& p : model_->probes) names.push_back(p.id);
+                // The same seconds of history at any rate the engine runs at.
+                if (f.sample_rate > 0)
+                    history_ =
+                        ProbeHistory(static_cast<std::size_t>(kHistorySeconds * f.sample_rate));
                 history_.reset(names);
                 shape_.clear();
                 emit model_loaded(text);

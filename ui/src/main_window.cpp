@@ -24,13 +24,13 @@
 #include <QUrl>
 #include <QVBoxLayout>
 #include <algorithm>
-#include <numeric>
 
 #include "archet/bowed_string.hpp"
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
 #include "archet/model_validation.hpp"
 #include "archet/playability.hpp"
+#include "archet/ui/appearance.hpp"
 #include "archet/ui/compare_view.hpp"
 #include "archet/ui/elided_label.hpp"
 #include "archet/ui/gesture_pad.hpp"
@@ -207,9 +207,9 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     });
     // The newest edit is autosaved a moment after it is made, not up to 30 s later.
     autosave_timer_.setSingleShot(true);
-    connect(document_, &ModelDocument::changed, this, [this] {
-        if (document_->modified()) autosave_timer_.start(kAutosaveDelayMs);
-    });
+    // (During the signal the undo stack has not yet counted the edit: the timer checks later.)
+    connect(document_, &ModelDocument::changed, this,
+            [this] { autosave_timer_.start(kAutosaveDelayMs); });
     recording_clock_ = new QLabel;
     recording_clock_->setObjectName("recording");
     recording_clock_->setStyleSheet(
@@ -284,6 +284,21 @@ void MainWindow::build_menus() {
         if (!path.isEmpty() && !save_widget_image(*scopes_, path))
             statusBar()->showMessage(tr("could not write %1").arg(path), 8000);
     });
+
+    QMenu* appearance = view->addMenu(tr("&Appearance"));
+    auto* appearances = new QActionGroup(appearance);
+    for (const auto& [text, choice] :
+         {std::pair{tr("Follow the &desktop"), Appearance::Desktop},
+          std::pair{tr("&Light"), Appearance::Light}, std::pair{tr("Dar&k"), Appearance::Dark}}) {
+        QAction* a = appearance->addAction(text);
+        a->setCheckable(true);
+        a->setChecked(saved_appearance() == choice);
+        appearances->addAction(a);
+        connect(a, &QAction::triggered, this, [choice] {
+            apply_appearance(choice);
+            save_appearance(choice);
+        });
+    }
 
     QMenu* play = menuBar()->addMenu(tr("&Play"));
     play_ = action(play, tr("&Play"), QKeySequence(Qt::Key_Space), &MainWindow::toggle_play);
@@ -574,6 +589,7 @@ void MainWindow::model_changed(int change, const QString& element, const QString
             get_parameter(model, element.toStdString(), parameter.toStdString()));
         return;
     }
+    pad_->set_notice(unplayable_reason(model));
     try {
         validate_model(model);
     } catch (const std::exception& e) {
@@ -582,7 +598,6 @@ void MainWindow::model_changed(int change, const QString& element, const QString
         return;
     }
     engine_behind_ = false;
-    pad_->set_notice(unplayable_reason(model));
     engine_->load(model);
 }
 
@@ -630,10 +645,7 @@ void MainWindow::show_recording_time() {
 void MainWindow::refresh() {
     const double rate = engine_->status().sample_rate;  // the engine's, once it says
     if (rate <= 0) return;
-    // The engine's shape frames hold the string's points only (string_points()).
-    std::vector<int> string(engine_->shape().size());
-    std::iota(string.begin(), string.end(), 0);
-    scopes_->refresh(engine_->history(), engine_->shape(), string, rate);
+    scopes_->refresh(engine_->history(), engine_->shape(), rate);
     const ProbeHistory& h = engine_->history();
     pad_->set_feedback(h.latest(h.channel("hand_force_slide")),
                        h.latest(h.channel("hand_force_press")));

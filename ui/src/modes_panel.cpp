@@ -11,6 +11,7 @@
 #include "archet/modal_analysis.hpp"
 #include "archet/number_text.hpp"
 #include "archet/ui/model_document.hpp"
+#include "archet/ui/plot_palette.hpp"
 #include "archet/ui/scope_axis.hpp"
 
 namespace archet::ui {
@@ -46,6 +47,7 @@ ModesPanel::ModesPanel(ModelDocument& document, QWidget* parent)
     cents_->yAxis->setLabel(tr("cents from k·f1"));
     auto* bars = new QCPBars(cents_->xAxis, cents_->yAxis);
     bars->setBrush(QColor(60, 110, 200, 160));
+    follow_palette(*cents_);
     auto* layout = new QVBoxLayout(this);
     layout->addWidget(summary_);
     layout->addWidget(cents_, 1);

@@ -5,6 +5,7 @@
 #include <QVBoxLayout>
 #include <cmath>
 
+#include "archet/ui/plot_palette.hpp"
 #include "archet/ui/widget_export.hpp"
 
 namespace archet::ui {
@@ -53,6 +54,7 @@ PlayabilityFigure::PlayabilityFigure(QWidget* parent) : QWidget(parent) {
     // The legend beside the map, not over it.
     plot_->plotLayout()->addElement(0, 1, plot_->legend);
     plot_->plotLayout()->setColumnStretchFactor(1, 0.001);
+    follow_palette(*plot_);
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(plot_);
@@ -99,6 +101,7 @@ void PlayabilityFigure::show_map(const MapGrid& grid, const std::vector<MapPoint
     }
     plot_->xAxis->setRange(grid.position_min - 0.01, grid.position_max + 0.01);
     plot_->yAxis->setRange(grid.force_min / 1.5, grid.force_max * 1.5);
+    apply_palette(*plot_);
     plot_->replot();
 }
 
@@ -109,7 +112,8 @@ void PlayabilityFigure::mark(std::optional<std::pair<double, double>> point) {
         QCPGraph* g = plot_->addGraph();
         g->setName(tr("the gesture"));
         g->setLineStyle(QCPGraph::lsNone);
-        g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCrossCircle, Qt::black, 16));
+        g->setScatterStyle(QCPScatterStyle(QCPScatterStyle::ssCrossCircle,
+                                           palette().color(QPalette::WindowText), 16));
         g->setData({point->first}, {point->second});
     }
     plot_->replot();

@@ -14,6 +14,7 @@
 #include <numbers>
 #include <unsupported/Eigen/FFT>
 
+#include "archet/ui/plot_palette.hpp"
 #include "archet/ui/scope_axis.hpp"
 
 namespace archet::ui {
@@ -96,6 +97,8 @@ ScopePanel::ScopePanel(QWidget* parent) : QWidget(parent) {
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(controls);
     layout->addLayout(grid, 1);
+    for (QCustomPlot* plot : {displacement_, force_, velocity_, xy_, shape_, spectrum_})
+        follow_palette(*plot);
 
     for (QCustomPlot* plot : {displacement_, force_, velocity_})
         connect(plot, &QCustomPlot::mouseMove, this, [this, plot](QMouseEvent* e) {
@@ -135,7 +138,7 @@ std::size_t ScopePanel::trigger_back(const ProbeHistory& h, std::size_t span) co
 }
 
 void ScopePanel::refresh(const ProbeHistory& h, const std::vector<float>& shape,
-                         const std::vector<int>& string, double sample_rate) {
+                         double sample_rate) {
     if (frozen()) return;
     const double time_base = time_base_->currentData().toDouble();
     const auto span = static_cast<std::size_t>(time_base * 1e-3 * sample_rate);
@@ -171,10 +174,8 @@ void ScopePanel::refresh(const ProbeHistory& h, const std::vector<float>& shape,
     fit_axis(*xy_->yAxis, force_n_, kForceSpanN);
 
     QVector<double> index, position;
-    for (int i : string)
-        if (i < static_cast<int>(shape.size()))
-            index.push_back(static_cast<double>(index.size())),
-                position.push_back(1000.0 * shape[i]);
+    for (std::size_t i = 0; i < shape.size(); ++i)
+        index.push_back(static_cast<double>(i)), position.push_back(1000.0 * shape[i]);
     shape_->graph(0)->setData(index, position, true);
     shape_->xAxis->setRange(0, std::max<double>(1, static_cast<double>(index.size()) - 1));
     fit_axis(*shape_->yAxis, std::vector<double>(position.begin(), position.end()), kShapeSpanMm);

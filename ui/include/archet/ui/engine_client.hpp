@@ -58,6 +58,8 @@ class EngineClient : public QObject {
     void load(const Model& model);
     /// The model the engine plays, with the parameters set since it was loaded.
     const std::optional<Model>& model() const { return model_; }
+    /// The file the engine loads the model from (rewritten per load, not per parameter).
+    QString session_model_path() const { return session_.filePath("model.json"); }
     void play();
     void stop();
     bool playing() const { return playing_; }

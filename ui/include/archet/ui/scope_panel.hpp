@@ -36,10 +36,9 @@ class ScopePanel : public QWidget {
 
     explicit ScopePanel(QWidget* parent = nullptr);
 
-    /// `string` picks the string's points out of the shape frame (the engine sends every MAT
-    /// of the audio level; the bow's masses are not the string).
-    void refresh(const ProbeHistory& history, const std::vector<float>& shape,
-                 const std::vector<int>& string, double sample_rate);
+    /// `shape` is the string's points as the engine sends them (string_points(): the bow
+    /// and any mass not joined to the string are not in it).
+    void refresh(const ProbeHistory& history, const std::vector<float>& shape, double sample_rate);
     void set_frozen(bool frozen);
     bool frozen() const;
     void set_trigger_on_slip(bool on);
