@@ -29,6 +29,7 @@
 #include "archet/ui/compare_view.hpp"
 #include "archet/ui/graph_view.hpp"
 #include "archet/ui/inspector.hpp"
+#include "archet/ui/main_window.hpp"
 #include "archet/ui/model_document.hpp"
 #include "archet/ui/modes_panel.hpp"
 #include "archet/ui/new_string_dialog.hpp"
@@ -214,6 +215,32 @@ TEST(PasteTest, PastedElementsLandNextToTheOriginalsAndNotOnAnEarlierPaste) {
         EXPECT_GT(QLineF(at(second[i]), at(first[i])).length(), 20)
             << "a second paste is not drawn over the first";
     }
+}
+
+// A view that fits itself must settle: scroll bars that appeared and vanished as it refitted
+// resized its viewport again and again (the studio froze for seconds on the 440 Hz string).
+TEST(GraphLabelsTest, FittingAModelSettlesAtOnce) {
+    EngineClientOptions no_engine;
+    no_engine.archet_binary = "/nonexistent/archet";  // the editor alone
+    MainWindow window(no_engine);
+    window.resize(1400, 900);
+    window.show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+    struct ResizeCounter : QObject {
+        int resizes = 0;
+        bool eventFilter(QObject*, QEvent* e) override {
+            if (e->type() == QEvent::Resize) ++resizes;
+            return false;
+        }
+    } counter;
+    window.graph().viewport()->installEventFilter(&counter);
+    for (const char* name : {"bowed-string-110", "bowed-string-440", "bowed-string-880"}) {
+        counter.resizes = 0;
+        window.open_model(load_model_file(test::resource(std::string("models/") + name + ".json")));
+        QTest::qWait(300);
+        EXPECT_LE(counter.resizes, 2) << name;
+    }
+    window.graph().viewport()->removeEventFilter(&counter);
 }
 
 TEST(GraphLabelsTest, ALongStringFitsWithReadableLabelsAndZoomingInShowsThemAll) {

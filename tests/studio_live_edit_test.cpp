@@ -197,11 +197,27 @@ TEST_F(LiveEdit, ANewBowedString) {
     });
 }
 
-TEST_F(LiveEdit, OpeningAnotherFile) {
+// Every shipped model, opened while the 220 Hz string is being bowed.
+class OpeningWhileBowing : public LiveEdit, public ::testing::WithParamInterface<const char*> {};
+
+TEST_P(OpeningWhileBowing, ThePadBowsTheNewModel) {
+    const std::string model = GetParam();
     expect_the_pad_bows_after([&] {
-        ASSERT_TRUE(window->open_file(test::resource("models/bowed-string-440.json").c_str()));
+        ASSERT_TRUE(window->open_file(test::resource("models/" + model + ".json").c_str()));
     });
+    EXPECT_EQ(window->engine().status().model.toStdString(), model);
 }
+
+INSTANTIATE_TEST_SUITE_P(ShippedModels, OpeningWhileBowing,
+                         ::testing::Values("bowed-string-110", "bowed-string-110-harmonic",
+                                           "bowed-string-220-harmonic", "bowed-string-440",
+                                           "bowed-string-440-harmonic", "bowed-string-880",
+                                           "bowed-string-880-harmonic"),
+                         [](const auto& info) {
+                             std::string name = info.param;
+                             std::erase(name, '-');
+                             return name;
+                         });
 
 TEST_F(LiveEdit, OpeningFromTheLibrary) {
     window->set_resources_folder(QString::fromStdString(test::resource("").string()));

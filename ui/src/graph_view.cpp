@@ -80,6 +80,10 @@ GraphView::GraphView(ModelDocument& document, QWidget* parent)
     setDragMode(QGraphicsView::RubberBandDrag);
     setTransformationAnchor(QGraphicsView::AnchorUnderMouse);
     setMinimumHeight(160);
+    // The middle button pans and the wheel zooms. Scroll bars that came and went as the view
+    // fits itself would resize the viewport, which refits it, and so on for seconds.
+    setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
     connect(&document_, &ModelDocument::changed, this, [this] { rebuild(); });
     connect(&document_, &ModelDocument::replaced, this, [this] {
         fitting_ = true;

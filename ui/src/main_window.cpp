@@ -152,13 +152,12 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     tabs_->addTab(modes_, tr("Modes"));
     tabs_->addTab(takes_, tr("Takes"));
     tabs_->addTab(library_, tr("Library"));
-    auto* tabs = tabs_;
     auto* side = new QWidget;
     auto* side_layout = new QVBoxLayout(side);
     side_layout->addWidget(
         new QLabel(tr("<b>Gesture pad</b> — drag across to bow, down to press")));
     side_layout->addWidget(pad_, 2);
-    side_layout->addWidget(tabs, 3);
+    side_layout->addWidget(tabs_, 3);
     auto* split = new QSplitter;
     split->setObjectName("main-side");
     split->addWidget(left);
