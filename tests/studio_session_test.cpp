@@ -11,6 +11,7 @@
 #include <QApplication>
 #include <QDir>
 #include <QFileDialog>
+#include <QGraphicsSimpleTextItem>
 #include <QLabel>
 #include <QMenuBar>
 #include <QMessageBox>
@@ -302,6 +303,11 @@ TEST_F(Session, PlotsFollowALightOrADarkPalette) {
             EXPECT_GT(std::abs(plot.graph(0)->pen().color().lightness() - background), 50)
                 << name << ": the trace stands out";
         }
+        // The graph's labels too.
+        const int canvas = window->graph().palette().color(QPalette::Base).lightness();
+        ASSERT_FALSE(window->graph().labels().empty());
+        for (const auto* label : window->graph().labels())
+            EXPECT_GT(std::abs(label->brush().color().lightness() - canvas), 120) << name;
         QDir().mkpath(ARCHET_ARTIFACT_DIR);
         EXPECT_TRUE(window->grab().save(
             QDir(ARCHET_ARTIFACT_DIR).filePath(QString("studio-%1.png").arg(name))));

@@ -56,8 +56,11 @@ QColor colour_of(MatKind kind) {
     return Qt::black;
 }
 
-QPen pen_of(LiaKind kind, bool slow) {
-    QPen pen(slow ? QColor(230, 140, 30) : QColor(50, 50, 50), 1.6);
+// Links in the palette's text colour (dark on light, light on dark), slower levels orange.
+QPen pen_of(LiaKind kind, bool slow, const QPalette& palette) {
+    QColor ink = palette.color(QPalette::Text);
+    ink.setAlpha(200);
+    QPen pen(slow ? QColor(230, 140, 30) : ink, 1.6);
     if (kind == LiaKind::Damper) pen.setStyle(Qt::DashLine);
     if (kind == LiaKind::Buffer) pen.setStyle(Qt::DotLine);
     if (kind == LiaKind::SpringDamper) pen.setWidthF(2.4);
@@ -139,7 +142,8 @@ void GraphView::rebuild() {
             item->setToolTip(tr("%1: bow–string module").arg(QString::fromStdString(l.id)));
             continue;
         }
-        auto* line = scene_.addLine(QLineF(at[l.from], at[l.to]), pen_of(l.kind, slow(l.rate)));
+        auto* line =
+            scene_.addLine(QLineF(at[l.from], at[l.to]), pen_of(l.kind, slow(l.rate), palette()));
         line->setData(kIdRole, QString::fromStdString(l.id));
         line->setFlag(QGraphicsItem::ItemIsSelectable);
         line->setZValue(-1);
@@ -153,15 +157,15 @@ void GraphView::rebuild() {
             m.kind == MatKind::Fixed ? static_cast<QAbstractGraphicsShapeItem*>(scene_.addRect(box))
                                      : scene_.addEllipse(box);
         node->setBrush(colour_of(m.kind));
-        node->setPen(QPen(Qt::white, 1.5));
+        node->setPen(QPen(palette().color(QPalette::Base), 1.5));
         node->setPos(at[m.id]);
         node->setData(kIdRole, QString::fromStdString(m.id));
         node->setFlags(QGraphicsItem::ItemIsSelectable | QGraphicsItem::ItemIsMovable);
         node->setToolTip(tr("%1: %2 at rate %3")
                              .arg(QString::fromStdString(m.id), to_string(m.kind),
                                   QString::fromStdString(m.rate)));
-        labels_.push_back(
-            add_label(node, QString::fromStdString(m.id), kLabelPixels, Qt::black, kRadius + 1));
+        labels_.push_back(add_label(node, QString::fromStdString(m.id), kLabelPixels,
+                                    palette().color(QPalette::Text), kRadius + 1));
         const QString badge = rate_badge(model, m.rate);
         if (!badge.isEmpty())
             badges_.push_back(add_label(node, badge, kBadgePixels, QColor(230, 140, 30), -kRadius));
@@ -312,6 +316,11 @@ void GraphView::wheelEvent(QWheelEvent* e) {
     scale(factor, factor);
     fitting_ = false;
     thin_labels();
+}
+
+void GraphView::changeEvent(QEvent* e) {
+    QGraphicsView::changeEvent(e);
+    if (e->type() == QEvent::PaletteChange) rebuild();  // labels and links in the new colours
 }
 
 void GraphView::resizeEvent(QResizeEvent* e) {

@@ -50,6 +50,7 @@ class GraphView : public QGraphicsView {
     void mouseReleaseEvent(QMouseEvent*) override;
     void wheelEvent(QWheelEvent*) override;
     void resizeEvent(QResizeEvent*) override;
+    void changeEvent(QEvent*) override;
     void keyPressEvent(QKeyEvent*) override;
 
   private:
