@@ -14,6 +14,7 @@
 #include "archet/compiled_model.hpp"
 #include "archet/evdev_device.hpp"
 #include "archet/haptic_link.hpp"
+#include "archet/haptic_loop.hpp"
 #include "archet/model_file.hpp"
 #include "archet/simulated_hand.hpp"
 #include "test_support.hpp"
@@ -201,6 +202,35 @@ TEST(Haptics, AForceFeedbackJoystickAnswersThroughEvdev) {
     EXPECT_FALSE(device.stale(0.0, 0.02)) << "its I/O thread answers";
     const HapticReading r = device.read();
     EXPECT_LE(std::abs(r.slide), device.capabilities().range);
+}
+
+// The engine swaps models under a device that goes on: the hand's clock is the device's, not
+// the model's (a new model's time starts again at 0). Judged on model time, the simulated hand
+// would not report a new position until the new model's time caught up with the old one's.
+TEST(Haptics, TheSimulatedHandGoesOnReportingAcrossAModelSwap) {
+    Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    model.gesture.reset();
+    SimulatedHand hand;
+    const auto moving = [](double t) { return GestureSample{-0.05 + 0.1 * t, 0.0015}; };
+    double device_time = 0;
+    auto play = [&](Simulation& sim, HapticLoop& loop, double seconds) {
+        for (int n = 0; n < static_cast<int>(seconds * sim.sample_rate()); ++n) {
+            loop.before_step(sim, moving(device_time), device_time);
+            sim.step();
+            device_time += 1.0 / sim.sample_rate();
+        }
+    };
+    Simulation first(compile(model));
+    HapticLoop first_loop(hand, &hand, first);
+    play(first, first_loop, 1.0);
+    Simulation second(compile(model));  // the swap: a new model, at rest, at its time 0
+    HapticLoop second_loop(hand, &hand, second);
+    const double before = hand.read().slide;
+    play(second, second_loop, 0.1);
+    EXPECT_NEAR(hand.read().slide - before, 0.1 * 0.1, 0.002) << "the hand goes on moving";
+    EXPECT_NEAR(second.device_position().slide, hand.read().slide, 1e-9)
+        << "and the new model's gesture points follow it";
+    EXPECT_GT(std::abs(second.model().bows[0].friction), 0.01) << "the new model is bowed";
 }
 
 }  // namespace
