@@ -201,6 +201,7 @@ TEST_F(Session, LayoutModelAndAudioSettingsComeBackAfterARestart) {
     QSplitter* split = window->findChild<QSplitter*>("main-side");
     ASSERT_NE(split, nullptr);
     split->setSizes({700, 400});
+    window->graph().zoom_to(2.5);
     QTest::qWait(50);
     const QList<int> sizes = split->sizes();
     ASSERT_TRUE(window->close());
@@ -220,6 +221,11 @@ TEST_F(Session, LayoutModelAndAudioSettingsComeBackAfterARestart) {
     EXPECT_EQ(again.size(), QSize(1100, 760));
     EXPECT_EQ(again.findChild<QTabWidget*>()->currentIndex(), 2);
     EXPECT_EQ(again.findChild<QSplitter*>("main-side")->sizes(), sizes);
+    ASSERT_TRUE(again.open_file(last_model_path()));  // as archet-studio does with no argument
+    again.restore_zoom();
+    again.resize(1200, 800);
+    QTest::qWait(50);
+    EXPECT_DOUBLE_EQ(again.graph().zoom(), 2.5) << "the graph's zoom, kept when resized";
 }
 
 TEST_F(Session, SelectingAnElementNeverMovesTheWindowOrThePad) {

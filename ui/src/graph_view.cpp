@@ -174,6 +174,15 @@ void GraphView::rebuild() {
     thin_labels();
 }
 
+void GraphView::zoom_to(double scale) {
+    if (!(scale > 0)) return;
+    fitting_ = false;
+    const QPointF centre = mapToScene(viewport()->rect().center());
+    setTransform(QTransform::fromScale(scale, scale));
+    centerOn(centre);
+    thin_labels();
+}
+
 void GraphView::fit() {
     // Labels keep their screen size, so the margin that leaves room for them is in pixels.
     constexpr double kMarginPixels = 40;

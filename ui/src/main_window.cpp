@@ -539,7 +539,7 @@ void MainWindow::save_layout() {
     for (QSplitter* splitter : splitters_)
         s.setValue("splitter/" + splitter->objectName(), splitter->saveState());
     s.setValue("tab", tabs_->currentIndex());
-    s.setValue("zoom", graph_->transform().m11());
+    s.setValue("zoom", graph_->zoom());
     s.setValue("zoom_model", QString::fromStdString(document_->model().name));
 }
 
@@ -559,9 +559,7 @@ void MainWindow::restore_layout() {
 void MainWindow::restore_zoom() {
     if (saved_zoom_ <= 0 || saved_zoom_model_ != QString::fromStdString(document_->model().name))
         return;
-    QTransform t = graph_->transform();
-    graph_->setTransform(QTransform::fromScale(saved_zoom_, saved_zoom_) *
-                         QTransform::fromTranslate(t.dx(), t.dy()));
+    graph_->zoom_to(saved_zoom_);
 }
 
 void MainWindow::copy() {

@@ -34,6 +34,10 @@ class GraphView : public QGraphicsView {
     /// Fits the whole graph in view. It does so by itself on a new model and, until the
     /// user zooms or pans, when resized.
     void fit();
+    /// Zooms to `scale` (view pixels per scene unit) about the centre, as if the user had: the
+    /// view no longer refits itself when resized.
+    void zoom_to(double scale);
+    double zoom() const { return transform().m11(); }
 
     /// For tests and scripting: the canvas position of a MAT's node.
     QPointF node_position(const QString& id) const;
