@@ -61,6 +61,54 @@ bool start_playing(EngineLink& link, const std::string& model) {
     return true;
 }
 
+// A parameter sent right behind a model load (here while the model before it may still be
+// cross-fading in, when the real-time thread defers the swap) reaches the model that then
+// plays; and the engine runs at, and says, the rate it was asked for. (The window in which a
+// deferred swap once lost the value, or applied it with the new model's slots to the old
+// one, is a few milliseconds wide: this guards the behaviour, it cannot force the timing.)
+TEST(EngineProcess, AParameterSentDuringASwapReachesTheModelThatPlays) {
+    EngineLinkOptions o = options();
+    o.sample_rate = 44100;
+    EngineLink link(o);
+    ASSERT_TRUE(start_playing(link, "models/bowed-string-220.json"));
+    EXPECT_EQ(link.sample_rate(), 44100.0) << "in the segment's header";
+    auto probes = link.probes();
+    auto status = link.status();
+    double normal = 0, rate_said = 0;
+    // (wait_status reads the same status ring: what it passes over is not needed here.)
+    // Bows on (pressed, moving), and reads the bow's normal force and the rate said.
+    auto bow_until = [&](const std::function<bool()>& done) {
+        const auto start = std::chrono::steady_clock::now();
+        return wait_for(
+            [&] {
+                const double t =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                link.gesture(-0.05 + 0.05 * t, 0.0015);
+                link.heartbeat();
+                ProbeFrame f;
+                while (probes.try_pop(f)) normal = f.values[4];  // normal_force
+                StatusFrame s;
+                while (status.try_pop(s)) rate_said = s.sample_rate;
+                return done();
+            },
+            3000ms);
+    };
+    ASSERT_TRUE(bow_until([&] { return normal > 0.01 && rate_said > 0; }))
+        << "the pad presses the bow in";
+    EXPECT_EQ(rate_said, 44100.0) << "in the status frames";
+    const std::string path = test::resource("models/bowed-string-220.json").string();
+    for (int round = 0; round < 6; ++round) {
+        const bool inverted = round % 2 == 0;  // inverted press axis: no bow force
+        std::vector<std::string> errors;
+        ASSERT_TRUE(wait_status(link, StatusKind::ModelLoaded, link.load_model(path), errors));
+        link.load_model(path);  // while the first is still cross-fading in
+        link.set_parameter("hand_press.position_scale", inverted ? -1.0 : 1.0);
+        EXPECT_TRUE(bow_until([&] { return inverted ? normal == 0.0 : normal > 0.01; }))
+            << "round " << round << ": the value is in the model that plays (normal force "
+            << normal << " N)";
+    }
+}
+
 TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
     EngineLink link(options());
     link.start();

@@ -4,12 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <QApplication>
+#include <QSettings>
 #include <QStandardPaths>
 
 int main(int argc, char** argv) {
     qputenv("QT_QPA_PLATFORM", "offscreen");
     QStandardPaths::setTestModeEnabled(true);
     QApplication app(argc, argv);
+    QSettings().clear();  // each run starts as a first start: no layout or model from the last
     ::testing::InitGoogleTest(&argc, argv);
     return RUN_ALL_TESTS();
 }

@@ -14,6 +14,7 @@
 #include <QDialogButtonBox>
 #include <QListWidget>
 #include <QPushButton>
+#include <QStatusBar>
 #include <QTest>
 #include <QTimer>
 
@@ -72,7 +73,7 @@ class LiveEditing : public ::testing::Test {
         o.sample_rate = rate;
         window = std::make_unique<MainWindow>(o);
         window->set_autosave_folder(QString::fromStdString((dir / "autosave").string()));
-        window->set_takes_folder(QString::fromStdString((dir / "takes").string()));
+        window->set_documents_folder(QString::fromStdString(dir.string()));
         QObject::connect(&window->engine(), &EngineClient::model_loaded, [this] { ++loads; });
         QObject::connect(&window->engine(), &EngineClient::message,
                          [this](const QString& text) { messages << text; });
@@ -84,7 +85,7 @@ class LiveEditing : public ::testing::Test {
         stroke.start();
         bowed_before = bow(*window, stroke, 1.0);
         ASSERT_GT(bowed_before, kBowedEnergy) << "the pad bows the shipped string";
-        expect_bowing_in_the_last_half_second();
+        expect_bowing_in_the_last_second();
     }
 
     std::string said() const { return messages.join("; ").toStdString(); }
@@ -98,17 +99,18 @@ class LiveEditing : public ::testing::Test {
         const double after = bow(*window, stroke, 1.0);
         EXPECT_GT(after, kBowedEnergy)
             << "the string's energy rises again after the swap; " << said();
-        expect_bowing_in_the_last_half_second();
+        expect_bowing_in_the_last_second();
         EXPECT_LT(window->engine().status().load, 1.0)
             << "the load is the real-time thread's share of its budget";
         EXPECT_EQ(window->engine().status().realtime_allocations, 0u);
     }
 
     // The bow moves with the pad (a bow held still, pressed in, also stores energy: the
-    // defect this suite was written for), and the string sounds.
-    void expect_bowing_in_the_last_half_second() {
+    // defect this suite was written for), and the string sounds: over the second just bowed
+    // (all of it, so that a GUI thread that stalled for a moment does not count).
+    void expect_bowing_in_the_last_second() {
         const ProbeHistory& h = window->engine().history();
-        const auto span = static_cast<std::size_t>(0.5 * window->engine().status().sample_rate);
+        const auto span = static_cast<std::size_t>(1.0 * window->engine().status().sample_rate);
         double fastest_bow = 0, sound = 0;
         for (double v : h.window(h.channel("bow_v"), span))
             fastest_bow = std::max(fastest_bow, std::abs(v));
@@ -189,6 +191,53 @@ TEST_F(LiveEdit, UndoingAnAddition) {
     expect_the_pad_bows_after([&] { window->document().undo_stack().undo(); });
 }
 
+TEST_F(LiveEdit, RedoingAnAddition) {
+    window->document().add_mat(MatKind::Mass, {200, 300});
+    ASSERT_TRUE(wait_until([&] { return loads == 2; }, 10000)) << said();
+    window->document().undo_stack().undo();
+    ASSERT_TRUE(wait_until([&] { return loads == 3; }, 10000)) << said();
+    bow(*window, stroke, 0.5);
+    expect_the_pad_bows_after([&] { window->document().undo_stack().redo(); });
+    EXPECT_EQ(window->document().model().mats.size(), 68u);
+}
+
+TEST_F(LiveEdit, MovingAnElementToAnotherRate) {
+    const QString mass = window->document().add_mat(MatKind::Mass, {200, 300});
+    ASSERT_TRUE(wait_until([&] { return loads == 2; }, 10000)) << said();
+    bow(*window, stroke, 0.5);
+    expect_the_pad_bows_after([&] { window->document().set_rate(mass, "haptic"); });
+}
+
+// Undo can bring back a value that does not validate: checked, not glided into the engine,
+// which goes on playing the last good model (and a restart would play that one too).
+TEST_F(LiveEdit, UndoingBackToAnUnstableModelIsCheckedNotPlayed) {
+    ModelDocument& doc = window->document();
+    Model part;  // an oscillator far too stiff for 48 kHz, pasted: the model does not validate
+    part.name = "clipboard";
+    part.rates = doc.model().rates;
+    Mat wild;
+    wild.id = "wild", wild.kind = MatKind::Oscillator, wild.rate = "audio";
+    wild.mass = 1e-3, wild.stiffness = 1e9, wild.damping = 0;
+    wild.display = std::make_pair(200.0, 300.0);
+    part.mats = {wild};
+    ASSERT_FALSE(doc.paste(QString::fromStdString(format_model(part)), {0, 0}).isEmpty());
+    QTest::qWait(100);
+    EXPECT_EQ(loads, 1) << "not played: it would blow up";
+    doc.set_parameter("wild", "stiffness", 100);  // now it validates, and is played
+    ASSERT_TRUE(wait_until([&] { return loads == 2; }, 10000)) << said();
+    doc.undo_stack().undo();  // back to 1e9
+    QTest::qWait(200);
+    EXPECT_EQ(loads, 2) << "nothing new played";
+    EXPECT_TRUE(window->statusBar()->currentMessage().startsWith("Not played yet"))
+        << window->statusBar()->currentMessage().toStdString();
+    EXPECT_EQ(window->engine().model()->find_mat("wild")->stiffness, 100)
+        << "the engine's model, kept for a restart, is the one it plays";
+    doc.undo_stack().redo();  // 100 again: valid, and the engine was behind: reloaded
+    EXPECT_TRUE(wait_until([&] { return loads == 3; }, 10000)) << said();
+    bow(*window, stroke, 1.0);
+    expect_bowing_in_the_last_second();
+}
+
 TEST_F(LiveEdit, ANewBowedString) {
     expect_the_pad_bows_after([&] {
         BowedStringOptions o;
@@ -239,7 +288,7 @@ TEST_F(LiveEdit, AParameterGlidesInWhileBowing) {
     window->graph().select({"friction"});
     ASSERT_TRUE(window->inspector().edit("mu_s", 0.7));
     EXPECT_GT(bow(*window, stroke, 1.0), kBowedEnergy);
-    expect_bowing_in_the_last_half_second();
+    expect_bowing_in_the_last_second();
     EXPECT_EQ(loads, 1) << "no reload for a parameter";
 }
 

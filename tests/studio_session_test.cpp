@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
 
+#include <QAbstractButton>
 #include <QApplication>
 #include <QDir>
 #include <QFileDialog>
@@ -47,20 +48,19 @@ EngineClientOptions engine_options() {
 }
 
 // Answers the next modal dialog of type D as soon as it shows, with `answer`; the returned
-// flag says whether one showed.
+// flag says whether one showed. The watch belongs to `owner` (the test's fixture): it ends
+// with the test, so that it never answers a later test's dialog.
 template <typename D>
-std::shared_ptr<bool> answer_next(std::function<void(D&)> answer) {
+std::shared_ptr<bool> answer_next(QObject& owner, std::function<void(D&)> answer) {
     auto shown = std::make_shared<bool>(false);
-    auto* poll = new QTimer;
+    auto* poll = new QTimer(&owner);
     auto tries = std::make_shared<int>(0);
     QObject::connect(poll, &QTimer::timeout, [=] {
         if (auto* dialog = qobject_cast<D*>(QApplication::activeModalWidget())) {
             *shown = true;
-            poll->stop();
             poll->deleteLater();
             answer(*dialog);
         } else if (++*tries > 500) {  // 10 s: it never came
-            poll->stop();
             poll->deleteLater();
         }
     });
@@ -68,12 +68,18 @@ std::shared_ptr<bool> answer_next(std::function<void(D&)> answer) {
     return shown;
 }
 
-std::shared_ptr<bool> answer_question(QMessageBox::StandardButton button) {
-    return answer_next<QMessageBox>([button](QMessageBox& box) { box.button(button)->click(); });
-}
-
 class Session : public ::testing::Test {
   protected:
+    template <typename D>
+    std::shared_ptr<bool> answer_next(std::function<void(D&)> answer) {
+        return ui::answer_next<D>(watches, std::move(answer));
+    }
+    std::shared_ptr<bool> answer_question(QMessageBox::StandardButton button) {
+        return answer_next<QMessageBox>([button](QMessageBox& box) {
+            if (QAbstractButton* b = box.button(button)) b->click();
+        });
+    }
+
     void SetUp() override {
         QSettings().clear();  // test mode: the settings of this suite only
         dir = test::temp_dir(
@@ -81,7 +87,7 @@ class Session : public ::testing::Test {
             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
         window = std::make_unique<MainWindow>(engine_options());
         window->set_autosave_folder(QString::fromStdString((dir / "autosave").string()));
-        window->set_takes_folder(QString::fromStdString((dir / "takes").string()));
+        window->set_documents_folder(QString::fromStdString((dir / "Documents").string()));
         window->set_resources_folder(QString::fromStdString(test::resource("").string()));
         ASSERT_TRUE(window->open_file(shipped_220()));
         window->resize(1400, 900);
@@ -94,6 +100,7 @@ class Session : public ::testing::Test {
         return QString::fromStdString(test::resource("models/bowed-string-220.json").string());
     }
 
+    QObject watches;  ///< owns the dialog watches of the test, gone with it
     std::filesystem::path dir;
     std::unique_ptr<MainWindow> window;
 };
@@ -262,9 +269,12 @@ TEST_F(Session, ARecordingShowsItsTime) {
     EXPECT_FALSE(clock->isVisible());
     QTest::keyClick(window.get(), Qt::Key_R);
     EXPECT_TRUE(clock->isVisible());
+    auto seconds = [&] {
+        const QString time = clock->text().section("REC ", 1);  // m:ss
+        return time.section(':', 0, 0).toInt() * 60 + time.section(':', 1, 1).toInt();
+    };
     EXPECT_TRUE(clock->text().contains("REC 0:00")) << clock->text().toStdString();
-    EXPECT_TRUE(wait_until([&] { return clock->text().contains("REC 0:01"); }, 5000))
-        << clock->text().toStdString();
+    EXPECT_TRUE(wait_until([&] { return seconds() >= 1; }, 5000)) << clock->text().toStdString();
     QTest::keyClick(window.get(), Qt::Key_R);
     EXPECT_FALSE(clock->isVisible());
 }

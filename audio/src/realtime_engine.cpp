@@ -145,6 +145,10 @@ class Engine final : public AudioRenderer {
         // A new model at a block boundary; the old one goes back for deletion.
         if (!fading_from_ && !retired_.load(std::memory_order_acquire)) {
             if (LoadedModel* next = pending_.exchange(nullptr, std::memory_order_acq_rel)) {
+                // The bow is where the hand holds it: the device's (or the pad's) position
+                // carries over. Read before the old model is handed back for deletion.
+                const GestureSample held =
+                    running_model_ ? running_model_->simulation->device_position() : pad_;
                 if (running_model_ && playing_ && !muted_) {
                     // Both play for a few milliseconds and cross-fade: no click.
                     fading_from_ = running_model_;
@@ -152,10 +156,7 @@ class Engine final : public AudioRenderer {
                 } else {
                     retired_.store(running_model_, std::memory_order_release);
                 }
-                // The bow is where the hand holds it: the device's (or the pad's) position
-                // carries over, whichever model had it before.
-                next->simulation->set_device_position(
-                    running_model_ ? running_model_->simulation->device_position() : pad_);
+                next->simulation->set_device_position(held);
                 end_take();  // the take's model is gone
                 running_model_ = next;
                 muted_ = false;
@@ -170,7 +171,8 @@ class Engine final : public AudioRenderer {
                 playing_ = true;
             else if (r.kind == RealtimeCommand::Stop)
                 playing_ = false;
-            else if (running_model_ && r.kind == RealtimeCommand::SetParameter) {
+            else if (running_model_ && r.kind == RealtimeCommand::SetParameter &&
+                     r.generation == running_model_->generation) {  // its slots are this model's
                 Simulation& sim = *running_model_->simulation;
                 const int glide = static_cast<int>(kGlideSeconds * sim.sample_rate());
                 smoother_.glide(sim, r.slot, r.value, glide);
@@ -305,6 +307,7 @@ class Engine final : public AudioRenderer {
     void load(const CommandFrame& c, const std::string& path) {
         try {
             Model model = load_model_file(path);
+            model.sample_rate = sample_rate_;  // it runs at the device's rate: checked at it
             validate_model(model);
             if (model.probes.size() > kMaxProbes)
                 throw InputError(path, "has " + std::to_string(model.probes.size()) +
@@ -327,8 +330,11 @@ class Engine final : public AudioRenderer {
             const auto dot = name.rfind('.');  // decode_command made sure there is one
             const std::string element = name.substr(0, dot), parameter = name.substr(dot + 1);
             const ParameterSlot slot = current_resolver_.resolve_parameter(element, parameter);
-            set_parameter_checked(current_model_, element, parameter, c.value);
+            // The studio checked the value, but commands come from another process.
+            set_parameter_validated(current_model_, element, parameter, c.value);
+            set_in_waiting_model(slot, c.value);
             RealtimeCommand r{RealtimeCommand::SetParameter, slot, c.value, 0, 0};
+            r.generation = generation_;  // the real-time thread applies it to that model only
             if (live_take_) r.name = live_take_->parameter_name(name);
             send(r, c);
         } catch (const std::exception& e) {
@@ -336,18 +342,13 @@ class Engine final : public AudioRenderer {
         }
     }
 
-    // The studio checked the value, but commands come from another process: names, range and
-    // stability again, in place, and the model as it was when the value is refused.
-    static void set_parameter_checked(Model& model, const std::string& element,
-                                      const std::string& parameter, double value) {
-        const double before = get_parameter(model, element, parameter);
-        archet::set_parameter(model, element, parameter, value);  // names and range
-        try {
-            validate_model(model);  // and stability
-        } catch (const std::exception&) {
-            archet::set_parameter(model, element, parameter, before);
-            throw;
-        }
+    // A model loaded but not yet swapped in was compiled before this change: it gets the value
+    // here (the real-time thread leaves the command to the model it was resolved for).
+    void set_in_waiting_model(const ParameterSlot& slot, double value) {
+        LoadedModel* waiting = pending_.exchange(nullptr, std::memory_order_acq_rel);
+        if (!waiting) return;  // none, or the real-time thread took it: the command will do
+        waiting->simulation->set_parameter(slot, value);
+        delete pending_.exchange(waiting, std::memory_order_acq_rel);  // only this thread stores
     }
 
     // Opens the take's files here, off the real-time path, and hands the recorder over; the

@@ -359,4 +359,16 @@ void validate_model(const Model& model) {
     if (!problems.empty()) throw InputError(problems.front().where, problems.front().message);
 }
 
+void set_parameter_validated(Model& model, const std::string& element, const std::string& parameter,
+                             double value) {
+    const double before = get_parameter(model, element, parameter);  // throws for a bad name
+    set_parameter(model, element, parameter, value);                 // throws out of range
+    try {
+        validate_model(model);
+    } catch (const std::exception&) {
+        set_parameter(model, element, parameter, before);
+        throw;
+    }
+}
+
 }  // namespace archet

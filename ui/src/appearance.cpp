@@ -39,9 +39,13 @@ QPalette dark_palette() {
     return p;
 }
 
-// The palette Qt had before any was forced: the desktop's own.
-const QPalette& desktop_palette() {
-    static const QPalette original = QApplication::palette();
+// The palette and style Qt had before any was forced: the desktop's own.
+struct Desktop {
+    QPalette palette = QApplication::palette();
+    QString style = QApplication::style()->name();
+};
+const Desktop& desktop() {
+    static const Desktop original;
     return original;
 }
 
@@ -60,12 +64,14 @@ bool desktop_prefers_dark() {
 }
 
 void apply_appearance(Appearance appearance) {
-    const QPalette& desktop = desktop_palette();
+    const Desktop& own = desktop();
     const bool dark =
         appearance == Appearance::Dark ||
-        (appearance == Appearance::Desktop && !is_dark(desktop) && desktop_prefers_dark());
+        (appearance == Appearance::Desktop && !is_dark(own.palette) && desktop_prefers_dark());
     if (appearance == Appearance::Desktop && !dark) {
-        QApplication::setPalette(desktop);
+        if (QApplication::style()->name() != own.style)
+            QApplication::setStyle(QStyleFactory::create(own.style));
+        QApplication::setPalette(own.palette);
         return;
     }
     // Fusion draws every widget from the palette, so both palettes look as meant.

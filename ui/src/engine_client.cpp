@@ -3,6 +3,7 @@
 #include <signal.h>
 
 #include <QTime>
+#include <algorithm>
 
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
@@ -11,7 +12,8 @@ namespace archet::ui {
 
 namespace {
 constexpr auto kGiveUpUnresponsive = std::chrono::seconds(2);
-constexpr double kHistorySeconds = 4;  // what the scopes and spectrum may look back on
+constexpr double kHistorySeconds = 4;              // what the scopes and spectrum may look back on
+constexpr std::size_t kRememberedParameters = 64;  // sent, not yet known to be refused
 }  // namespace
 
 EngineClient::EngineClient(EngineClientOptions options, QObject* parent)
@@ -46,8 +48,14 @@ void EngineClient::launch() {
     }
     status_.state = "starting";
     unresponsive_since_ = {};
-    if (model_) {               // a restart: the same model, playing again if it was
-        write_session_model();  // with the parameters set since it was loaded
+    if (model_) {  // a restart: the same model, playing again if it was
+        try {
+            write_session_model();           // with the parameters set since it was loaded
+        } catch (const std::exception& e) {  // the last file written still holds the model
+            emit message(tr("could not write the session's model (%1); the engine restarts "
+                            "with the model as last loaded")
+                             .arg(QString::fromUtf8(e.what())));
+        }
         link_->load_model(session_model_path().toStdString());
         if (playing_) link_->play();
         link_->gesture(slide_, press_);
@@ -75,6 +83,7 @@ void EngineClient::restart(const QString& why) {
 
 void EngineClient::load(const Model& model) {
     model_ = model;
+    sent_parameters_.clear();
     write_session_model();
     if (link_) link_->load_model(session_model_path().toStdString());
 }
@@ -95,13 +104,20 @@ void EngineClient::stop() {
 }
 
 void EngineClient::set_parameter(const QString& name, double value) {
-    if (link_) link_->set_parameter(name.toStdString(), value);
+    const std::uint32_t sequence = link_ ? link_->set_parameter(name.toStdString(), value) : 0;
     if (!model_) return;
-    // Remembered, so that a restarted engine plays what the user set.
+    // Remembered, so that a restarted engine plays what the user set; taken back if the
+    // engine refuses it (read_status).
     const auto dot = name.lastIndexOf('.');
+    const std::string element = name.left(dot).toStdString();
+    const std::string parameter = name.mid(dot + 1).toStdString();
     try {
-        archet::set_parameter(*model_, name.left(dot).toStdString(),
-                              name.mid(dot + 1).toStdString(), value);
+        const double before = get_parameter(*model_, element, parameter);
+        archet::set_parameter(*model_, element, parameter, value);
+        if (sequence != 0) {
+            sent_parameters_.push_back({sequence, element, parameter, before});
+            if (sent_parameters_.size() > kRememberedParameters) sent_parameters_.pop_front();
+        }
     } catch (const std::exception&) {
         // Unknown or out of range: set_parameter changed nothing; the engine says why.
     }
@@ -162,6 +178,16 @@ void EngineClient::poll() {
     }
 }
 
+// The engine refused a parameter the studio sent (it checks at the rate it runs at): the
+// model kept for a restart goes back to the value the engine still plays.
+void EngineClient::take_back_refused_parameter(std::uint32_t sequence) {
+    const auto sent = std::find_if(sent_parameters_.begin(), sent_parameters_.end(),
+                                   [&](const SentParameter& p) { return p.sequence == sequence; });
+    if (sent == sent_parameters_.end() || !model_) return;
+    archet::set_parameter(*model_, sent->element, sent->parameter, sent->before);
+    sent_parameters_.erase(sent);
+}
+
 void EngineClient::read_status() {
     auto status = link_->status();
     ipc::StatusFrame f;
@@ -191,6 +217,7 @@ void EngineClient::read_status() {
                 break;
             }
             case ipc::StatusKind::Error:
+                take_back_refused_parameter(f.sequence);
                 emit message("engine: " + text);
                 break;
             case ipc::StatusKind::Blowup:

@@ -176,8 +176,8 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     build_menus();
     addToolBar(Qt::LeftToolBarArea, build_palette());
 
-    const QString documents = QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation);
-    set_takes_folder(documents + "/Archet/takes");
+    set_documents_folder(QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation) +
+                         "/Archet");
     autosave_folder_ =
         QStandardPaths::writableLocation(QStandardPaths::AppDataLocation) + "/autosave";
     connect(pad_, &GesturePad::moved, engine_, &EngineClient::gesture);
@@ -430,8 +430,9 @@ bool MainWindow::is_template(const QString& path) const {
     return !shipped.isEmpty() && file.startsWith(shipped + "/");
 }
 
-QString MainWindow::documents_folder() const {
-    return QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation) + "/Archet";
+void MainWindow::set_documents_folder(const QString& folder) {
+    documents_folder_ = folder;
+    set_takes_folder(folder + "/takes");
 }
 
 bool MainWindow::open_file(const QString& path) {
@@ -539,8 +540,12 @@ void MainWindow::save_layout() {
     for (QSplitter* splitter : splitters_)
         s.setValue("splitter/" + splitter->objectName(), splitter->saveState());
     s.setValue("tab", tabs_->currentIndex());
-    s.setValue("zoom", graph_->zoom());
-    s.setValue("zoom_model", QString::fromStdString(document_->model().name));
+    if (graph_->fitting()) {  // nothing chosen: the next start fits the graph too
+        s.remove("zoom");
+    } else {
+        s.setValue("zoom", graph_->zoom());
+        s.setValue("zoom_model", QString::fromStdString(document_->model().name));
+    }
 }
 
 void MainWindow::restore_layout() {
@@ -575,25 +580,27 @@ void MainWindow::paste() {
 // The engine follows the document: a parameter glides in, anything else reloads the model.
 // A model that does not validate stays in the editor (the engine keeps the last good one).
 // The document has already checked a parameter edit; only a new structure is validated here.
-void MainWindow::model_changed(int change, const QString& element, const QString& parameter) {
+void MainWindow::model_changed(int change, const QString& element, const QString& name) {
     update_title();
     const auto kind = static_cast<ModelDocument::Change>(change);
     if (kind == ModelDocument::Change::Layout) return;
     const Model& model = document_->model();
-    if (kind == ModelDocument::Change::Parameter && !engine_behind_) {
-        engine_->set_parameter(
-            element + "." + parameter,
-            get_parameter(model, element.toStdString(), parameter.toStdString()));
-        return;
-    }
-    pad_->set_notice(unplayable_reason(model));
+    const bool parameter = kind == ModelDocument::Change::Parameter ||
+                           kind == ModelDocument::Change::ReplayedParameter;
+    auto glide = [&] {
+        engine_->set_parameter(element + "." + name,
+                               get_parameter(model, element.toStdString(), name.toStdString()));
+    };
+    if (kind == ModelDocument::Change::Parameter && !engine_behind_) return glide();
+    if (!parameter) pad_->set_notice(unplayable_reason(model));
     try {
-        validate_model(model);
+        validate_model(model);  // a new structure, or a value that undo or redo brought back
     } catch (const std::exception& e) {
         engine_behind_ = true;
         statusBar()->showMessage(tr("Not played yet: %1").arg(QString::fromUtf8(e.what())), 10000);
         return;
     }
+    if (parameter && !engine_behind_) return glide();
     engine_behind_ = false;
     engine_->load(model);
 }
@@ -656,10 +663,10 @@ void MainWindow::show_status() {
     engine_state_->setText(state);
     QString device = s.device;
     if (s.restarts > 0)
-        device = (s.restarts == 1 ? tr("The engine was restarted once: %1.")
-                                  : tr("The engine was restarted %2 times, last: %1."))
-                     .arg(s.last_restart)
-                     .arg(s.restarts) +
+        device = (s.restarts == 1 ? tr("The engine was restarted once: %1.").arg(s.last_restart)
+                                  : tr("The engine was restarted %1 times, last: %2.")
+                                        .arg(s.restarts)
+                                        .arg(s.last_restart)) +
                  "  " + device;
     device_->set_full_text(device);
     meters_->setText(tr("xruns %1   load %2 %   energy %3 mJ")

@@ -67,13 +67,22 @@ class ParameterEdit : public QUndoCommand {
           before_(before),
           after_(after) {}
 
-    void redo() override { document_.apply_parameter(element_, name_, after_); }
-    void undo() override { document_.apply_parameter(element_, name_, before_); }
+    void redo() override {
+        document_.apply_parameter(
+            element_, name_, after_,
+            fresh_ ? ModelDocument::Change::Parameter : ModelDocument::Change::ReplayedParameter);
+        fresh_ = false;
+    }
+    void undo() override {
+        document_.apply_parameter(element_, name_, before_,
+                                  ModelDocument::Change::ReplayedParameter);
+    }
 
   private:
     ModelDocument& document_;
     QString element_, name_;
     double before_, after_;
+    bool fresh_ = true;  ///< the first redo() is the edit itself, validated when it was made
 };
 
 ModelDocument::ModelDocument(QObject* parent) : QObject(parent) {}
@@ -97,9 +106,10 @@ void ModelDocument::apply(const Model& model, Change change, const QString& elem
     emit changed(change, element, name);
 }
 
-void ModelDocument::apply_parameter(const QString& element, const QString& name, double value) {
+void ModelDocument::apply_parameter(const QString& element, const QString& name, double value,
+                                    Change change) {
     archet::set_parameter(model_, element.toStdString(), name.toStdString(), value);
-    emit changed(Change::Parameter, element, name);
+    emit changed(change, element, name);
 }
 
 void ModelDocument::push(const QString& text, Model after, Change change, const QString& element,
@@ -211,15 +221,8 @@ void ModelDocument::move(const QStringList& ids, QPointF delta, bool continuing_
 void ModelDocument::set_parameter(const QString& id, const QString& name, double value) {
     const std::string element = id.toStdString(), parameter = name.toStdString();
     const double before = get_parameter(model_, element, parameter);  // throws for a bad name
-    // Checked once, in place: the range, then the whole model with the new value (stability).
-    archet::set_parameter(model_, element, parameter, value);
-    try {
-        validate_model(model_);
-    } catch (const std::exception&) {
-        archet::set_parameter(model_, element, parameter, before);
-        throw;
-    }
-    archet::set_parameter(model_, element, parameter, before);  // the edit's redo() sets it
+    set_parameter_validated(model_, element, parameter, value);       // checked once, in place
+    archet::set_parameter(model_, element, parameter, before);        // the edit's redo() sets it
     undo_.push(new ParameterEdit(*this, id, name, before, value));
 }
 

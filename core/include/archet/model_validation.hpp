@@ -21,4 +21,10 @@ std::vector<ModelProblem> find_model_problems(const Model& model);
 /// Throws InputError for the first problem.
 void validate_model(const Model& model);
 
+/// Sets one parameter and validates the whole model with it (its range, then the stability
+/// bound), in place: no copy of the model. When the value is refused the model is left as it
+/// was and InputError says why.
+void set_parameter_validated(Model& model, const std::string& element, const std::string& parameter,
+                             double value);
+
 }  // namespace archet

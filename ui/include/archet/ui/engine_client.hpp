@@ -9,6 +9,7 @@
 #include <QString>
 #include <QTemporaryDir>
 #include <QTimer>
+#include <deque>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -88,7 +89,14 @@ class EngineClient : public QObject {
     void restart(const QString& why);
     void read_status();
     void write_session_model();
+    void take_back_refused_parameter(std::uint32_t sequence);
 
+    struct SentParameter {
+        std::uint32_t sequence;
+        std::string element, parameter;
+        double before;  ///< the value the engine plays if it refuses this one
+    };
+    std::deque<SentParameter> sent_parameters_;
     EngineClientOptions options_;
     std::unique_ptr<ipc::EngineLink> link_;
     QTimer timer_;

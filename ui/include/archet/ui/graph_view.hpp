@@ -38,6 +38,8 @@ class GraphView : public QGraphicsView {
     /// view no longer refits itself when resized.
     void zoom_to(double scale);
     double zoom() const { return transform().m11(); }
+    /// Whether the view still fits itself to its size (the user has not zoomed or panned).
+    bool fitting() const { return fitting_; }
 
     /// For tests and scripting: the canvas position of a MAT's node.
     QPointF node_position(const QString& id) const;

@@ -64,8 +64,10 @@ class MainWindow : public QMainWindow {
     bool may_drop_edits();
     /// A shipped model (under the resources folder): Save writes a copy elsewhere.
     bool is_template(const QString& path) const;
-    /// Where Save As proposes a shipped model's copy: the user's documents, Archet/.
-    QString documents_folder() const;
+    /// Where Save As proposes a shipped model's copy (models/) and takes go (takes/): the
+    /// user's documents, Archet/, unless set.
+    const QString& documents_folder() const { return documents_folder_; }
+    void set_documents_folder(const QString& folder);
     /// The zoom the graph had when the studio last closed, if it showed the same model.
     void restore_zoom();
     void save();
@@ -86,7 +88,7 @@ class MainWindow : public QMainWindow {
     void toggle_take();
     void copy();
     void paste();
-    void model_changed(int change, const QString& element, const QString& parameter);
+    void model_changed(int change, const QString& element, const QString& name);
     void refresh();
     void show_status();
     void remember_recent(const QString& path);
@@ -123,6 +125,7 @@ class MainWindow : public QMainWindow {
     QString takes_folder_;
     QString resources_folder_;
     QString autosave_folder_;
+    QString documents_folder_;
     QString take_;  ///< the folder being recorded into
 };
 

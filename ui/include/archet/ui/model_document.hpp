@@ -19,7 +19,9 @@ class ModelDocument : public QObject {
     Q_OBJECT
 
   public:
-    enum class Change { Structure, Parameter, Layout };
+    /// Parameter: a fresh edit, validated. ReplayedParameter: one set back or again by undo
+    /// or redo, to a value that was not checked against the model as it is now.
+    enum class Change { Structure, Parameter, ReplayedParameter, Layout };
 
     explicit ModelDocument(QObject* parent = nullptr);
 
@@ -70,7 +72,7 @@ class ModelDocument : public QObject {
     friend class ModelEdit;
     friend class ParameterEdit;
     void apply(const Model& model, Change change, const QString& element, const QString& name);
-    void apply_parameter(const QString& element, const QString& name, double value);
+    void apply_parameter(const QString& element, const QString& name, double value, Change change);
     void push(const QString& text, Model after, Change change, const QString& element = {},
               const QString& name = {}, int merge = -1);
     QString fresh_id(const QString& stem) const;
