@@ -14,6 +14,7 @@
 #include <QFileDialog>
 #include <QGraphicsSimpleTextItem>
 #include <QLabel>
+#include <QLineEdit>
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QSettings>
@@ -56,11 +57,15 @@ std::shared_ptr<bool> answer_next(QObject& owner, std::function<void(D&)> answer
     auto* poll = new QTimer(&owner);
     auto tries = std::make_shared<int>(0);
     QObject::connect(poll, &QTimer::timeout, [=] {
+        // Stopped first: deleteLater() waits for the event loop it was called from, and a
+        // modal dialog's loop runs inside it.
         if (auto* dialog = qobject_cast<D*>(QApplication::activeModalWidget())) {
             *shown = true;
+            poll->stop();
             poll->deleteLater();
             answer(*dialog);
         } else if (++*tries > 500) {  // 10 s: it never came
+            poll->stop();
             poll->deleteLater();
         }
     });
@@ -112,16 +117,11 @@ TEST_F(Session, SavingAShippedModelWritesACopyInTheUsersDocuments) {
     const QString copy = QString::fromStdString((dir / "my-string.json").string());
     auto asked = answer_next<QFileDialog>([&](QFileDialog& d) {
         proposed = d.selectedFiles().value(0);
-        // The dialog fills its folder view in the background and then selects the proposed
-        // name again: choose ours once that has settled.
-        test::wait_until(
-            [&] {
-                d.setDirectory(QFileInfo(copy).path());
-                d.selectFile(QFileInfo(copy).fileName());
-                QTest::qWait(50);
-                return d.selectedFiles() == QStringList{copy};
-            },
-            5000);
+        // Typed as a user would: the whole path in the file name field (selectFile() races
+        // with the dialog filling its folder view in the background).
+        auto* name = d.findChild<QLineEdit*>("fileNameEdit");
+        ASSERT_NE(name, nullptr);
+        name->setText(copy);
         static_cast<QDialog&>(d).accept();  // QFileDialog's own accept() is protected
     });
     QTest::keyClick(window.get(), Qt::Key_S, Qt::ControlModifier);
