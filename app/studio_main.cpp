@@ -1,5 +1,5 @@
-// archet-studio: the Qt studio. `archet-studio [MODEL]` opens the model (by default the one
-// open when it last closed, else the shipped 220 Hz string) and plays it on a real-time
+// archet-studio: the Qt studio. `archet-studio [MODEL]` opens the model (by default the model
+// file last opened or saved, else the shipped 220 Hz string) and plays it on a real-time
 // engine process, with the audio settings of last time.
 
 #include <QApplication>

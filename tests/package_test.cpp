@@ -48,7 +48,8 @@ TEST(Package, InstallsAndRunsFromATemporaryRoot) {
     EXPECT_TRUE(std::filesystem::exists(bin / "archet-studio"));
     for (const char* file :
          {"applications/archet-studio.desktop", "icons/hicolor/scalable/apps/archet-studio.svg",
-          "metainfo/org.archet.Studio.metainfo.xml", "man/man1/archet.1"})
+          "metainfo/org.archet.Studio.metainfo.xml", "man/man1/archet.1",
+          "doc/archet/user-guide.md", "doc/archet/images/studio-dark.png"})
         EXPECT_TRUE(std::filesystem::exists(share / file)) << file;
     if (run("command -v desktop-file-validate") == 0) {
         EXPECT_EQ(

@@ -35,12 +35,14 @@
 #include "archet/ui/elided_label.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
+#include "archet/ui/help_texts.hpp"
 #include "archet/ui/inspector.hpp"
 #include "archet/ui/library_panel.hpp"
 #include "archet/ui/model_document.hpp"
 #include "archet/ui/modes_panel.hpp"
 #include "archet/ui/new_string_dialog.hpp"
 #include "archet/ui/playability_panel.hpp"
+#include "archet/ui/recording_clock.hpp"
 #include "archet/ui/scope_panel.hpp"
 #include "archet/ui/settings_dialog.hpp"
 #include "archet/ui/sound_examples_dialog.hpp"
@@ -69,53 +71,6 @@ QString unplayable_reason(const Model& model) {
         return QObject::tr(
             "This model has no bow: the pad moves its hand, but nothing bows "
             "a string.");
-    return {};
-}
-QString shortcut_table() {
-    const std::pair<const char*, const char*> rows[] = {
-        {"Space", "play / stop"},
-        {"R", "record a take / stop recording"},
-        {"F", "freeze the scopes"},
-        {"Ctrl+E", "export the scopes (PNG, PDF)"},
-        {"Ctrl+M", "playability map"},
-        {"Ctrl+K", "compare settings"},
-        {"Ctrl+N", "new bowed string"},
-        {"Ctrl+O", "open a model"},
-        {"Ctrl+S", "save (a shipped model: save a copy in your documents)"},
-        {"Ctrl+Shift+S", "save as"},
-        {"Ctrl+Z / Ctrl+Shift+Z", "undo / redo"},
-        {"Ctrl+C / Ctrl+V", "copy / paste elements"},
-        {"Delete", "delete the selected elements"},
-        {"Ctrl+0", "fit the graph"},
-        {"Pad: drag", "bow across, press down; let go lifts the bow, Shift keeps it"},
-        {"F1", "this table"}};
-    QString html = "<table cellspacing=6>";
-    for (const auto& [keys, what] : rows)
-        html += QString("<tr><td><b>%1</b></td><td>%2</td></tr>")
-                    .arg(QString(keys).toHtmlEscaped(), QObject::tr(what).toHtmlEscaped());
-    return html + "</table>";
-}
-
-QString about_text() {
-    return QObject::tr(
-               "<h3>Archet studio %1</h3>"
-               "<p>Physically modelled bowed strings in the CORDIS-ANIMA mass-interaction "
-               "formalism, played live through a force-feedback gesture.</p>"
-               "<p>Built with Qt %2 (LGPL-3.0), QCustomPlot (GPL-3.0), Eigen (MPL-2.0), "
-               "RtAudio (MIT-style), libsndfile (LGPL-2.1), nlohmann-json (MIT), CLI11 "
-               "(BSD-3-Clause), SDL2 (zlib), libevdev (MIT) and JACK (LGPL-2.1).</p>")
-        .arg(QApplication::applicationVersion().isEmpty() ? QStringLiteral(ARCHET_VERSION)
-                                                          : QApplication::applicationVersion(),
-             qVersion());
-}
-
-// The user guide: installed with the package, else in the source tree beside the binaries.
-QString user_guide_path() {
-    const QString beside = QApplication::applicationDirPath();
-    for (const QString& candidate :
-         {QStringLiteral("/usr/share/doc/archet/user-guide.md"),
-          beside + "/../../docs/user-guide.md", beside + "/../share/doc/archet/user-guide.md"})
-        if (QFileInfo::exists(candidate)) return QFileInfo(candidate).canonicalFilePath();
     return {};
 }
 }  // namespace
@@ -209,14 +164,8 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     // (During the signal the undo stack has not yet counted the edit: the timer checks later.)
     connect(document_, &ModelDocument::changed, this,
             [this] { autosave_timer_.start(kAutosaveDelayMs); });
-    recording_clock_ = new QLabel;
-    recording_clock_->setObjectName("recording");
-    recording_clock_->setStyleSheet(
-        "QLabel { color: white; background: #c0392b; border-radius: 4px; padding: 1px 8px; "
-        "font-weight: bold; }");
-    recording_clock_->hide();
+    recording_clock_ = new RecordingClock;
     statusBar()->insertPermanentWidget(0, recording_clock_);
-    connect(&recording_timer_, &QTimer::timeout, this, &MainWindow::show_recording_time);
     engine_->start();
     display_.start(kDisplayMs);
     resize(1400, 900);
@@ -621,29 +570,14 @@ void MainWindow::toggle_take() {
         statusBar()->showMessage(tr("finishing the take in %1").arg(take_), 5000);
         take_.clear();
         record_->setText(tr("&Record take"));
-        show_recording_time();
+        recording_clock_->stop();
         return;
     }
     take_ = takes_folder_ + "/" + QDateTime::currentDateTime().toString("yyyy-MM-dd-HHmmss-zzz");
     QDir().mkpath(take_);
     engine_->start_take(take_);
     record_->setText(tr("Stop &recording"));
-    recording_since_.start();
-    recording_timer_.start(200);
-    show_recording_time();
-}
-
-// While a take records: a red "● REC m:ss" in the status bar, gone when it stops.
-void MainWindow::show_recording_time() {
-    if (take_.isEmpty()) {
-        recording_timer_.stop();
-        recording_clock_->hide();
-        return;
-    }
-    const qint64 seconds = recording_since_.elapsed() / 1000;
-    recording_clock_->setText(
-        tr("● REC %1:%2").arg(seconds / 60).arg(seconds % 60, 2, 10, QLatin1Char('0')));
-    recording_clock_->show();
+    recording_clock_->start();
 }
 
 void MainWindow::refresh() {

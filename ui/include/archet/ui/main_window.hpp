@@ -22,6 +22,7 @@ class QMenu;
 namespace archet::ui {
 
 class ElidedLabel;
+class RecordingClock;
 class GesturePad;
 class GraphView;
 class Inspector;
@@ -83,7 +84,6 @@ class MainWindow : public QMainWindow {
     void open_dialog();
     void save_layout();
     void restore_layout();
-    void show_recording_time();
     void toggle_play();
     void toggle_take();
     void copy();
@@ -112,9 +112,7 @@ class MainWindow : public QMainWindow {
     QMenu* recent_;
     QTimer display_;
     QTimer autosave_timer_;
-    QTimer recording_timer_;
-    QElapsedTimer recording_since_;
-    QLabel* recording_clock_;
+    RecordingClock* recording_clock_;
     QTabWidget* tabs_;
     std::vector<QSplitter*> splitters_;
     double saved_zoom_ = 0;
