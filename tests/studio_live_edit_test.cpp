@@ -23,6 +23,7 @@
 #include "archet/bowed_string.hpp"
 #include "archet/model_file.hpp"
 #include "archet/sound_file_reader.hpp"
+#include "archet/stability_limit.hpp"
 #include "archet/ui/engine_client.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
@@ -338,6 +339,18 @@ TEST_P(LiveEditAtRate, TheWholeLoopRunsAtTheDevicesRate) {
     const double resolution = spectrum.section("resolution ", 1).section(" Hz", 0, 0).toDouble();
     const double window_samples = spectrum.section(": ", 1).section("-sample", 0, 0).toDouble();
     EXPECT_NEAR(resolution, rate / window_samples, 0.05) << spectrum.toStdString();
+    // The inspector checks stability at the rate the engine runs at, not the file's 48 kHz: a
+    // stiffness between the two rates' limits is refused at 44.1 kHz and taken at 96 kHz.
+    Model at_file_rate = window->document().model();
+    Model at_running_rate = at_file_rate;
+    at_running_rate.sample_rate = rate;
+    const auto file_limit = stability_limit(at_file_rate, "k30", "stiffness");
+    const auto running_limit = stability_limit(at_running_rate, "k30", "stiffness");
+    ASSERT_TRUE(file_limit && running_limit);
+    const double between = (file_limit->value + running_limit->value) / 2;
+    window->graph().select({"k30"});
+    EXPECT_EQ(window->inspector().edit("stiffness", between), rate > 48000)
+        << "between " << file_limit->value << " and " << running_limit->value << " N/m";
     const SoundData take = record_a_take();
     EXPECT_EQ(take.sample_rate, rate);
     EXPECT_GT(static_cast<double>(take.samples.size()), 0.5 * rate);

@@ -149,6 +149,9 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     connect(document_, &ModelDocument::path_changed, this, [this] { update_title(); });
     connect(&document_->undo_stack(), &QUndoStack::cleanChanged, this, [this] { update_title(); });
     connect(engine_, &EngineClient::status_changed, this, &MainWindow::show_status);
+    // Edits are checked at the rate the engine's device runs the model at.
+    connect(engine_, &EngineClient::status_changed, this,
+            [this] { document_->set_running_rate(engine_->status().sample_rate); });
     connect(engine_, &EngineClient::message, this, [this](const QString& text) {
         statusBar()->showMessage(text, 8000);
         if (text.startsWith("take written")) takes_->refresh();
@@ -543,7 +546,7 @@ void MainWindow::model_changed(int change, const QString& element, const QString
     if (kind == ModelDocument::Change::Parameter && !engine_behind_) return glide();
     if (!parameter) pad_->set_notice(unplayable_reason(model));
     try {
-        validate_model(model);  // a new structure, or a value that undo or redo brought back
+        document_->validate();  // a new structure, or a value that undo or redo brought back
     } catch (const std::exception& e) {
         engine_behind_ = true;
         statusBar()->showMessage(tr("Not played yet: %1").arg(QString::fromUtf8(e.what())), 10000);

@@ -17,6 +17,22 @@ namespace archet::ui {
 namespace {
 constexpr int kMoveMerge = 1;  // QUndoCommand::id() of a drag's moves
 
+// The model's rate set to the one it runs at while it is validated, and back afterwards: no
+// copy of the model, and the file keeps its own rate.
+class RunningRate {
+  public:
+    RunningRate(Model& model, double hz) : model_(model), own_(model.sample_rate) {
+        if (hz > 0) model_.sample_rate = hz;
+    }
+    ~RunningRate() { model_.sample_rate = own_; }
+    RunningRate(const RunningRate&) = delete;
+    RunningRate& operator=(const RunningRate&) = delete;
+
+  private:
+    Model& model_;
+    double own_;
+};
+
 QString elements(qsizetype count) {
     return QString::fromStdString(count_of(static_cast<std::size_t>(count), "element", "elements"));
 }
@@ -124,6 +140,11 @@ QString ModelDocument::fresh_id(const QString& stem) const {
     }
 }
 
+void ModelDocument::validate() {
+    const RunningRate at(model_, running_rate_);
+    validate_model(model_);
+}
+
 QPointF ModelDocument::position_of(const Mat& mat) const {
     if (mat.display) return {mat.display->first, mat.display->second};
     // No position yet: a row, in model order.
@@ -221,8 +242,11 @@ void ModelDocument::move(const QStringList& ids, QPointF delta, bool continuing_
 void ModelDocument::set_parameter(const QString& id, const QString& name, double value) {
     const std::string element = id.toStdString(), parameter = name.toStdString();
     const double before = get_parameter(model_, element, parameter);  // throws for a bad name
-    set_parameter_validated(model_, element, parameter, value);       // checked once, in place
-    archet::set_parameter(model_, element, parameter, before);        // the edit's redo() sets it
+    {
+        const RunningRate at(model_, running_rate_);
+        set_parameter_validated(model_, element, parameter, value);  // checked once, in place
+    }
+    archet::set_parameter(model_, element, parameter, before);  // the edit's redo() sets it
     undo_.push(new ParameterEdit(*this, id, name, before, value));
 }
 

@@ -59,6 +59,13 @@ class ModelDocument : public QObject {
     /// The position of a MAT on the canvas (assigned when the model had none).
     QPointF position_of(const Mat& mat) const;
 
+    /// The rate the model runs at (the engine's device may not run at the model's own rate):
+    /// edits are validated at it. 0, the default: the model's own rate.
+    void set_running_rate(double hz) { running_rate_ = hz; }
+    /// Validates the model as it would run: at the running rate when there is one. Throws
+    /// InputError for the first problem.
+    void validate();
+
   signals:
     /// After every change, undo and redo included. For a parameter, `element` and `name`
     /// say which (its new value is in model()).
@@ -79,6 +86,7 @@ class ModelDocument : public QObject {
     QPointF paste_shift(const Model& part, QPointF offset) const;
 
     Model model_;
+    double running_rate_ = 0;
     QString path_;
     QUndoStack undo_;
 };
