@@ -238,25 +238,28 @@ TEST(EngineProcess, SwapsModelsWithoutAClick) {
     auto probes = link.probes();
     std::vector<double> played;
     std::uint64_t swap_tick = 0;
-    auto bow_for = [&](std::chrono::milliseconds how_long, double from) {
+    // Bows (0.1 m/s across, pressed) until `frames` samples have been played in all: counted in
+    // the sound, not in wall-clock time, which a slow machine (TSan) stretches.
+    auto bow_until = [&](std::size_t frames, double from) {
         const auto start = std::chrono::steady_clock::now();
-        while (std::chrono::steady_clock::now() - start < how_long) {
-            const double t =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            link.gesture(from + 0.1 * t, 0.0015);
-            link.heartbeat();
-            ProbeFrame f;
-            while (probes.try_pop(f)) played.push_back(f.output);
-            std::this_thread::sleep_for(2ms);
-        }
+        return wait_for(
+            [&] {
+                const double t =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                link.gesture(from + 0.1 * t, 0.0015);
+                link.heartbeat();
+                ProbeFrame f;
+                while (probes.try_pop(f)) played.push_back(f.output);
+                return played.size() >= frames;
+            },
+            20000ms);
     };
-    bow_for(700ms, 0.0);
+    ASSERT_TRUE(bow_until(33600, 0.0)) << "0.7 s of sound";
     swap_tick = played.size();
     const auto sequence =
         link.load_model(test::resource("models/bowed-string-220-harmonic.json").string());
-    bow_for(300ms, 0.07);
+    ASSERT_TRUE(bow_until(swap_tick + 14400, 0.07)) << "0.3 s more";
     ASSERT_TRUE(wait_status(link, StatusKind::ModelLoaded, sequence, errors));
-    ASSERT_GT(played.size(), swap_tick + 10000);
     // The largest step between samples while the old string sang steadily, against the
     // largest step anywhere after the swap was asked for.
     double steady = 0, around_swap = 0;
