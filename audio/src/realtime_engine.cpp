@@ -287,8 +287,7 @@ class Engine final : public AudioRenderer {
     // Compiles a validated model into what the real-time thread runs: off the real-time path.
     std::unique_ptr<LoadedModel> prepare(const Model& model, std::uint32_t sequence) const {
         auto loaded = std::make_unique<LoadedModel>();
-        loaded->resolver =
-            compile(model, output_->sample_rate());  // the device's clock is the master
+        loaded->resolver = compile(model, sample_rate_);  // the device's clock is the master
         loaded->simulation = std::make_unique<Simulation>(loaded->resolver);
         loaded->simulation->set_gesture_track(nullptr);  // live: the device or the pad plays it
         if (haptic_.device)
@@ -362,8 +361,8 @@ class Engine final : public AudioRenderer {
             std::vector<std::string> probes;
             for (const auto& p : current_resolver_.probes) probes.push_back(p.id);
             const std::size_t state_size = Simulation(current_resolver_).state_size();
-            auto take = std::make_unique<TakeRecorder>(folder, current_model_,
-                                                       output_->sample_rate(), probes, state_size);
+            auto take = std::make_unique<TakeRecorder>(folder, current_model_, sample_rate_, probes,
+                                                       state_size);
             RealtimeCommand r{RealtimeCommand::StartTake, {}, 0, 0, 0};
             r.take = take.get();
             r.generation = generation_;

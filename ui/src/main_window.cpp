@@ -199,11 +199,8 @@ void MainWindow::build_menus() {
            &MainWindow::save_as);
     file->addSeparator();
     action(file, tr("Render sound &examples…"), QKeySequence(), [this] {
-        auto* dialog = new SoundExamplesDialog(
-            resources_folder_,
-            QStandardPaths::writableLocation(QStandardPaths::DocumentsLocation) +
-                "/Archet/sound-examples",
-            this);
+        auto* dialog =
+            new SoundExamplesDialog(resources_folder_, documents_folder_ + "/sound-examples", this);
         dialog->setAttribute(Qt::WA_DeleteOnClose);
         dialog->show();
     });
