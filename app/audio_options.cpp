@@ -1,5 +1,7 @@
 #include "audio_options.hpp"
 
+#include "option_checks.hpp"
+
 namespace archet::cli {
 
 void add_audio_options(CLI::App& cmd, AudioConfig& c) {
@@ -11,7 +13,8 @@ void add_audio_options(CLI::App& cmd, AudioConfig& c) {
         ->capture_default_str();
     cmd.add_option("--buffer", c.buffer_frames, "Frames per audio block")->capture_default_str();
     cmd.add_option("--rate", c.sample_rate, "Audio rate (Hz); the model runs at it")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(sample_rate_range());
 }
 
 }  // namespace archet::cli

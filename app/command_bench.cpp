@@ -15,6 +15,7 @@
 #include "archet/simulation.hpp"
 #include "commands.hpp"
 #include "model_loading.hpp"
+#include "option_checks.hpp"
 
 namespace archet::cli {
 
@@ -100,6 +101,7 @@ void add_bench_command(CLI::App& app, Action& action) {
     cmd->add_option("model", a->model, "Model file (.json)");
     cmd->add_option("--chain", a->chain, "Benchmark a bowed chain of N masses instead of a file");
     cmd->add_option("--seconds", a->seconds, "Wall-clock seconds to measure (s)")
+        ->check(finite_range(0, 600, "s", true))
         ->capture_default_str();
     cmd->add_flag("--json", a->json,
                   "Print one JSON object: ns_per_sample, realtime_load, masses, links");

@@ -13,6 +13,7 @@
 #include "archet/model_validation.hpp"
 #include "archet/stability.hpp"
 #include "commands.hpp"
+#include "option_checks.hpp"
 
 namespace archet::cli {
 
@@ -101,7 +102,8 @@ void add_check_command(CLI::App& app, Action& action) {
         "check", "Describe a model: elements, rate levels, stability, first mode, problems");
     cmd->add_option("model", a->model, "Model file (.json)")->required();
     cmd->add_option("--set", a->set, "Override a parameter: ID.PARAM=VALUE (repeatable)");
-    cmd->add_option("--sample-rate", a->sample_rate, "Master clock (Hz; default: the model's)");
+    cmd->add_option("--sample-rate", a->sample_rate, "Master clock (Hz; default: the model's)")
+        ->check(sample_rate_range());
     cmd->callback([&action, a] { action = [a] { return run_check(*a); }; });
 }
 

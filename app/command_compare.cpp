@@ -11,6 +11,7 @@
 
 #include "archet/comparison.hpp"
 #include "archet/input_error.hpp"
+#include "archet/input_limits.hpp"
 #include "archet/model_file.hpp"
 #include "archet/model_variants.hpp"
 #include "archet/probe_csv_writer.hpp"
@@ -19,6 +20,7 @@
 #include "commands.hpp"
 #include "figure_application.hpp"
 #include "model_loading.hpp"
+#include "option_checks.hpp"
 
 namespace archet::cli {
 
@@ -121,7 +123,8 @@ void add_compare_command(CLI::App& app, Action& action) {
     cmd->add_option("-o,--output", a->output, "Folder for the WAVs, CSVs, JSON and figure")
         ->required();
     cmd->add_option("--gesture", a->gesture, "Gesture file (default: the model's own gesture)");
-    cmd->add_option("--seconds", a->seconds, "Seconds to render (default: the gesture's length)");
+    cmd->add_option("--seconds", a->seconds, "Seconds to render (default: the gesture's length)")
+        ->check(duration_range(limits::kDurationSeconds));
     cmd->callback([&action, a] { action = [a] { return run_compare(*a); }; });
 }
 

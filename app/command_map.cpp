@@ -11,12 +11,14 @@
 #include <thread>
 
 #include "archet/input_error.hpp"
+#include "archet/input_limits.hpp"
 #include "archet/model_file.hpp"
 #include "archet/playability.hpp"
 #include "archet/ui/playability_figure.hpp"
 #include "commands.hpp"
 #include "figure_application.hpp"
 #include "model_loading.hpp"
+#include "option_checks.hpp"
 
 namespace archet::cli {
 
@@ -26,6 +28,7 @@ struct MapArguments {
     std::string model, force = "0.003:1:8", position = "0.06:0.2:5", output, png, shard = "0/1";
     double speed = 0.1, duration = 1.0;
     int jobs = 0;
+    std::size_t max_points = limits::kMapPoints;
     std::vector<std::string> parts;
 };
 
@@ -67,6 +70,13 @@ int run_map(const MapArguments& a) {
         throw InputError("--position", "expected 0 < MIN ≤ MAX < 0.5 and STEPS ≥ 1 (β)");
     if (!(grid.speed > 0)) throw InputError("--speed", "must be a positive bow speed (m/s)");
     if (!(grid.duration >= 0.2)) throw InputError("--duration", "must be at least 0.2 s");
+    if (static_cast<double>(grid.force_steps) * grid.position_steps > a.max_points)
+        throw InputError("--force", std::to_string(grid.force_steps) + " × " +
+                                        std::to_string(grid.position_steps) +
+                                        " points is more than --max-points " +
+                                        std::to_string(a.max_points) +
+                                        "; use fewer STEPS, or raise --max-points and share the "
+                                        "work with --shard");
     int shard = 0, shards = 1;
     if (std::sscanf(a.shard.c_str(), "%d/%d", &shard, &shards) != 2)
         throw InputError("--shard", "expected I/N, e.g. 3/16");
@@ -128,6 +138,10 @@ void add_map_command(CLI::App& app, Action& action) {
         ->capture_default_str();
     cmd->add_option("--speed", a->speed, "Bow speed (m/s)")->capture_default_str();
     cmd->add_option("--duration", a->duration, "Seconds of steady bowing per point")
+        ->capture_default_str()
+        ->check(finite_range(0.2, 60, "s"));
+    cmd->add_option("--max-points", a->max_points,
+                    "Largest grid accepted (force steps × position steps), a bound on the work")
         ->capture_default_str();
     cmd->add_option("--jobs", a->jobs, "Threads (0: every core)")->capture_default_str();
     cmd->add_option("--shard", a->shard,

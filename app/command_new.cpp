@@ -6,6 +6,7 @@
 #include "archet/bowed_string.hpp"
 #include "archet/model_file.hpp"
 #include "commands.hpp"
+#include "option_checks.hpp"
 
 namespace archet::cli {
 
@@ -47,7 +48,8 @@ void add_new_command(CLI::App& app, Action& action) {
                      "First-mode decay from string damping alone (s)")
         ->capture_default_str();
     bowed->add_option("--sample-rate", o->sample_rate, "Audio rate level (Hz)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(sample_rate_range());
     bowed->add_option("--haptic-divider", o->haptic_divider, "Haptic rate = sample rate / divider")
         ->capture_default_str();
     bowed->add_option("--tension", o->tension, "String tension (N)")->capture_default_str();

@@ -21,6 +21,7 @@
 #include "archet/haptic_choice.hpp"
 #include "archet/haptic_loop.hpp"
 #include "archet/input_error.hpp"
+#include "archet/input_limits.hpp"
 #include "archet/model_file.hpp"
 #include "archet/monotonic_clock.hpp"
 #include "archet/output_limiter.hpp"
@@ -32,6 +33,7 @@
 #include "audio_options.hpp"
 #include "commands.hpp"
 #include "model_loading.hpp"
+#include "option_checks.hpp"
 
 namespace archet::cli {
 
@@ -195,8 +197,8 @@ void add_play_command(CLI::App& app, Action& action) {
                     "Record a take into this new folder: take.wav, gesture.json, probes.csv");
     cmd->add_option("--gesture", a->gesture,
                     "Gesture file playing the device axes (default: the model's)");
-    cmd->add_option("--duration", a->duration,
-                    "Seconds to play (default: gesture + 0.5 s, or 5 s)");
+    cmd->add_option("--duration", a->duration, "Seconds to play (default: gesture + 0.5 s, or 5 s)")
+        ->check(duration_range(limits::kDurationSeconds));
     cmd->add_flag("--stats", a->stats,
                   "Print JSON at the end: callbacks, xruns, worst_callback_us, callback_budget_us, "
                   "haptic_ticks, "

@@ -11,7 +11,9 @@
 
 #include "archet/compiled_model.hpp"
 #include "archet/input_error.hpp"
+#include "archet/input_limits.hpp"
 #include "archet/model_file.hpp"
+#include "archet/number_text.hpp"
 #include "archet/parameter_smoother.hpp"
 #include "archet/probe_csv_writer.hpp"
 #include "archet/renderer.hpp"
@@ -20,6 +22,7 @@
 #include "archet/take_file.hpp"
 #include "commands.hpp"
 #include "model_loading.hpp"
+#include "option_checks.hpp"
 
 namespace archet::cli {
 
@@ -27,7 +30,7 @@ namespace {
 
 struct RenderArguments {
     std::string model, output, gesture, probes, format = "wav", take;
-    double duration = 0, sample_rate = 0;
+    double duration = 0, sample_rate = 0, max_duration = limits::kDurationSeconds;
     std::vector<std::string> set;
 };
 
@@ -56,6 +59,12 @@ RenderPlan plan_from_arguments(const RenderArguments& a) {
         plan.gesture = plan.model.gesture;
     plan.duration =
         a.duration > 0 ? a.duration : (plan.gesture ? plan.gesture->duration() + kTail : 2.0);
+    if (plan.duration > a.max_duration)
+        throw InputError(a.duration > 0 ? "--duration" : "--gesture",
+                         format_number(plan.duration) + " s is longer than --max-duration " +
+                             format_number(a.max_duration) +
+                             " s; raise --max-duration to render it (an hour of 48 kHz WAV "
+                             "takes about 500 MB)");
     return plan;
 }
 
@@ -171,12 +180,18 @@ void add_render_command(CLI::App& app, Action& action) {
     cmd->add_option("-o,--output", a->output, "Sound file to write")->required();
     cmd->add_option("--gesture", a->gesture, "Gesture file (default: the model's own gesture)");
     cmd->add_option("--duration", a->duration,
-                    "Seconds to render (default: gesture + 0.5 s, or 2 s)");
+                    "Seconds to render (default: gesture + 0.5 s, or 2 s)")
+        ->check(duration_range(INFINITY));
+    cmd->add_option("--max-duration", a->max_duration,
+                    "Longest render accepted, in seconds (a bound against runaway renders)")
+        ->capture_default_str()
+        ->check(finite_range(0, 1e6, "s", true));
     cmd->add_option("--probes", a->probes,
                     "Write the model's probes to this CSV, one row per sample");
     cmd->add_option("--format", a->format, "Sound file format: wav or flac (24-bit)")
         ->capture_default_str();
-    cmd->add_option("--sample-rate", a->sample_rate, "Master clock (Hz; default: the model's)");
+    cmd->add_option("--sample-rate", a->sample_rate, "Master clock (Hz; default: the model's)")
+        ->check(sample_rate_range());
     cmd->add_option("--set", a->set, "Override a parameter: ID.PARAM=VALUE (repeatable)");
     cmd->add_option("--take", a->take,
                     "Re-render a recorded take folder exactly (instead of MODEL and --gesture)");

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "archet/input_error.hpp"
+#include "archet/printable_text.hpp"
 #include "commands.hpp"
 
 #ifndef ARCHET_VERSION
@@ -37,10 +38,10 @@ int main(int argc, char** argv) {
     try {
         return action();
     } catch (const archet::InputError& e) {
-        std::cerr << "archet: " << e.what() << "\n";
+        std::cerr << "archet: " << archet::printable_message(e.what()) << "\n";
         return 2;
     } catch (const std::exception& e) {
-        std::cerr << "archet: internal error: " << e.what() << "\n";
+        std::cerr << "archet: internal error: " << archet::printable_message(e.what()) << "\n";
         return 1;
     }
 }

@@ -1,14 +1,33 @@
-// The gesture loader on arbitrary bytes; a gesture it accepts is sampled everywhere.
+// The gesture loader on arbitrary bytes. A gesture it accepts is sampled everywhere, then
+// played (squeezed into 0.1 s, every keyframe kept) on the default bowed string: whatever the
+// loader lets through must keep the simulation finite, or the sound would be NaN.
 
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
+#include "archet/blow_up.hpp"
+#include "archet/bowed_string.hpp"
+#include "archet/compiled_model.hpp"
 #include "archet/input_error.hpp"
 #include "archet/model_file.hpp"
+#include "archet/simulation.hpp"
+
+namespace {
+
+archet::Gesture squeezed(const archet::Gesture& gesture, double seconds) {
+    std::vector<archet::GestureKeyframe> frames = gesture.keyframes();
+    const double scale = gesture.duration() > 0 ? seconds / gesture.duration() : 1.0;
+    for (auto& k : frames) k.time *= scale;
+    return archet::Gesture(gesture.name(), std::move(frames));
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    static const archet::CompiledModel string =
+        archet::compile(archet::build_bowed_string(archet::BowedStringOptions{}));
     const std::string text(reinterpret_cast<const char*>(data), size);
     try {
         const archet::Gesture gesture = archet::parse_gesture(text, "fuzz");
@@ -16,6 +35,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             const archet::GestureSample s = gesture.at(t);
             if (!std::isfinite(s.slide) || !std::isfinite(s.press)) __builtin_trap();
         }
+        const archet::Gesture played = squeezed(gesture, 0.1);
+        archet::Simulation sim(string);
+        sim.set_gesture_track(&played);
+        for (int i = 0; i < 4800; ++i) {
+            sim.step();
+            if (!std::isfinite(sim.output())) __builtin_trap();  // a non-finite sample
+        }
+        if (!archet::simulation_is_finite(sim)) __builtin_trap();
     } catch (const archet::InputError&) {
     }
     return 0;

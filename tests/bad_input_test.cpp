@@ -4,6 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
+
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -39,6 +44,8 @@ TEST(BadInput, EveryBadModelIsRefusedWithAClearMessageAndStatus2) {
         EXPECT_EQ(check.status, 2);
         EXPECT_NE((check.out + check.err).find(c.expected), std::string::npos)
             << check.out << check.err;
+        EXPECT_EQ((check.out + check.err).find('\x1b'), std::string::npos)
+            << "a control character reached the terminal";
 
         // Rendering it over an existing file leaves that file exactly as it was.
         { std::ofstream(precious) << "the user's earlier take"; }
@@ -111,6 +118,26 @@ TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
         {{"compare", model, "--vary", "string.damping=1,2", "--gesture",
           (dir / "none.json").string(), "-o", (dir / "cmp").string()},
          "cannot open the file"},
+        // Values that used to fall back to defaults silently, or run without end.
+        {{"render", model, "-o", out, "--sample-rate", "nan"}, "must be from 1000 to 1e+06 Hz"},
+        {{"render", model, "-o", out, "--sample-rate", "0"}, "must be from 1000 to 1e+06 Hz"},
+        {{"check", model, "--sample-rate", "inf"}, "must be from 1000 to 1e+06 Hz"},
+        {{"play", model, "--audio", "null", "--rate", "nan"}, "must be from 1000 to 1e+06 Hz"},
+        {{"new", "bowed-string", "--sample-rate", "0", "-o", out}, "must be from 1000"},
+        {{"render", model, "-o", out, "--duration", "0"}, "--duration: must be above 0 s"},
+        {{"render", model, "-o", out, "--duration", "nan"}, "--duration: must be above 0 s"},
+        {{"render", model, "-o", out, "--duration", "1e308"}, "raise --max-duration"},
+        {{"play", model, "--audio", "null", "--duration", "1e308"}, "at most 3600 s"},
+        {{"map", model, "--force", "0.1:1:100000000", "-o", (dir / "map.csv").string()},
+         "more than --max-points 100000"},
+        // Inputs that never end: read up to the bound, then refused.
+        {{"check", "/dev/zero"}, "is larger than 64 MiB"},
+        {{"render", "/dev/urandom", "-o", out}, "is larger than 64 MiB"},
+        {{"render", model, "--gesture", "/dev/zero", "-o", out}, "is larger than 64 MiB"},
+        {{"check", dir.string()}, "is a folder"},
+        // Outputs that are not files.
+        {{"render", model, "-o", dir.string()}, "is a folder; give a file name inside it"},
+        {{"examples", "-o", (dir / "plain.txt").string()}, "is a file, not a folder"},
     };
     { std::ofstream(dir / "plain.txt") << "a file, not a folder"; }
     for (const auto& [arguments, expected] : cases) {
@@ -122,6 +149,50 @@ TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
     EXPECT_FALSE(std::filesystem::exists(out));
     EXPECT_FALSE(std::filesystem::exists(dir / "cmp")) << "nothing written for a refused compare";
     EXPECT_FALSE(std::filesystem::exists(dir / "map.csv")) << "nor for a refused map";
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "plain.txt"));
+}
+
+// `-o` onto something that is not a regular file: a device or a FIFO is written in place and
+// stays what it was (renaming a temporary over it turned /dev/full into a plain file).
+TEST(BadInput, OutputOntoADeviceOrAFifoLeavesItADeviceOrAFifo) {
+    const auto dir = test::temp_dir("special-outputs");
+    const std::string model = test::resource("models/bowed-string-220.json").string();
+    const auto fifo = dir / "pipe";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    // A reader at the other end, as `archet render -o pipe | …` would have.
+    auto through_pipe = [&](const std::vector<std::string>& arguments) {
+        std::FILE* reader = ::popen(("cat " + fifo.string() + " > /dev/null").c_str(), "r");
+        EXPECT_NE(reader, nullptr);
+        const auto r = test::run_archet(arguments);
+        if (reader) ::pclose(reader);
+        return r;
+    };
+    const auto piped = through_pipe(
+        {"render", model, "--format", "flac", "--duration", "0.1", "-o", fifo.string()});
+    EXPECT_TRUE(std::filesystem::is_fifo(fifo)) << piped.err;
+    const auto saved = through_pipe({"new", "bowed-string", "-o", fifo.string()});
+    EXPECT_EQ(saved.status, 0) << saved.err;
+    EXPECT_TRUE(std::filesystem::is_fifo(fifo));
+
+    if (::geteuid() != 0) GTEST_SKIP() << "device nodes need root to create (mknod)";
+    const auto full = dir / "full", null = dir / "null";
+    ASSERT_EQ(::mknod(full.c_str(), S_IFCHR | 0666, ::makedev(1, 7)), 0);
+    ASSERT_EQ(::mknod(null.c_str(), S_IFCHR | 0666, ::makedev(1, 3)), 0);
+    const auto to_full =
+        test::run_archet({"render", model, "--duration", "0.1", "-o", full.string()});
+    EXPECT_EQ(to_full.status, 2) << to_full.err;
+    EXPECT_NE(to_full.err.find("No space left on device"), std::string::npos) << to_full.err;
+    EXPECT_TRUE(std::filesystem::is_character_file(full));
+    const auto to_null =
+        test::run_archet({"render", model, "--duration", "0.1", "-o", null.string()});
+    EXPECT_EQ(to_null.status, 0) << to_null.err;
+    EXPECT_TRUE(std::filesystem::is_character_file(null));
+    const auto model_to_null = test::run_archet({"new", "bowed-string", "-o", null.string()});
+    EXPECT_EQ(model_to_null.status, 0) << model_to_null.err;
+    EXPECT_TRUE(std::filesystem::is_character_file(null));
+    std::size_t entries = 0;
+    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++entries;
+    EXPECT_EQ(entries, 3u) << "no temporary file left beside them";
 }
 
 // A disk that fills up mid-write: a 64 kB tmpfs (mounting needs root; skipped otherwise).

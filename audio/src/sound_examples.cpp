@@ -1,5 +1,7 @@
 #include "archet/sound_examples.hpp"
 
+#include "archet/input_error.hpp"
+
 #include <cmath>
 
 #include "archet/compiled_model.hpp"
@@ -38,7 +40,15 @@ std::filesystem::path render_sound_example(const SoundExample& example,
     const Model model = load_model_file(resources / "models" / example.model);
     validate_model(model);
     const Gesture gesture = load_gesture_file(resources / "gestures" / example.gesture);
-    std::filesystem::create_directories(folder);
+    std::error_code ec;
+    if (std::filesystem::exists(folder, ec) && !std::filesystem::is_directory(folder, ec))
+        throw InputError(folder.string(),
+                         "is a file, not a folder; give a folder for the sound "
+                         "examples (it is created if missing)");
+    std::filesystem::create_directories(folder, ec);
+    if (ec)
+        throw InputError(folder.string(), "cannot create the folder: " + ec.message() +
+                                              " (is its parent writable?)");
     Simulation sim(compile(model));
     sim.set_gesture_track(&gesture);
     const std::filesystem::path path = folder / example.file;

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include "archet/input_error.hpp"
+#include "archet/output_target.hpp"
 
 namespace archet {
 
@@ -18,13 +19,18 @@ SoundFormat parse_sound_format(const std::string& text) {
 
 SoundFileWriter::SoundFileWriter(std::filesystem::path path, SoundFormat format, int sample_rate,
                                  WriteMode mode)
-    : path_(std::move(path)),
-      temp_(mode == WriteMode::Direct
-                ? path_.string()
-                : path_.string() + ".tmp-" + std::to_string(static_cast<long>(::getpid()))),
-      mode_(mode) {
+    : path_(std::move(path)), mode_(mode) {
     if (mode == WriteMode::Direct && std::filesystem::exists(path_))
         throw InputError(path_.string(), "already exists; a take never overwrites a file");
+    if (mode_ == WriteMode::Safe) {
+        // A device or FIFO (/dev/null, a pipe) is written in place, never renamed over.
+        const OutputTarget target = output_target(path_);
+        if (target.in_place) mode_ = WriteMode::Direct;
+        temp_ = target.in_place ? target.path : target.temporary();
+        final_ = target.path;
+    } else {
+        temp_ = final_ = path_;
+    }
     SF_INFO info{};
     info.samplerate = sample_rate;
     info.channels = 1;
@@ -33,7 +39,8 @@ SoundFileWriter::SoundFileWriter(std::filesystem::path path, SoundFormat format,
     file_ = sf_open(temp_.c_str(), SFM_WRITE, &info);
     if (!file_)
         throw InputError(path_.string(), std::string("cannot write the sound file: ") +
-                                             sf_strerror(nullptr) + " (is the folder writable?)");
+                                             sf_strerror(nullptr) +
+                                             (temp_ == path_ ? "" : " (is the folder writable?)"));
     // Saturate rather than wrap around when a sample is beyond full scale.
     sf_command(file_, SFC_SET_CLIPPING, nullptr, SF_TRUE);
 }
@@ -73,7 +80,7 @@ void SoundFileWriter::close() {
         throw InputError(path_.string(), "could not finish the sound file (disk full?)");
     }
     if (mode_ == WriteMode::Direct) return;
-    std::filesystem::rename(temp_, path_, ec);
+    std::filesystem::rename(temp_, final_, ec);
     if (ec) {
         std::filesystem::remove(temp_, ec);
         throw InputError(path_.string(), "cannot move the sound file into place: " + ec.message());

@@ -1,7 +1,10 @@
 #include "archet/json_reader.hpp"
+#include "archet/printable_text.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace archet {
@@ -51,7 +54,7 @@ bool JsonObjectReader::has(const std::string& key) const {
 const nlohmann::ordered_json& JsonObjectReader::get(const std::string& key) {
     known_.insert(key);
     auto it = object_.find(key);
-    if (it == object_.end()) throw InputError(where_, "missing key \"" + key + "\"");
+    if (it == object_.end()) throw InputError(where_, "missing key " + quoted_text(key));
     return *it;
 }
 
@@ -64,9 +67,9 @@ const nlohmann::ordered_json* JsonObjectReader::optional(const std::string& key)
 double JsonObjectReader::number(const std::string& key) {
     const auto& v = get(key);
     if (!v.is_number())
-        throw InputError(where_, "\"" + key + "\" must be a number, found " + type_name(v));
+        throw InputError(where_, quoted_text(key) + " must be a number, found " + type_name(v));
     const double x = v.get<double>();
-    if (!std::isfinite(x)) throw InputError(where_, "\"" + key + "\" must be a finite number");
+    if (!std::isfinite(x)) throw InputError(where_, quoted_text(key) + " must be a finite number");
     return x;
 }
 
@@ -80,14 +83,22 @@ int JsonObjectReader::integer(const std::string& key, int fallback) {
     if (!has(key)) return fallback;
     const auto& v = object_.at(key);
     if (!v.is_number_integer())
-        throw InputError(where_, "\"" + key + "\" must be an integer, found " + type_name(v));
+        throw InputError(where_, quoted_text(key) + " must be an integer, found " + type_name(v));
+    const bool fits = v.is_number_unsigned()
+                          ? v.get<std::uint64_t>() <= std::numeric_limits<int>::max()
+                          : v.get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                                v.get<std::int64_t>() <= std::numeric_limits<int>::max();
+    if (!fits)
+        throw InputError(where_, key + " " + v.dump() +
+                                     " is out of range; give a whole number of "
+                                     "at most 2147483647 in size");
     return v.get<int>();
 }
 
 std::string JsonObjectReader::text(const std::string& key) {
     const auto& v = get(key);
     if (!v.is_string())
-        throw InputError(where_, "\"" + key + "\" must be a string, found " + type_name(v));
+        throw InputError(where_, quoted_text(key) + " must be a string, found " + type_name(v));
     return v.get<std::string>();
 }
 
@@ -99,23 +110,23 @@ std::string JsonObjectReader::text(const std::string& key, const std::string& fa
 const nlohmann::ordered_json& JsonObjectReader::array(const std::string& key) {
     const auto& v = get(key);
     if (!v.is_array())
-        throw InputError(where_, "\"" + key + "\" must be an array, found " + type_name(v));
+        throw InputError(where_, quoted_text(key) + " must be an array, found " + type_name(v));
     return v;
 }
 
 const nlohmann::ordered_json& JsonObjectReader::object(const std::string& key) {
     const auto& v = get(key);
     if (!v.is_object())
-        throw InputError(where_, "\"" + key + "\" must be an object, found " + type_name(v));
+        throw InputError(where_, quoted_text(key) + " must be an object, found " + type_name(v));
     return v;
 }
 
 void JsonObjectReader::finish() const {
     for (auto it = object_.begin(); it != object_.end(); ++it) {
         if (known_.count(it.key())) continue;
-        std::string message = "unknown key \"" + it.key() + "\"";
+        std::string message = "unknown key " + quoted_text(it.key()) + "";
         const std::string hint = closest_word(it.key(), known_);
-        if (!hint.empty()) message += "; did you mean \"" + hint + "\"?";
+        if (!hint.empty()) message += "; did you mean " + quoted_text(hint) + "?";
         throw InputError(where_, message);
     }
 }

@@ -8,8 +8,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "archet/gesture_validation.hpp"
+#include "archet/input_limits.hpp"
 #include "archet/json_reader.hpp"
 #include "archet/number_text.hpp"
+#include "archet/output_target.hpp"
+#include "archet/printable_text.hpp"
 
 namespace archet {
 
@@ -25,16 +29,16 @@ Enum parse_enum(const std::string& text, std::initializer_list<Enum> values,
         if (text == to_string(v)) return v;
         names.insert(to_string(v));
     }
-    std::string message = "unknown " + key + " \"" + text + "\"; expected one of:";
+    std::string message = "unknown " + key + " " + quoted_text(text) + "; expected one of:";
     for (const auto& n : names) message += " " + n;
     const std::string hint = closest_word(text, names);
-    if (!hint.empty()) message += " (did you mean \"" + hint + "\"?)";
+    if (!hint.empty()) message += " (did you mean " + quoted_text(hint) + "?)";
     throw InputError(where, message);
 }
 
 std::string element_where(const std::string& kind, const Json& item, std::size_t index) {
     if (item.is_object() && item.contains("id") && item["id"].is_string())
-        return kind + " \"" + item["id"].get<std::string>() + "\"";
+        return kind + " " + quoted_text(item["id"].get<std::string>());
     return kind + " #" + std::to_string(index + 1);
 }
 
@@ -49,7 +53,8 @@ std::optional<std::pair<double, double>> read_display(JsonObjectReader& r) {
 void check_header(JsonObjectReader& r, const std::string& format, int version) {
     const std::string found = r.text("format");
     if (found != format)
-        throw InputError(r.where(), "\"format\" is \"" + found + "\", expected \"" + format + "\"");
+        throw InputError(
+            r.where(), "\"format\" is " + quoted_text(found) + ", expected " + quoted_text(format));
     const int v = r.integer("version", -1);
     if (v < 1) throw InputError(r.where(), "\"version\" must be a positive integer");
     if (v > version)
@@ -272,6 +277,12 @@ Model parse_model(const std::string& text, const std::string& source) {
         }
     }
     const Json& mats = r.array("masses");
+    const Json& lias_list = r.array("links");
+    if (mats.size() + lias_list.size() > limits::kElements)
+        throw InputError(source, "holds " + std::to_string(mats.size()) + " masses and " +
+                                     std::to_string(lias_list.size()) +
+                                     " links; a model may have at most " +
+                                     std::to_string(limits::kElements) + " elements");
     for (std::size_t i = 0; i < mats.size(); ++i) m.mats.push_back(read_mat(mats[i], i));
     const Json& lias = r.array("links");
     for (std::size_t i = 0; i < lias.size(); ++i) m.lias.push_back(read_lia(lias[i], i));
@@ -410,15 +421,9 @@ Gesture parse_gesture(const std::string& text, const std::string& source) {
     const std::string name = r.text("name", "");
     auto frames = read_keyframes(r);
     r.finish();
-    if (frames.empty()) throw InputError(source, "a gesture needs at least one keyframe");
-    for (std::size_t i = 1; i < frames.size(); ++i)
-        if (!(frames[i].time > frames[i - 1].time))
-            throw InputError(source + " keyframe #" + std::to_string(i + 1),
-                             "times must increase strictly (t = " + format_number(frames[i].time) +
-                                 " s follows t = " + format_number(frames[i - 1].time) + " s)");
-    if (frames.front().time < 0.0)
-        throw InputError(source + " keyframe #1", "time must not be negative");
-    return Gesture(name, std::move(frames));
+    Gesture gesture(name, std::move(frames));
+    if (auto problem = check_gesture(gesture, source)) throw *problem;
+    return gesture;
 }
 
 std::string format_gesture(const Gesture& g) {
@@ -430,12 +435,23 @@ std::string format_gesture(const Gesture& g) {
 }
 
 std::string read_text_file(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec))
+        throw InputError(path.string(), "is a folder; give the file inside it");
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path.string(), "cannot open the file for reading");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
+    // Read at most one byte past the limit: /dev/zero, a FIFO or a huge file stop there.
+    std::string text;
+    char chunk[1 << 16];
+    while (text.size() <= limits::kFileBytes && in.read(chunk, sizeof chunk).gcount() > 0)
+        text.append(chunk, static_cast<std::size_t>(in.gcount()));
     if (in.bad()) throw InputError(path.string(), "read error");
-    return buffer.str();
+    if (text.size() > limits::kFileBytes)
+        throw InputError(path.string(),
+                         "is larger than " + std::to_string(limits::kFileBytes >> 20) +
+                             " MiB, the most a model, gesture or take file may hold; "
+                             "is it the right file?");
+    return text;
 }
 
 Model load_model_file(const std::filesystem::path& path) {
@@ -447,8 +463,8 @@ Gesture load_gesture_file(const std::filesystem::path& path) {
 }
 
 void write_file_atomically(const std::filesystem::path& path, const std::string& contents) {
-    const std::filesystem::path temp =
-        path.string() + ".tmp-" + std::to_string(static_cast<long>(::getpid()));
+    const OutputTarget target = output_target(path);
+    const std::filesystem::path temp = target.in_place ? target.path : target.temporary();
     {
         std::ofstream out(temp, std::ios::binary | std::ios::trunc);
         if (!out) throw InputError(path.string(), "cannot write here (is the folder writable?)");
@@ -457,13 +473,16 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
         if (!out) {
             out.close();
             std::error_code ignored;
-            std::filesystem::remove(temp, ignored);
-            throw InputError(path.string(),
-                             "write failed (disk full?); the existing file is untouched");
+            if (!target.in_place) std::filesystem::remove(temp, ignored);
+            throw InputError(path.string(), target.in_place
+                                                ? "write failed"
+                                                : "write failed (disk full?); the existing file "
+                                                  "is untouched");
         }
     }
+    if (target.in_place) return;
     std::error_code ec;
-    std::filesystem::rename(temp, path, ec);
+    std::filesystem::rename(temp, target.path, ec);
     if (ec) {
         std::filesystem::remove(temp, ec);
         throw InputError(path.string(), "cannot replace the file: " + ec.message());

@@ -6,9 +6,12 @@
 #include <set>
 #include <unordered_map>
 
+#include "archet/gesture_validation.hpp"
 #include "archet/input_error.hpp"
+#include "archet/input_limits.hpp"
 #include "archet/model_parameters.hpp"
 #include "archet/number_text.hpp"
+#include "archet/printable_text.hpp"
 #include "archet/stability.hpp"
 
 namespace archet {
@@ -16,7 +19,7 @@ namespace archet {
 namespace {
 
 std::string quoted(const std::string& kind, const std::string& id) {
-    return kind + " \"" + id + "\"";
+    return kind + " " + quoted_text(id);
 }
 
 class Checker {
@@ -44,17 +47,39 @@ class Checker {
     void add(std::string where, std::string message) {
         problems_.push_back({std::move(where), std::move(message)});
     }
+    void problems_from(const std::optional<InputError>& error) {
+        if (error) add(error->where(), error->message());
+    }
 
     void check_header() {
-        if (!(model_.sample_rate >= 1000.0 && model_.sample_rate <= 1e6))
+        if (!(model_.sample_rate >= limits::kMinSampleRate &&
+              model_.sample_rate <= limits::kMaxSampleRate))
             add("model", "sample_rate " + format_number(model_.sample_rate) +
                              " Hz is out of range; use 1000 to 1000000 Hz");
-        if (!std::isfinite(model_.output_gain)) add("model", "output_gain must be a finite number");
+        if (!(model_.output_gain > 0.0 && model_.output_gain <= limits::kOutputGain))
+            add("model", "output_gain must be above 0 and at most " +
+                             format_number(limits::kOutputGain) + " (is " +
+                             format_number(model_.output_gain) +
+                             "); it scales the output to full scale, e.g. 1.5 for a bowed string");
+        const std::size_t elements =
+            model_.mats.size() + model_.lias.size() + model_.controls.size();
+        if (elements > limits::kElements)
+            add("model", "holds " + std::to_string(elements) +
+                             " elements; a model may have at most " +
+                             std::to_string(limits::kElements));
+        if (model_.probes.size() > limits::kProbes)
+            add("model", "has " + std::to_string(model_.probes.size()) +
+                             " probes; a model may have at most " +
+                             std::to_string(limits::kProbes));
+        if (model_.gesture) problems_from(check_gesture(*model_.gesture, "gesture"));
         if (model_.rates.empty())
             add("model", "needs at least one rate level, e.g. {\"id\": \"audio\", \"divider\": 1}");
         std::set<std::string> seen;
         for (const auto& r : model_.rates) {
             if (r.id.empty()) add("rate level", "needs a non-empty id");
+            if (!is_printable_text(r.id))
+                add(quoted("rate level", r.id),
+                    "an id may hold only printable characters; rename it");
             if (!seen.insert(r.id).second)
                 add(quoted("rate level", r.id), "duplicate id; rename one");
             if (r.divider < 1 || r.divider > 4096)
@@ -68,6 +93,12 @@ class Checker {
         auto claim = [&](const std::string& kind, const std::string& id) {
             if (id.empty()) {
                 add(kind, "needs a non-empty id");
+                return;
+            }
+            if (!is_printable_text(id)) {
+                add(quoted(kind, id),
+                    "an id may hold only printable characters (no control characters such as "
+                    "ESC or NUL); rename it");
                 return;
             }
             auto [it, added] = seen.emplace(id, kind);
@@ -97,6 +128,16 @@ class Checker {
                            format_number(value) + ")");
     }
 
+    // Every parameter within its physical range (model_parameters.cpp), so that no state
+    // or energy of a model that passes can overflow.
+    bool in_ranges(const std::string& where, const std::vector<ParameterValue>& values) {
+        for (const auto& [info, value] : values) {
+            std::string problem = range_problem(info, value);
+            if (!problem.empty()) return add(where, std::move(problem)), false;
+        }
+        return true;
+    }
+
     void check_mat(const Mat& m) {
         const std::string where = quoted("mass", m.id);
         check_rate(where, m.rate);
@@ -106,6 +147,7 @@ class Checker {
                 add(where, "has a non-finite parameter (NaN or infinity)");
                 return;
             }
+        if (!in_ranges(where, parameter_values(m))) return;
         if (m.kind == MatKind::Mass || m.kind == MatKind::Oscillator)
             positive(where, "mass", m.mass, "kg");
         if (m.kind == MatKind::Oscillator) {
@@ -130,10 +172,10 @@ class Checker {
             const Mat* mode = mat_ref(where, "mode", id);
             if (!mode) continue;
             if (mode->kind != MatKind::Mass && mode->kind != MatKind::Oscillator)
-                add(where, "mode \"" + id + "\" is a " + to_string(mode->kind) +
+                add(where, "mode " + quoted_text(id) + " is a " + to_string(mode->kind) +
                                "; modes must be masses or oscillators (with inertia)");
             else if (mode->rate != m.rate)
-                add(where, "mode \"" + id + "\" runs at rate \"" + mode->rate +
+                add(where, "mode " + quoted_text(id) + " runs at rate \"" + mode->rate +
                                "\", the point at \"" + m.rate +
                                "\"; a modal point and its modes share one rate level");
         }
@@ -156,13 +198,15 @@ class Checker {
                 add(where, "has a non-finite parameter (NaN or infinity)");
                 return;
             }
+        if (!in_ranges(where, parameter_values(l))) return;
         non_negative(where, "stiffness", l.stiffness, "N/m");
         non_negative(where, "damping", l.damping, "N·s/m");
         if (l.kind != LiaKind::BowFriction) {
             const Mat* a = mat_ref(where, "\"from\"", l.from);
             const Mat* b = mat_ref(where, "\"to\"", l.to);
             if (a && b && a == b)
-                add(where, "joins mass \"" + l.from + "\" to itself; pick two different masses");
+                add(where,
+                    "joins mass " + quoted_text(l.from) + " to itself; pick two different masses");
             if (a && b) check_rate_crossing(where, l, *a, *b);
             if (l.kind == LiaKind::Spring) positive(where, "stiffness", l.stiffness, "N/m");
             if (l.kind == LiaKind::Damper) positive(where, "damping", l.damping, "N·s/m");
@@ -190,8 +234,9 @@ class Checker {
             distinct.insert(*roles[i].second);
             if (ends[i] && ends[i]->rate != l.rate)
                 add(where,
-                    std::string(roles[i].first) + " mass \"" + ends[i]->id + "\" runs at rate \"" +
-                        ends[i]->rate + "\" but the bow module at \"" + l.rate +
+                    std::string(roles[i].first) + " mass " + quoted_text(ends[i]->id) +
+                        " runs at rate \"" + ends[i]->rate + "\" but the bow module at \"" +
+                        l.rate +
                         "\"; the friction and the masses it joins must share one rate level");
         }
         if (distinct.size() != 4)
@@ -224,7 +269,8 @@ class Checker {
         const double needed = l.stiffness * period / 2.0;
         if (l.damping < needed)
             add(where,
-                "crosses rate levels (\"" + a.rate + "\", \"" + l.rate + "\", \"" + b.rate +
+                "crosses rate levels (" + quoted_text(a.rate) + ", " + quoted_text(l.rate) +
+                    ", \"" + b.rate +
                     "\"): its held force adds energy unless its damping is at least K·T/2 = " +
                     format_number(needed) + " N·s/m for T = " + format_number(period) + " s (is " +
                     format_number(l.damping) +
@@ -239,7 +285,7 @@ class Checker {
                 auto [it, added] = owner.emplace(*id, l.id);
                 if (!added)
                     add(quoted("link", l.id),
-                        "shares mass \"" + *id + "\" with bow module \"" + it->second +
+                        "shares mass " + quoted_text(*id) + " with bow module \"" + it->second +
                             "\"; each mass can be rubbed by one bow module only");
             }
         }
@@ -249,7 +295,7 @@ class Checker {
         const std::string where = quoted("control", c.id);
         check_rate(where, c.rate);
         if (!model_.find_mat(c.target_element) && !model_.find_lia(c.target_element)) {
-            add(where, "target element \"" + c.target_element + "\" does not exist");
+            add(where, "target element " + quoted_text(c.target_element) + " does not exist");
             return;
         }
         bool known = false;
@@ -257,8 +303,8 @@ class Checker {
         for (const auto& p : element_parameters(model_, c.target_element))
             if (p.name == c.target_parameter) known = true, info = p;
         if (!known) {
-            add(where,
-                "\"" + c.target_element + "\" has no parameter \"" + c.target_parameter + "\"");
+            add(where, quoted_text(c.target_element) + " has no parameter " +
+                           quoted_text(c.target_parameter));
             return;
         }
         for (double v : {c.gain, c.offset, c.minimum, c.maximum})
@@ -285,8 +331,9 @@ class Checker {
             Model copy = model_;
             set_parameter(copy, c.target_element, c.target_parameter, value);
             const auto before = problems_.size();
-            check_stability(copy, "when control \"" + c.id + "\" sets " + c.target_element + "." +
-                                      c.target_parameter + " to " + format_number(value) + ", ");
+            check_stability(copy, "when control " + quoted_text(c.id) + " sets " +
+                                      c.target_element + "." + c.target_parameter + " to " +
+                                      format_number(value) + ", ");
             if (problems_.size() != before) return;
         }
     }
@@ -306,12 +353,13 @@ class Checker {
                 case ProbeKind::Velocity:
                 case ProbeKind::Force:
                     if (!model_.find_mat(p.element))
-                        add(where, "element \"" + p.element + "\" is not a mass");
+                        add(where, "element " + quoted_text(p.element) + " is not a mass");
                     break;
                 default: {
                     const Lia* l = model_.find_lia(p.element);
                     if (!l || l->kind != LiaKind::BowFriction)
-                        add(where, "element \"" + p.element + "\" is not a bow_friction link");
+                        add(where,
+                            "element " + quoted_text(p.element) + " is not a bow_friction link");
                 }
             }
         }
@@ -322,7 +370,7 @@ class Checker {
             const auto& o = model_.outputs[i];
             const std::string where = "output #" + std::to_string(i + 1);
             if (!model_.find_mat(o.element))
-                add(where, "element \"" + o.element + "\" is not a mass");
+                add(where, "element " + quoted_text(o.element) + " is not a mass");
             if (!std::isfinite(o.gain)) add(where, "gain must be a finite number");
         }
     }
@@ -332,7 +380,7 @@ class Checker {
             if (r.stable()) continue;
             const double fs = 1.0 / r.dt;
             add(quoted("mass", r.stiffest_dof),
-                context + "the model is unstable at rate level \"" + r.rate + "\" (" +
+                context + "the model is unstable at rate level " + quoted_text(r.rate) + " (" +
                     format_number(fs) +
                     " Hz): the largest eigenvalue of the normalised stiffness M^-1/2 (K T^2 + 2 Z "
                     "T) M^-1/2 is " +

@@ -1,7 +1,9 @@
 #include "archet/renderer.hpp"
 
 #include <algorithm>
+#include <cmath>
 
+#include "archet/blow_up.hpp"
 #include "archet/denormal_guard.hpp"
 
 namespace archet {
@@ -20,9 +22,14 @@ void render(Simulation& sim, const RenderOptions& options,
             if (options.before_step) options.before_step(sim);
             sim.step();
             audio[i] = sim.output();
-            for (std::size_t p = 0; p < probe_count; ++p)
+            if (!std::isfinite(audio[i])) throw_blow_up(sim);
+            for (std::size_t p = 0; p < probe_count; ++p) {
                 probes[i * probe_count + p] = sim.probe(p);
+                if (!std::isfinite(probes[i * probe_count + p])) throw_blow_up(sim);
+            }
         }
+        // Masses that feed neither output nor probe: once per block, before it is handed on.
+        if (find_blown_up_element(sim)) throw_blow_up(sim);
         sink({done, frames, audio.data(), probe_count ? probes.data() : nullptr, probe_count});
         done += frames;
     }

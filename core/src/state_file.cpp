@@ -1,6 +1,7 @@
 #include "archet/state_file.hpp"
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include "archet/input_error.hpp"
 #include "archet/model_file.hpp"
 #include "archet/number_text.hpp"
+#include "archet/printable_text.hpp"
 
 namespace archet {
 
@@ -30,13 +32,13 @@ std::vector<double> read_state_file(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path.string(), "cannot open the state file");
     std::string line;
-    std::getline(in, line);
+    for (char c = 0; line.size() < 200 && in.get(c) && c != '\n';) line += c;  // bounded
     std::istringstream words(line);
     std::string format, version;
     std::size_t count = 0;
     if (!(words >> format >> version >> count) || format + " " + version != kMagic)
-        throw InputError(path.string(),
-                         "is not an Archet state file (it starts \"" + line.substr(0, 40) + "\")");
+        throw InputError(path.string(), "is not an Archet state file (it starts " +
+                                            quoted_text(line.substr(0, 40)) + ")");
     const auto start = in.tellg();
     in.seekg(0, std::ios::end);
     const auto bytes = static_cast<std::size_t>(in.tellg() - start);
@@ -48,6 +50,10 @@ std::vector<double> read_state_file(const std::filesystem::path& path) {
     std::vector<double> state(count);
     in.read(reinterpret_cast<char*>(state.data()), static_cast<std::streamsize>(bytes));
     if (!in) throw InputError(path.string(), "could not be read to the end");
+    for (std::size_t i = 0; i < state.size(); ++i)
+        if (!std::isfinite(state[i]))
+            throw InputError(path.string(), "number #" + std::to_string(i + 1) +
+                                                " is not finite; the state is damaged");
     return state;
 }
 

@@ -40,7 +40,7 @@ class SoundFileWriter {
     std::uint64_t frames() const { return frames_; }
 
   private:
-    std::filesystem::path path_, temp_;
+    std::filesystem::path path_, temp_, final_;  ///< as given, written, renamed onto
     WriteMode mode_;
     sf_private_tag* file_ = nullptr;
     std::uint64_t clipped_ = 0, frames_ = 0;

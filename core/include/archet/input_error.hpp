@@ -13,12 +13,15 @@ class InputError : public std::runtime_error {
     /// `what` says what is wrong and how to fix it.
     InputError(std::string where, const std::string& what)
         : std::runtime_error(where.empty() ? what : where + ": " + what),
-          where_(std::move(where)) {}
+          where_(std::move(where)),
+          message_(what) {}
 
     const std::string& where() const { return where_; }
+    /// What is wrong, without the `where` in front.
+    const std::string& message() const { return message_; }
 
   private:
-    std::string where_;
+    std::string where_, message_;
 };
 
 }  // namespace archet

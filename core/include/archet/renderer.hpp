@@ -27,7 +27,8 @@ struct RenderOptions {
 };
 
 /// Steps `simulation` options.frames times, calling `sink` after each block. Denormals are
-/// flushed to zero while it runs (see DenormalGuard).
+/// flushed to zero while it runs (see DenormalGuard). Throws InputError, before the block is
+/// handed on, when an output sample, a probe or a position stops being finite (blow_up.hpp).
 void render(Simulation& simulation, const RenderOptions& options,
             const std::function<void(const RenderBlock&)>& sink);
 
