@@ -1,11 +1,12 @@
 #include "archet/json_reader.hpp"
-#include "archet/printable_text.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
+
+#include "archet/printable_text.hpp"
 
 namespace archet {
 
@@ -90,8 +91,8 @@ int JsonObjectReader::integer(const std::string& key, int fallback) {
                                 v.get<std::int64_t>() <= std::numeric_limits<int>::max();
     if (!fits)
         throw InputError(where_, key + " " + v.dump() +
-                                     " is out of range; give a whole number of "
-                                     "at most 2147483647 in size");
+                                     " is out of range: a whole number here lies between "
+                                     "-2147483648 and 2147483647");
     return v.get<int>();
 }
 
@@ -124,7 +125,7 @@ const nlohmann::ordered_json& JsonObjectReader::object(const std::string& key) {
 void JsonObjectReader::finish() const {
     for (auto it = object_.begin(); it != object_.end(); ++it) {
         if (known_.count(it.key())) continue;
-        std::string message = "unknown key " + quoted_text(it.key()) + "";
+        std::string message = "unknown key " + quoted_text(it.key());
         const std::string hint = closest_word(it.key(), known_);
         if (!hint.empty()) message += "; did you mean " + quoted_text(hint) + "?";
         throw InputError(where_, message);

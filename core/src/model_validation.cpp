@@ -371,7 +371,10 @@ class Checker {
             const std::string where = "output #" + std::to_string(i + 1);
             if (!model_.find_mat(o.element))
                 add(where, "element " + quoted_text(o.element) + " is not a mass");
-            if (!std::isfinite(o.gain)) add(where, "gain must be a finite number");
+            if (!(std::abs(o.gain) <= limits::kOutputGain))
+                add(where, "gain must be a finite number within ±" +
+                               format_number(limits::kOutputGain) + " (is " +
+                               format_number(o.gain) + ")");
         }
     }
 
