@@ -461,11 +461,11 @@ class Engine final : public AudioRenderer {
         const int block = output_->buffer_frames();
         char said[kTextSize];
         std::snprintf(said, sizeof said,
-                      "this model needs %.3g ms per block of %d frames, which lasts %.3g ms at "
-                      "%g Hz (%.3g µs per sample for %.3g µs): more than %d %% of one core, it "
-                      "cannot play in real time; reduce the masses and links",
-                      needs * block * 1e3, block, budget * block * 1e3, sample_rate_, needs * 1e6,
-                      budget * 1e6, static_cast<int>(kCostShare * 100));
+                      "cannot play in real time: this model needs %.3g ms per block of %d "
+                      "frames, which lasts %.3g ms at %g Hz (over %d %% of one core); reduce the "
+                      "masses and links",
+                      needs * block * 1e3, block, budget * block * 1e3, sample_rate_,
+                      static_cast<int>(kCostShare * 100));
         throw InputError(path, said);
     }
 
