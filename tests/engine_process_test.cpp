@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <spawn.h>
 #include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,6 +23,8 @@
 #include "archet/ipc/engine_link.hpp"
 #include "archet/model_file.hpp"
 #include "test_support.hpp"
+
+extern char** environ;
 
 namespace archet::ipc {
 namespace {
@@ -524,6 +527,53 @@ TEST(EngineProcess, WatchesTheStudioItStartedWithWhateverTheHeaderSaysLater) {
     const int fd = ::shm_open(name.c_str(), O_RDONLY, 0);
     EXPECT_LT(fd, 0) << "the engine removed the dead studio's segment";
     if (fd >= 0) ::close(fd), ::shm_unlink(name.c_str());
+}
+
+// An engine started by some other process than the segment's owner (no death signal from the
+// kernel) watches the owner by a pidfd taken at start, not by the pid the header holds later.
+TEST(EngineProcess, AnEngineNotStartedByItsStudioWatchesTheOwnerItAttachedTo) {
+    int name_pipe[2], go_pipe[2];
+    ASSERT_EQ(::pipe(name_pipe), 0);
+    ASSERT_EQ(::pipe(go_pipe), 0);
+    const pid_t studio = ::fork();
+    ASSERT_GE(studio, 0);
+    if (studio == 0) {  // owns a segment, then writes 1 over its pid and crashes
+        SharedSegment segment = SharedSegment::create(plan_layout(256, 1u << 12, 64, 256));
+        char name[64] = {};
+        std::strncpy(name, segment.name().c_str(), sizeof name - 1);
+        char go = 0;
+        if (::write(name_pipe[1], name, sizeof name) < 0 || ::read(go_pipe[0], &go, 1) != 1)
+            ::_exit(1);
+        segment.header().studio_pid = 1;
+        ::_exit(0);  // no destructor: no unlink
+    }
+    char name[64] = {};
+    ASSERT_EQ(::read(name_pipe[0], name, sizeof name), static_cast<ssize_t>(sizeof name));
+    std::string binary = ARCHET_BINARY, engine_word = "engine", shm = "--shm", segment_name = name;
+    std::vector<char*> argv{binary.data(), engine_word.data(), shm.data(), segment_name.data(),
+                            nullptr};
+    pid_t engine = -1;
+    ASSERT_EQ(::posix_spawn(&engine, binary.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+    {
+        SharedSegment seen = SharedSegment::attach(name);
+        EXPECT_TRUE(wait_for(
+            [&] {
+                return seen.header().engine_state.load() ==
+                       static_cast<std::uint32_t>(EngineState::Ready);
+            },
+            10000ms))
+            << "the engine attached";
+    }
+    ASSERT_EQ(::write(go_pipe[1], "g", 1), 1);
+    ::waitpid(studio, nullptr, 0);
+    int status = -1;
+    const bool gone =
+        wait_for([&] { return ::waitpid(engine, &status, WNOHANG) == engine; }, 10000ms);
+    if (!gone) ::kill(engine, SIGKILL), ::waitpid(engine, nullptr, 0);
+    EXPECT_TRUE(gone) << "the engine outlived the studio it attached to";
+    EXPECT_FALSE(::shm_open(name, O_RDONLY, 0) >= 0) << "and left its segment behind";
+    ::shm_unlink(name);
+    for (int fd : {name_pipe[0], name_pipe[1], go_pipe[0], go_pipe[1]}) ::close(fd);
 }
 
 // A process that bumps the studio's heartbeat in `link`'s segment (the mapping is shared
