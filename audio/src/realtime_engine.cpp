@@ -156,15 +156,20 @@ class Engine final : public AudioRenderer {
         studio_beat_at_ = last_status;
         while (!quit_.load()) {
             header.engine_heartbeat.fetch_add(1);
-            // Read first: the kernel reparents the engine before it sends the studio's death
-            // signal, so a SIGTERM seen here with the studio gone is caught below.
-            const bool terminating = terminated.load();
+            // Read first: a SIGTERM seen here because the studio died is caught just below, or
+            // within the grace: the death signal comes when the studio's thread that started
+            // the engine exits, which in a studio with several threads can be a moment before
+            // the whole process is gone.
+            if (terminated.load() && terminated_at_ == std::chrono::steady_clock::time_point{})
+                terminated_at_ = std::chrono::steady_clock::now();
             if (studio_gone()) {
                 // Nobody will read or unlink the segment: silence, clean up, leave.
                 segment_.unlink();
                 break;
             }
-            if (terminating) break;  // the studio lives: the segment is its to remove
+            if (terminated_at_ != std::chrono::steady_clock::time_point{} &&
+                std::chrono::steady_clock::now() - terminated_at_ > kTerminateGrace)
+                break;  // the studio lives: the segment is its to remove
             if (!watch_studio_heartbeat()) break;
             CommandFrame command;
             while (commands_.try_pop(command)) handle(command);
@@ -662,7 +667,9 @@ class Engine final : public AudioRenderer {
 
     SharedSegment segment_;
     EngineOptions options_;
-    const std::int32_t studio_pid_;  ///< fixed at start
+    const std::int32_t studio_pid_;                        ///< fixed at start
+    std::chrono::steady_clock::time_point terminated_at_;  ///< when SIGTERM was first seen
+    static constexpr std::chrono::milliseconds kTerminateGrace{500};
     int studio_pidfd_ = -1;          ///< readable once the studio has exited (-1: none)
     bool child_of_studio_ = false;   ///< the kernel sends SIGTERM when the studio dies
     std::uint64_t studio_beat_ = 0;  ///< control thread: the studio's heartbeat as last seen
