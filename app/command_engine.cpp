@@ -20,6 +20,21 @@ void add_engine_command(CLI::App& app, Action& action) {
                     "Haptic device: none, sim (the pad moves a simulated hand), evdev:PATH (a "
                     "force-feedback joystick) or sdl:INDEX (an SDL joystick)")
         ->capture_default_str();
+    cmd->add_option("--takes", o->takes,
+                    "Take directory (absolute; created if missing): takes are recorded only in "
+                    "folders inside it");
+    cmd->add_option("--studio-pid", o->studio_pid,
+                    "The studio's process id (default: the segment's owner, read once at start)")
+        ->check(CLI::Range(2, 1 << 30));
+    cmd->add_option("--studio-timeout", o->studio_timeout,
+                    "Seconds without the studio's heartbeat before the engine fades out and "
+                    "plays nothing (sound comes back when it beats again)")
+        ->check(CLI::Range(0.05, 3600.0))
+        ->capture_default_str();
+    cmd->add_option("--studio-give-up", o->studio_give_up,
+                    "Seconds without the studio's heartbeat before the engine exits")
+        ->check(CLI::Range(0.1, 86400.0))
+        ->capture_default_str();
     cmd->add_option("--shape-every", o->shape_every, "Blocks between string-shape frames")
         ->capture_default_str();
     cmd->callback([&action, o] { action = [o] { return run_engine(*o); }; });

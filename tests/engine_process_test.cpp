@@ -1,21 +1,30 @@
 // The real-time engine as a real second process on shared memory: handshake, load a model,
 // play it from the pad's gesture, receive probe frames and string shapes, change parameters,
-// refuse bad commands and bad segments, and liveness both ways.
+// refuse bad commands and bad segments, and liveness both ways; the engine's boundaries: takes
+// only inside the studio's take directory, the studio's pid fixed at start, a frozen studio's
+// heartbeat, stale segments reclaimed, models too heavy for real time refused.
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <spawn.h>
 #include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <fcntl.h>
+
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <functional>
+#include <set>
 #include <thread>
 
 #include "archet/ipc/engine_link.hpp"
+#include "archet/model_file.hpp"
 #include "test_support.hpp"
+
+extern char** environ;
 
 namespace archet::ipc {
 namespace {
@@ -32,10 +41,12 @@ using test::wait_for;
 
 // Reads status frames until one of `kind` answers `sequence` (errors are collected).
 bool wait_status(EngineLink& link, StatusKind kind, std::uint32_t sequence,
-                 std::vector<std::string>& errors) {
+                 std::vector<std::string>& errors,
+                 std::chrono::milliseconds limit = std::chrono::milliseconds(5000)) {
     auto status = link.status();
     return wait_for(
         [&] {
+            link.heartbeat();
             StatusFrame f;
             while (status.try_pop(f)) {
                 if (f.kind == static_cast<std::uint32_t>(StatusKind::Error))
@@ -45,7 +56,7 @@ bool wait_status(EngineLink& link, StatusKind kind, std::uint32_t sequence,
             }
             return false;
         },
-        5000ms);
+        limit);
 }
 
 // Starts the engine, loads a shipped model and plays it.
@@ -374,6 +385,388 @@ TEST(EngineProcess, RefusesAMissingOrCorruptSegment) {
     r = test::run_archet({"engine", "--shm", segment.name()});
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("bad magic"), std::string::npos) << r.err;
+}
+
+// What lies directly in `dir`: names, for seeing that nothing was created.
+std::set<std::string> entries(const std::filesystem::path& dir) {
+    std::set<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+        names.insert(e.path().filename().string());
+    return names;
+}
+
+// A StartTake folder comes from another process: it must be absolute, printable, plain (no
+// "." or ".."), and inside the take directory the studio gave at start, symbolic links
+// resolved. Anything else is refused before a folder is made, with the path quoted safely.
+TEST(EngineProcess, RecordsTakesOnlyInsideTheStudiosTakeDirectory) {
+    const auto root = test::temp_dir("engine-takes-root");
+    const auto outside = test::temp_dir("engine-takes-outside");
+    std::filesystem::create_directory_symlink(outside, root / "link");
+    EngineLinkOptions o = options();
+    o.takes = (root / "takes").string();  // made by the engine
+    EngineLink link(o);
+    ASSERT_TRUE(start_playing(link, "models/bowed-string-220.json"));
+    const auto cwd = std::filesystem::current_path();  // the engine's too
+    for (const auto& left : {cwd / "relative-take", cwd.parent_path() / "x"})
+        std::filesystem::remove_all(left);  // what an engine that did not check once made
+    const std::string refused[] = {
+        "relative-take",
+        "/tmp/\x01\xfe\x7f\x1b[2Jtake",
+        "../x",
+        (root / "takes" / ".." / "escaped").string(),
+        (outside / "take").string(),
+        (root / "link" / "take").string(),  // inside by name, outside once the link is resolved
+        root.string(),                      // the parent of the take directory
+    };
+    std::vector<std::string> errors;
+    for (const std::string& folder : refused) {
+        errors.clear();
+        const auto sequence = link.start_take(folder);
+        ASSERT_TRUE(wait_status(link, StatusKind::Error, sequence, errors)) << folder;
+        ASSERT_FALSE(errors.empty());
+        const std::string& said = errors.back();
+        EXPECT_NE(said.find("take folder \""), std::string::npos) << said;
+        for (char c : said)
+            EXPECT_TRUE(static_cast<unsigned char>(c) >= 0x20 && c != 0x7f)
+                << "a control byte quoted raw: " << said;
+    }
+    EXPECT_NE(errors.size(), 0u);
+    link.stop_take();
+    // Nothing was made: not in the engine's working folder, its parent, the temporary folder,
+    // the take directory or the folder outside it.
+    EXPECT_FALSE(std::filesystem::exists(cwd / "relative-take"));
+    EXPECT_FALSE(std::filesystem::exists(cwd.parent_path() / "x"));
+    EXPECT_FALSE(std::filesystem::exists(refused[1]));
+    EXPECT_EQ(entries(root), (std::set<std::string>{"link", "takes"}));
+    EXPECT_TRUE(entries(root / "takes").empty());
+    EXPECT_TRUE(entries(outside).empty());
+    // What each refusal says to change.
+    auto refusal = [&](const std::string& folder) {
+        errors.clear();
+        wait_status(link, StatusKind::Error, link.start_take(folder), errors);
+        return errors.empty() ? std::string() : errors.back();
+    };
+    EXPECT_NE(refusal("relative-take").find("is relative: give an absolute path inside"),
+              std::string::npos);
+    const std::string binary = refusal(refused[1]);
+    EXPECT_NE(binary.find("\\x01\\xfe\\x7f\\x1b[2Jtake"), std::string::npos) << binary;
+    EXPECT_NE(binary.find("non-printable"), std::string::npos) << binary;
+    EXPECT_NE(refusal(refused[3]).find("\"..\""), std::string::npos);
+    EXPECT_NE(refusal(refused[4]).find("is not inside the take directory"), std::string::npos);
+
+    // A folder inside it records.
+    errors.clear();
+    const auto good = (root / "takes" / "2026-12-01-take").string();
+    ASSERT_TRUE(wait_status(link, StatusKind::Take, link.start_take(good), errors))
+        << (errors.empty() ? "" : errors.back());
+    link.stop_take();
+    auto status = link.status();
+    ASSERT_TRUE(wait_for(
+        [&] {
+            link.heartbeat();
+            StatusFrame f;
+            while (status.try_pop(f))
+                if (f.kind == static_cast<std::uint32_t>(StatusKind::Take) &&
+                    std::string(f.text).rfind("written ", 0) == 0)
+                    return true;
+            return false;
+        },
+        10000ms));
+    EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(good) / "take.wav"));
+}
+
+// Forks a studio that starts an engine, lets `before_dying` act on its link, and exits
+// without cleaning up (a crash). Returns the engine's pid and the segment's name.
+std::pair<pid_t, std::string> crashing_studio(
+    const std::function<void(EngineLink&)>& before_dying) {
+    int pipe_fds[2];
+    if (::pipe(pipe_fds) != 0) return {-1, ""};
+    const pid_t studio = ::fork();
+    if (studio == 0) {
+        EngineLink link(options());
+        link.start();
+        for (int i = 0; i < 20000 && link.liveness() != EngineLink::Liveness::Running; ++i)
+            ::usleep(1000);
+        before_dying(link);
+        const pid_t engine = link.engine_pid();
+        char name[64] = {};
+        std::strncpy(name, link.segment_name().c_str(), sizeof name - 1);
+        if (::write(pipe_fds[1], &engine, sizeof engine) < 0 ||
+            ::write(pipe_fds[1], name, sizeof name) < 0)
+            ::_exit(1);
+        ::_exit(0);  // no destructor: no quit, no unlink
+    }
+    pid_t engine = -1;
+    char name[64] = {};
+    if (::read(pipe_fds[0], &engine, sizeof engine) != static_cast<ssize_t>(sizeof engine) ||
+        ::read(pipe_fds[0], name, sizeof name) != static_cast<ssize_t>(sizeof name))
+        engine = -1;
+    ::close(pipe_fds[0]), ::close(pipe_fds[1]);
+    ::waitpid(studio, nullptr, 0);
+    return {engine, name};
+}
+
+// Gone, or a zombie waiting for whoever adopted it to reap it.
+bool exited(pid_t pid) {
+    if (::kill(pid, 0) != 0 && errno == ESRCH) return true;
+    const std::string stat = test::read_file("/proc/" + std::to_string(pid) + "/stat");
+    const auto close = stat.rfind(')');
+    return close != std::string::npos && close + 2 < stat.size() && stat[close + 2] == 'Z';
+}
+
+// The engine watches the studio it was started by, not whatever pid the header holds later:
+// a studio (or anything else) writing 1 (init, which never dies) there left an orphan engine.
+TEST(EngineProcess, WatchesTheStudioItStartedWithWhateverTheHeaderSaysLater) {
+    const auto crashed = crashing_studio([](EngineLink& link) { link.header().studio_pid = 1; });
+    const pid_t engine = crashed.first;
+    const std::string name = crashed.second;
+    ASSERT_GT(engine, 0);
+    const bool gone = wait_for([&] { return exited(engine); }, 10000ms);
+    if (!gone) ::kill(engine, SIGKILL);  // it holds ctest's output pipe open
+    ASSERT_TRUE(gone) << "an orphaned engine";
+    const int fd = ::shm_open(name.c_str(), O_RDONLY, 0);
+    EXPECT_LT(fd, 0) << "the engine removed the dead studio's segment";
+    if (fd >= 0) ::close(fd), ::shm_unlink(name.c_str());
+}
+
+// An engine started by some other process than the segment's owner (no death signal from the
+// kernel) watches the owner by a pidfd taken at start, not by the pid the header holds later.
+TEST(EngineProcess, AnEngineNotStartedByItsStudioWatchesTheOwnerItAttachedTo) {
+    int name_pipe[2], go_pipe[2];
+    ASSERT_EQ(::pipe(name_pipe), 0);
+    ASSERT_EQ(::pipe(go_pipe), 0);
+    const pid_t studio = ::fork();
+    ASSERT_GE(studio, 0);
+    if (studio == 0) {  // owns a segment, then writes 1 over its pid and crashes
+        SharedSegment segment = SharedSegment::create(plan_layout(256, 1u << 12, 64, 256));
+        char name[64] = {};
+        std::strncpy(name, segment.name().c_str(), sizeof name - 1);
+        char go = 0;
+        if (::write(name_pipe[1], name, sizeof name) < 0 || ::read(go_pipe[0], &go, 1) != 1)
+            ::_exit(1);
+        segment.header().studio_pid = 1;
+        ::_exit(0);  // no destructor: no unlink
+    }
+    char name[64] = {};
+    ASSERT_EQ(::read(name_pipe[0], name, sizeof name), static_cast<ssize_t>(sizeof name));
+    std::string binary = ARCHET_BINARY, engine_word = "engine", shm = "--shm", segment_name = name;
+    std::vector<char*> argv{binary.data(), engine_word.data(), shm.data(), segment_name.data(),
+                            nullptr};
+    pid_t engine = -1;
+    ASSERT_EQ(::posix_spawn(&engine, binary.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+    {
+        SharedSegment seen = SharedSegment::attach(name);
+        EXPECT_TRUE(wait_for(
+            [&] {
+                return seen.header().engine_state.load() ==
+                       static_cast<std::uint32_t>(EngineState::Ready);
+            },
+            10000ms))
+            << "the engine attached";
+    }
+    ASSERT_EQ(::write(go_pipe[1], "g", 1), 1);
+    ::waitpid(studio, nullptr, 0);
+    int status = -1;
+    const bool gone =
+        wait_for([&] { return ::waitpid(engine, &status, WNOHANG) == engine; }, 10000ms);
+    if (!gone) ::kill(engine, SIGKILL), ::waitpid(engine, nullptr, 0);
+    EXPECT_TRUE(gone) << "the engine outlived the studio it attached to";
+    EXPECT_FALSE(::shm_open(name, O_RDONLY, 0) >= 0) << "and left its segment behind";
+    ::shm_unlink(name);
+    for (int fd : {name_pipe[0], name_pipe[1], go_pipe[0], go_pipe[1]}) ::close(fd);
+}
+
+// A process that bumps the studio's heartbeat in `link`'s segment (the mapping is shared
+// across fork) until it is killed: the studio's role, to freeze with SIGSTOP.
+pid_t heartbeat_process(EngineLink& link) {
+    const pid_t beater = ::fork();
+    if (beater == 0) {
+        for (;;) {
+            link.heartbeat();
+            ::usleep(5000);
+        }
+    }
+    return beater;
+}
+
+// A frozen studio (SIGSTOP) cannot hear or steer: after the heartbeat timeout the engine fades
+// out and plays nothing, says so, and plays again when the heartbeat moves (SIGCONT).
+TEST(EngineProcess, AFrozenStudioSilencesTheEngineUntilItBeatsAgain) {
+    EngineLinkOptions o = options();
+    o.studio_timeout = 1000ms;
+    EngineLink link(o);
+    ASSERT_TRUE(start_playing(link, "models/bowed-string-220.json"));
+    const pid_t studio = heartbeat_process(link);  // from here on only it beats
+    ASSERT_GT(studio, 0);
+    auto probes = link.probes();
+    auto status = link.status();
+    std::uint64_t blocks = 0;
+    std::string said;
+    auto watch = [&] {
+        StatusFrame f;
+        while (status.try_pop(f)) {
+            blocks = f.blocks;
+            if (std::string(f.text).rfind("silent", 0) == 0) said = f.text;
+        }
+    };
+    // Bows until the string sounds; `frames` counts the probe frames, `loud` the largest output.
+    std::uint64_t frames = 0;
+    double loud = 0;
+    const auto start = std::chrono::steady_clock::now();
+    auto bow = [&] {
+        const double t =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        link.gesture(-0.05 + 0.05 * std::fmod(t, 2.0), 0.0015);
+        ProbeFrame f;
+        while (probes.try_pop(f)) ++frames, loud = std::max(loud, std::abs(f.output));
+        watch();
+    };
+    ASSERT_TRUE(wait_for([&] { return bow(), loud > 1e-4; }, 10000ms)) << "it sounds";
+
+    ::kill(studio, SIGSTOP);
+    auto state = [&] { return static_cast<EngineState>(link.header().engine_state.load()); };
+    EXPECT_TRUE(wait_for([&] { return bow(), state() == EngineState::Silent; }, 20000ms));
+    EXPECT_NE(said.find("heartbeat stopped"), std::string::npos) << said;
+    // Past the fade (10 ms, a few blocks), nothing plays while the device's clock runs on.
+    const std::uint64_t silent_at = blocks;
+    ASSERT_TRUE(wait_for([&] { return bow(), blocks > silent_at + 40; }, 20000ms));
+    frames = 0, loud = 0;
+    const std::uint64_t quiet_from = blocks;
+    ASSERT_TRUE(wait_for([&] { return bow(), blocks > quiet_from + 100; }, 20000ms));
+    EXPECT_EQ(frames, 0u) << "the model was not stepped";
+    EXPECT_EQ(loud, 0.0);
+    EXPECT_EQ(state(), EngineState::Silent);
+
+    ::kill(studio, SIGCONT);
+    EXPECT_TRUE(wait_for([&] { return bow(), state() == EngineState::Ready; }, 20000ms));
+    EXPECT_TRUE(wait_for([&] { return bow(), loud > 1e-4; }, 20000ms)) << "the sound is back";
+    ::kill(studio, SIGKILL);
+    ::waitpid(studio, nullptr, 0);
+    EXPECT_EQ(link.liveness(), EngineLink::Liveness::Running);
+}
+
+// A studio frozen for good: the engine gives up after the longer timeout and exits.
+TEST(EngineProcess, AStudioFrozenForGoodLetsTheEngineExit) {
+    EngineLinkOptions o = options();
+    o.studio_timeout = 500ms;
+    o.studio_give_up = 2000ms;
+    EngineLink link(o);
+    link.start();
+    ASSERT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 5000ms));
+    const pid_t studio = heartbeat_process(link);
+    ASSERT_GT(studio, 0);
+    ::kill(studio, SIGSTOP);
+    EXPECT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Exited; }, 30000ms));
+    EXPECT_EQ(link.exit_status(), 0);
+    ::kill(studio, SIGKILL);
+    ::waitpid(studio, nullptr, 0);
+}
+
+// A segment made by a process that then died without unlinking it.
+std::string abandoned_segment(const std::function<void(SharedSegment&)>& change = {}) {
+    int pipe_fds[2];
+    if (::pipe(pipe_fds) != 0) return "";
+    const pid_t owner = ::fork();
+    if (owner == 0) {
+        SharedSegment segment = SharedSegment::create(plan_layout(8, 8, 2, 8));
+        if (change) change(segment);
+        char name[64] = {};
+        std::strncpy(name, segment.name().c_str(), sizeof name - 1);
+        if (::write(pipe_fds[1], name, sizeof name) < 0) ::_exit(1);
+        ::_exit(0);  // no destructor: no unlink
+    }
+    char name[64] = {};
+    if (::read(pipe_fds[0], name, sizeof name) != static_cast<ssize_t>(sizeof name)) name[0] = 0;
+    ::close(pipe_fds[0]), ::close(pipe_fds[1]);
+    ::waitpid(owner, nullptr, 0);
+    return name;
+}
+
+bool segment_exists(const std::string& name) {
+    const int fd = ::shm_open(name.c_str(), O_RDONLY, 0);
+    if (fd >= 0) ::close(fd);
+    return fd >= 0;
+}
+
+// When a studio and its engine both died, neither removed their segment: the next studio to
+// start an engine does, and leaves every segment that still has a living side, or that is not
+// a valid Archet segment.
+TEST(EngineProcess, TheNextStartReclaimsTheSegmentOfAStudioAndEngineThatBothDied) {
+    const std::string stale = abandoned_segment();
+    const std::string engine_lives = abandoned_segment();
+    const std::string foreign = abandoned_segment([](SharedSegment& s) { s.header().magic = 0; });
+    ASSERT_FALSE(stale.empty());
+    ASSERT_FALSE(engine_lives.empty());
+    ASSERT_FALSE(foreign.empty());
+    const pid_t engine = ::fork();  // a living "engine" for the second one
+    if (engine == 0) {
+        for (;;) ::pause();
+    }
+    {
+        SharedSegment s = SharedSegment::attach(engine_lives);
+        s.header().engine_pid.store(engine);
+    }
+    SharedSegment ours = SharedSegment::create(plan_layout(8, 8, 2, 8));  // its studio lives
+    ASSERT_TRUE(segment_exists(stale));
+
+    EngineLink link(options());
+    link.start();
+    EXPECT_FALSE(segment_exists(stale)) << "both its processes are gone";
+    EXPECT_TRUE(segment_exists(engine_lives)) << "its engine lives";
+    EXPECT_TRUE(segment_exists(foreign)) << "not a valid Archet segment: not ours to judge";
+    EXPECT_TRUE(segment_exists(ours.name())) << "its studio lives";
+    EXPECT_TRUE(segment_exists(link.segment_name()));
+    ::kill(engine, SIGKILL);
+    ::waitpid(engine, nullptr, 0);
+    for (const std::string& name : {stale, engine_lives, foreign}) ::shm_unlink(name.c_str());
+}
+
+// A model that no machine steps in real time (tens of thousands of masses at 192 kHz) is
+// measured off the real-time path before it is swapped in, and refused with its cost and the
+// budget; the shipped string is accepted at the same rate. (Nothing here depends on how fast
+// the machine is: the heavy model is hundreds of times over any budget, the light one far
+// under it.)
+TEST(EngineProcess, RefusesAModelTooHeavyForRealTime) {
+    Model heavy = load_model_file(test::resource("models/bowed-string-220.json"));
+    heavy.name = "heavy";
+    constexpr int kMasses = 30000;
+    for (int i = 0; i < kMasses; ++i) {
+        Mat m;
+        m.id = "h" + std::to_string(i);
+        m.kind = MatKind::Mass;
+        m.mass = 1e-3;
+        heavy.mats.push_back(m);
+        if (i == 0) continue;
+        Lia l;
+        l.id = "hk" + std::to_string(i);
+        l.kind = LiaKind::Spring;
+        l.from = "h" + std::to_string(i - 1);
+        l.to = m.id;
+        l.stiffness = 1;
+        heavy.lias.push_back(l);
+    }
+    const auto dir = test::temp_dir("engine-heavy");
+    write_file_atomically(dir / "heavy.json", format_model(heavy));
+
+    EngineLinkOptions o = options();
+    o.sample_rate = 192000;
+    EngineLink link(o);
+    link.start();
+    ASSERT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 5000ms));
+    std::vector<std::string> errors;
+    const auto heavy_load = link.load_model((dir / "heavy.json").string());
+    ASSERT_TRUE(wait_status(link, StatusKind::Error, heavy_load, errors, 120000ms));
+    const std::string said = errors.back();
+    EXPECT_NE(said.find("cannot play in real time"), std::string::npos) << said;
+    EXPECT_NE(said.find("ms per block of 64 frames, which lasts 0.333 ms"), std::string::npos)
+        << said;
+    EXPECT_NE(said.find("reduce the masses"), std::string::npos) << said;
+
+    errors.clear();
+    const auto light = link.load_model(test::resource("models/bowed-string-220.json").string());
+    EXPECT_TRUE(wait_status(link, StatusKind::ModelLoaded, light, errors, 20000ms))
+        << (errors.empty() ? "" : errors.back());
+    EXPECT_EQ(link.liveness(), EngineLink::Liveness::Running);
 }
 
 }  // namespace

@@ -33,6 +33,7 @@ class EngineSession {
     static EngineLinkOptions options() {
         EngineLinkOptions o;
         o.archet_binary = ARCHET_BINARY;
+        o.takes = std::filesystem::temp_directory_path().string();  // test::temp_dir's folders
         return o;
     }
 

@@ -1,8 +1,11 @@
 #include "archet/realtime_engine.hpp"
 
+#include <poll.h>
 #include <pthread.h>
 #include <signal.h>
 #include <sys/mman.h>
+#include <sys/prctl.h>
+#include <sys/syscall.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -11,8 +14,11 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <thread>
@@ -25,6 +31,7 @@
 #include "archet/input_error.hpp"
 #include "archet/ipc/command_decoder.hpp"
 #include "archet/ipc/shared_segment.hpp"
+#include "archet/ipc/take_folder.hpp"
 #include "archet/model_file.hpp"
 #include "archet/model_parameters.hpp"
 #include "archet/model_validation.hpp"
@@ -40,6 +47,29 @@ namespace archet {
 namespace {
 
 using namespace ipc;
+
+// SIGTERM: from the kernel when the studio that started the engine dies (PR_SET_PDEATHSIG), or
+// from a user. The control thread sees it at its next round.
+std::atomic<bool> terminated{false};
+static_assert(std::atomic<bool>::is_always_lock_free);
+extern "C" void on_terminate(int) {
+    terminated.store(true);
+}
+
+// A sanitizer's instrumented build runs the same code several times slower than the release
+// build whose real-time behaviour the model-cost check judges: its measurements are scaled
+// back by this much, so that CI under ThreadSanitizer accepts what a release engine plays.
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
+constexpr double kInstrumentationSlowdown = 10;
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer) || __has_feature(address_sanitizer)
+constexpr double kInstrumentationSlowdown = 10;
+#else
+constexpr double kInstrumentationSlowdown = 1;
+#endif
+#else
+constexpr double kInstrumentationSlowdown = 1;
+#endif
 
 // Everything the real-time thread needs of a model, built by the control thread.
 struct LoadedModel {
@@ -63,6 +93,12 @@ struct RealtimeCommand {
     std::uint32_t name = 0;        ///< SetParameter: its name in the take being recorded
 };
 
+std::string seconds_text(double seconds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f s", seconds);
+    return text;
+}
+
 void copy_text(char (&to)[kTextSize], const std::string& from) {
     const std::size_t n = std::min(from.size(), kTextSize - 1);
     std::memcpy(to, from.data(), n);
@@ -71,9 +107,10 @@ void copy_text(char (&to)[kTextSize], const std::string& from) {
 
 class Engine final : public AudioRenderer {
   public:
-    Engine(SharedSegment segment, const EngineOptions& options)
+    Engine(SharedSegment segment, const EngineOptions& options, std::int32_t studio_pid)
         : segment_(std::move(segment)),
           options_(options),
+          studio_pid_(studio_pid),
           commands_(segment_.commands()),
           probes_(segment_.probes()),
           shapes_(segment_.shapes()),
@@ -83,12 +120,22 @@ class Engine final : public AudioRenderer {
 
     ~Engine() override {
         if (output_) output_->stop();
+        if (studio_pidfd_ >= 0) ::close(studio_pidfd_);
     }
 
     int run() {
         auto& header = segment_.header();
         header.engine_pid.store(static_cast<std::int32_t>(::getpid()));
+        watch_studio();
         std::string said = request_realtime_resources();
+        if (!options_.takes.empty()) {
+            try {
+                take_root_ = prepare_take_directory(options_.takes);
+            } catch (const std::exception& e) {
+                take_problem_ = e.what();
+                said += take_problem_ + "; ";
+            }
+        }
         haptic_ = open_haptic_device(options_.haptic);
         std::string warning;
         output_ = open_audio_output(options_.audio, &warning);
@@ -105,13 +152,25 @@ class Engine final : public AudioRenderer {
         header.engine_state.store(static_cast<std::uint32_t>(EngineState::Ready));
         publish(StatusKind::Heartbeat, 0, said);
         auto last_status = std::chrono::steady_clock::now();
+        studio_beat_ = header.studio_heartbeat.load();
+        studio_beat_at_ = last_status;
         while (!quit_.load()) {
             header.engine_heartbeat.fetch_add(1);
+            // Read first: a SIGTERM seen here because the studio died is caught just below, or
+            // within the grace: the death signal comes when the studio's thread that started
+            // the engine exits, which in a studio with several threads can be a moment before
+            // the whole process is gone.
+            if (terminated.load() && terminated_at_ == std::chrono::steady_clock::time_point{})
+                terminated_at_ = std::chrono::steady_clock::now();
             if (studio_gone()) {
                 // Nobody will read or unlink the segment: silence, clean up, leave.
                 segment_.unlink();
                 break;
             }
+            if (terminated_at_ != std::chrono::steady_clock::time_point{} &&
+                std::chrono::steady_clock::now() - terminated_at_ > kTerminateGrace)
+                break;  // the studio lives: the segment is its to remove
+            if (!watch_studio_heartbeat()) break;
             CommandFrame command;
             while (commands_.try_pop(command)) handle(command);
             collect_retired();
@@ -189,9 +248,10 @@ class Engine final : public AudioRenderer {
                     running_model_->simulation->set_device_position(pad_);
             }
         }
-        if (muted_) end_take();
-        if (waiting_take_) begin_take();
-        if (playing_ && running_model_ && !muted_)
+        silent_now_ = silent_.load(std::memory_order_relaxed);
+        if (muted_ || silent_now_) end_take();
+        if (waiting_take_ && !silent_now_) begin_take();
+        if (playing_ && running_model_ && !muted_ && !(silent_now_ && studio_gain_ <= 0))
             run_block(*running_model_, out, frames, channels);
         else
             std::fill(out, out + static_cast<std::ptrdiff_t>(frames) * channels, 0.0f);
@@ -201,9 +261,66 @@ class Engine final : public AudioRenderer {
   private:
     // ---- control thread ------------------------------------------------------------------
 
+    // The studio's pid was fixed at start (later writes to the header change nothing). As its
+    // child the engine asks the kernel for SIGTERM when it dies; in any case it holds a pidfd,
+    // readable once the process has exited, or (without pidfd_open) asks kill(pid, 0).
+    void watch_studio() {
+        struct sigaction action {};
+        action.sa_handler = on_terminate;
+        sigemptyset(&action.sa_mask);
+        ::sigaction(SIGTERM, &action, nullptr);
+        if (::getppid() == studio_pid_) {
+            ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+            child_of_studio_ = true;
+        }
+#ifdef SYS_pidfd_open
+        studio_pidfd_ = static_cast<int>(::syscall(SYS_pidfd_open, studio_pid_, 0));
+#endif
+    }
+
     bool studio_gone() {
-        const auto pid = segment_.header().studio_pid;
-        return pid <= 0 || (::kill(pid, 0) != 0 && errno == ESRCH);
+        if (child_of_studio_ && ::getppid() != studio_pid_) return true;  // died before prctl
+        if (studio_pidfd_ >= 0) {
+            pollfd p{studio_pidfd_, POLLIN, 0};
+            return ::poll(&p, 1, 0) > 0;
+        }
+        return process_gone(studio_pid_);
+    }
+
+    // A studio whose heartbeat stops (frozen, stopped, stuck) cannot hear or steer: after
+    // studio_timeout the sound fades out and nothing plays until it beats again; after
+    // studio_give_up the engine leaves (a studio that wakes then restarts it). False: leave.
+    bool watch_studio_heartbeat() {
+        auto& header = segment_.header();
+        const std::uint64_t beat = header.studio_heartbeat.load();
+        const auto now = std::chrono::steady_clock::now();
+        if (beat != studio_beat_) {
+            studio_beat_ = beat;
+            studio_beat_at_ = now;
+            if (silenced_) {
+                silenced_ = false;
+                silent_.store(false);
+                header.engine_state.store(static_cast<std::uint32_t>(EngineState::Ready));
+                publish(StatusKind::Heartbeat, 0, "the studio beats again: playing");
+            }
+            return true;
+        }
+        const double quiet = std::chrono::duration<double>(now - studio_beat_at_).count();
+        if (quiet > options_.studio_give_up) {
+            publish(
+                StatusKind::Error, 0,
+                "the studio's heartbeat stopped " + seconds_text(quiet) + " ago: the engine exits");
+            return false;
+        }
+        if (!silenced_ && quiet > options_.studio_timeout) {
+            silenced_ = true;
+            silent_.store(true);
+            header.engine_state.store(static_cast<std::uint32_t>(EngineState::Silent));
+            publish(StatusKind::Heartbeat, 0,
+                    "silent: the studio's heartbeat stopped " + seconds_text(quiet) +
+                        " ago; the sound comes back when it beats again");
+        }
+        return true;
     }
 
     std::string request_realtime_resources() {
@@ -313,6 +430,7 @@ class Engine final : public AudioRenderer {
                                            " probes; the engine streams at most " +
                                            std::to_string(kMaxProbes));
             auto loaded = prepare(model, c.sequence);
+            check_cost(path, *loaded);
             loaded->generation = ++generation_;  // only once it compiled
             current_resolver_ = loaded->resolver;
             current_model_ = std::move(model);
@@ -321,6 +439,39 @@ class Engine final : public AudioRenderer {
         } catch (const std::exception& e) {
             fail(c, e.what());
         }
+    }
+
+    // Before a model is swapped in, a copy of it is stepped here, off the real-time path, for
+    // at most kCostSamples samples or kCostSeconds: its fastest chunk's time per sample is
+    // what the model needs at least. Above kCostShare of the device's time per sample it
+    // cannot keep up (it would xrun on every block) and is refused.
+    void check_cost(const std::string& path, const LoadedModel& loaded) const {
+        const DenormalGuard no_denormals;
+        Simulation copy(loaded.resolver);
+        copy.set_gesture_track(nullptr);
+        using clock = std::chrono::steady_clock;
+        const auto start = clock::now();
+        double best = std::numeric_limits<double>::infinity();  // s per sample
+        for (int done = 0; done < kCostSamples;) {
+            const auto t0 = clock::now();
+            int n = 0;
+            for (; n < kCostChunk && done + n < kCostSamples; ++n) copy.step();
+            const auto t1 = clock::now();
+            done += n;
+            best = std::min(best, std::chrono::duration<double>(t1 - t0).count() / n);
+            if (std::chrono::duration<double>(t1 - start).count() > kCostSeconds) break;
+        }
+        const double needs = best / kInstrumentationSlowdown, budget = 1.0 / sample_rate_;
+        if (needs <= kCostShare * budget) return;
+        const int block = output_->buffer_frames();
+        char said[kTextSize];
+        std::snprintf(said, sizeof said,
+                      "cannot play in real time: this model needs %.3g ms per block of %d "
+                      "frames, which lasts %.3g ms at %g Hz (over %d %% of one core); reduce the "
+                      "masses and links",
+                      needs * block * 1e3, block, budget * block * 1e3, sample_rate_,
+                      static_cast<int>(kCostShare * 100));
+        throw InputError(path, said);
     }
 
     void set_parameter(const CommandFrame& c, const std::string& name) {
@@ -354,6 +505,10 @@ class Engine final : public AudioRenderer {
     // real-time thread begins it at a block boundary.
     void start_take(const CommandFrame& c, const std::string& folder) {
         try {
+            // The folder came from another process: nothing is made until it is known to lie
+            // inside the take directory the studio gave at start.
+            if (!take_problem_.empty()) throw InputError(quote_safely(folder), take_problem_);
+            check_take_folder(folder, take_root_);
             if (current_name_.empty()) throw InputError(folder, "no model is loaded to record");
             if (live_take_)
                 throw InputError(folder, "a take is already being recorded into " +
@@ -448,7 +603,9 @@ class Engine final : public AudioRenderer {
         return (1.0 - a) * outgoing + a * incoming;
     }
 
-    double device_time() const { return static_cast<double>(device_ticks_) / sample_rate_; }
+    double device_time() const {
+        return static_cast<double>(device_ticks_) / sample_rate_;
+    }
 
     void run_block(LoadedModel& m, float* out, int frames, int channels) {
         const DenormalGuard no_denormals;
@@ -468,6 +625,12 @@ class Engine final : public AudioRenderer {
             for (std::size_t p = 0; p < probes; ++p) f.values[p] = sim.probe(p);
             f.output = sim.output();
             if (fading_from_) f.output = cross_fade(f.output);
+            if (silent_now_ ? studio_gain_ > 0
+                            : studio_gain_ < 1) {  // the studio froze, or is back
+                studio_gain_ += (silent_now_ ? -1.0 : 1.0) / fade_samples_;
+                studio_gain_ = std::clamp(studio_gain_, 0.0, 1.0);
+            }
+            f.output *= studio_gain_;
             if (!std::isfinite(f.output)) {  // mute within this block; control resets the model
                 muted_ = true;
                 blown_.store(true);
@@ -504,6 +667,21 @@ class Engine final : public AudioRenderer {
 
     SharedSegment segment_;
     EngineOptions options_;
+    const std::int32_t studio_pid_;                        ///< fixed at start
+    std::chrono::steady_clock::time_point terminated_at_;  ///< when SIGTERM was first seen
+    static constexpr std::chrono::milliseconds kTerminateGrace{500};
+    int studio_pidfd_ = -1;          ///< readable once the studio has exited (-1: none)
+    bool child_of_studio_ = false;   ///< the kernel sends SIGTERM when the studio dies
+    std::uint64_t studio_beat_ = 0;  ///< control thread: the studio's heartbeat as last seen
+    std::chrono::steady_clock::time_point studio_beat_at_;  ///< when it last moved
+    bool silenced_ = false;                                 ///< control thread
+    std::atomic<bool> silent_{false};  ///< control → real-time: the studio froze, play nothing
+    bool silent_now_ = false;          ///< real-time thread: silent_ for this block
+    double studio_gain_ = 1;           ///< real-time thread: fades out while silent, back in after
+    std::filesystem::path take_root_;  ///< canonical take directory (empty: no takes)
+    std::string take_problem_;         ///< why the take directory could not be used
+    static constexpr int kCostSamples = 2048, kCostChunk = 8;
+    static constexpr double kCostSeconds = 0.02, kCostShare = 0.7;
     SpscRing<CommandFrame> commands_;
     SpscRing<ProbeFrame> probes_;
     SpscRing<ShapeFrame> shapes_;
@@ -555,7 +733,17 @@ class Engine final : public AudioRenderer {
 
 int run_engine(const EngineOptions& options) {
     ipc::SharedSegment segment = ipc::SharedSegment::attach(options.segment);
-    Engine engine(std::move(segment), options);
+    // Read once: whatever is written into the header later, this is the studio watched.
+    const std::int32_t studio_pid =
+        options.studio_pid > 0 ? options.studio_pid : segment.header().studio_pid;
+    if (studio_pid <= 1)
+        throw InputError("segment " + options.segment,
+                         "names no studio process (owner pid " + std::to_string(studio_pid) +
+                             "): give the studio's pid with --studio-pid");
+    if (!options.takes.empty() && !std::filesystem::path(options.takes).is_absolute())
+        throw InputError("--takes " + ipc::quote_safely(options.takes),
+                         "the take directory must be an absolute path");
+    Engine engine(std::move(segment), options, studio_pid);
     return engine.run();
 }
 

@@ -35,6 +35,7 @@ void EngineClient::launch() {
     o.block_frames = options_.buffer_frames;
     o.haptic = options_.haptic.toStdString();
     o.sample_rate = options_.sample_rate;
+    o.takes = options_.takes.toStdString();
     try {
         link_ = std::make_unique<ipc::EngineLink>(o);
         link_->start();
@@ -126,6 +127,16 @@ void EngineClient::set_parameter(const QString& name, double value) {
 void EngineClient::gesture(double slide, double press) {
     slide_ = slide, press_ = press;
     if (link_) link_->gesture(slide, press);
+}
+
+void EngineClient::set_takes_folder(const QString& folder) {
+    if (options_.takes == folder) return;
+    EngineClientOptions o = options_;
+    o.takes = folder;
+    if (link_)
+        reconfigure(std::move(o));
+    else
+        options_ = std::move(o);
 }
 
 void EngineClient::start_take(const QString& folder) {

@@ -343,6 +343,7 @@ QToolBar* MainWindow::build_palette() {
 void MainWindow::set_takes_folder(const QString& folder) {
     takes_folder_ = folder;
     takes_->set_folder(folder);
+    engine_->set_takes_folder(folder);  // the engine records only inside it
 }
 
 void MainWindow::set_resources_folder(const QString& folder) {

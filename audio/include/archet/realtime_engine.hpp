@@ -20,10 +20,18 @@ struct EngineOptions {
     int shape_every = 8;  ///< blocks between string-shape frames
     std::string haptic =
         "none";  ///< none: the pad sets the device position; sim: it moves a simulated hand
+    /// The take directory (absolute): StartTake folders must lie inside it. Empty: no takes.
+    std::string takes;
+    /// The studio's pid, fixed at start (0: the segment header's, read once at attach; later
+    /// writes to the header change nothing).
+    int studio_pid = 0;
+    double studio_timeout = 2;   ///< s without the studio's heartbeat: fade out, play nothing
+    double studio_give_up = 60;  ///< s without it: exit
 };
 
-/// Runs until told to quit or the studio dies. Returns the exit status (0 normal; 2 when the
-/// segment is missing or invalid).
+/// Runs until told to quit, the studio dies (SIGTERM from the kernel when it is the studio's
+/// child, or its pidfd) or the studio's heartbeat stops for `studio_give_up`. Returns the exit
+/// status (0 normal; 2 when the segment is missing or invalid).
 int run_engine(const EngineOptions& options);
 
 }  // namespace archet

@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
@@ -17,7 +18,13 @@ namespace archet::ipc {
 
 namespace {
 constexpr std::uint32_t kCommandCapacity = 256, kShapeCapacity = 64, kStatusCapacity = 256;
+
+std::string seconds(std::chrono::milliseconds ms) {
+    std::ostringstream s;
+    s << std::chrono::duration<double>(ms).count();
+    return s.str();
 }
+}  // namespace
 
 EngineLink::EngineLink(EngineLinkOptions options)
     : options_(std::move(options)),
@@ -36,6 +43,7 @@ EngineLink::~EngineLink() {
 }
 
 void EngineLink::start() {
+    reclaim_stale_segments();
     const std::string block = std::to_string(options_.block_frames);
     std::ostringstream rate;
     rate << options_.sample_rate;
@@ -50,7 +58,14 @@ void EngineLink::start() {
                                   "--audio",
                                   options_.audio,
                                   "--rate",
-                                  rate.str()};
+                                  rate.str(),
+                                  "--studio-pid",
+                                  std::to_string(::getpid()),
+                                  "--studio-timeout",
+                                  seconds(options_.studio_timeout),
+                                  "--studio-give-up",
+                                  seconds(options_.studio_give_up)};
+    if (!options_.takes.empty()) args.insert(args.end(), {"--takes", options_.takes});
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

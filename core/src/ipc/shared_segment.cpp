@@ -1,11 +1,15 @@
 #include "archet/ipc/shared_segment.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/mman.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstring>
 #include <new>
@@ -57,16 +61,18 @@ SharedSegment SharedSegment::create(const Layout& plan) {
         s.layout_ = plan;
         // The segment is zero-filled: construct the header and ring controls in place.
         auto* h = new (s.base_) SegmentHeader{};
-        h->magic = plan.magic;
+        h->studio_pid = static_cast<std::int32_t>(::getpid());
         h->protocol_version = plan.protocol_version;
         h->minimum_compatible_version = plan.minimum_compatible_version;
         h->header_size = plan.header_size;
         h->segment_size = plan.segment_size;
-        h->studio_pid = static_cast<std::int32_t>(::getpid());
         h->commands = plan.commands, h->probes = plan.probes, h->shapes = plan.shapes,
         h->status = plan.status;
         for (const RingDescriptor* d : {&h->commands, &h->probes, &h->shapes, &h->status})
             new (static_cast<char*>(s.base_) + d->offset) RingControl{};
+        // Last: a reader (an engine, reclaim_stale_segments) judges a header by its magic.
+        std::atomic_thread_fence(std::memory_order_release);
+        h->magic = plan.magic;
         return s;
     }
     throw InputError("shared memory", "could not find a free segment name");
@@ -105,6 +111,62 @@ SharedSegment SharedSegment::attach(const std::string& name) {
     s.layout_ = read_layout(s.header());
     if (const char* problem = validate_layout(s.layout_, size)) throw InputError(where, problem);
     return s;
+}
+
+bool process_gone(std::int32_t pid) {
+    return pid <= 0 || (::kill(pid, 0) != 0 && errno == ESRCH);
+}
+
+namespace {
+
+bool is_segment_name(const std::string& name) {
+    const std::string prefix = "archet-";
+    if (name.size() != prefix.size() + 32 || name.compare(0, prefix.size(), prefix) != 0)
+        return false;
+    for (std::size_t i = prefix.size(); i < name.size(); ++i)
+        if (!std::isxdigit(static_cast<unsigned char>(name[i])) ||
+            std::isupper(static_cast<unsigned char>(name[i])))
+            return false;
+    return true;
+}
+
+// Whether the segment `name` (with its leading /) is one of ours whose two processes died.
+bool stale(const std::string& name) {
+    const int fd = ::shm_open(name.c_str(), O_RDONLY | O_NOFOLLOW, 0);
+    if (fd < 0) return false;
+    struct stat st {};
+    bool dead = false;
+    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_uid == ::geteuid() &&
+        (st.st_mode & 0777) == 0600 &&
+        static_cast<std::uint64_t>(st.st_size) >= sizeof(SegmentHeader)) {
+        const auto size = static_cast<std::uint64_t>(st.st_size);
+        void* base = ::mmap(nullptr, size, PROT_READ, MAP_SHARED, fd, 0);
+        if (base != MAP_FAILED) {
+            const auto& header = *static_cast<const SegmentHeader*>(base);
+            if (validate_layout(read_layout(header), size) == nullptr)
+                dead = header.studio_pid > 0 && process_gone(header.studio_pid) &&
+                       process_gone(header.engine_pid.load());
+            ::munmap(base, size);
+        }
+    }
+    ::close(fd);
+    return dead;
+}
+
+}  // namespace
+
+std::vector<std::string> reclaim_stale_segments(const std::string& folder) {
+    std::vector<std::string> removed;
+    DIR* dir = ::opendir(folder.c_str());
+    if (!dir) return removed;
+    while (const dirent* entry = ::readdir(dir)) {
+        const std::string name = entry->d_name;
+        if (!is_segment_name(name)) continue;
+        if (stale("/" + name) && ::shm_unlink(("/" + name).c_str()) == 0)
+            removed.push_back("/" + name);
+    }
+    ::closedir(dir);
+    return removed;
 }
 
 SharedSegment::SharedSegment(SharedSegment&& o) noexcept

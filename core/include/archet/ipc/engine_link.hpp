@@ -21,6 +21,13 @@ struct EngineLinkOptions {
     double sample_rate = 48000;   ///< Hz, passed to the engine's --rate (a device may differ)
     std::uint32_t probe_capacity = 1u << 16;
     std::chrono::milliseconds unresponsive_after{300};
+    /// The take directory (absolute; created if missing): the engine records takes only in
+    /// folders inside it. Empty: the engine refuses every take.
+    std::string takes;
+    /// The engine falls silent when the studio's heartbeat has not moved for this long (a
+    /// frozen studio), plays again when it moves, and exits after `studio_give_up`.
+    std::chrono::milliseconds studio_timeout{2000};
+    std::chrono::milliseconds studio_give_up{60000};
 };
 
 class EngineLink {
@@ -30,7 +37,9 @@ class EngineLink {
     EngineLink(const EngineLink&) = delete;
     EngineLink& operator=(const EngineLink&) = delete;
 
-    /// Spawns the engine; throws when it cannot.
+    /// Spawns the engine (after removing the segments of studios and engines that both died:
+    /// reclaim_stale_segments); throws when it cannot. The engine is told this process's pid
+    /// and watches it: it exits when the studio dies.
     void start();
     pid_t engine_pid() const { return pid_; }
     const std::string& segment_name() const { return segment_.name(); }

@@ -40,7 +40,8 @@ enum class EngineState : std::uint32_t {
     Ready = 1,
     Running = 2,
     Exiting = 3,
-    Failed = 4
+    Failed = 4,
+    Silent = 5  ///< the studio's heartbeat stopped: faded out, nothing plays until it beats
 };
 
 struct SegmentHeader {

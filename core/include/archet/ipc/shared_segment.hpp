@@ -4,6 +4,7 @@
 // the engine attaches and checks the owner, the permissions and every field of the layout.
 
 #include <string>
+#include <vector>
 
 #include "archet/ipc/segment_layout.hpp"
 #include "archet/ipc/spsc_ring.hpp"
@@ -50,5 +51,14 @@ class SharedSegment {
 
 /// "/archet-" and 32 random hex digits.
 std::string random_segment_name();
+
+/// Removes the segments left behind when a studio and its engine both died (neither could
+/// unlink it). Only this user's own: names "archet-" and 32 hex digits in `folder` (where
+/// shm_open keeps them), mode 0600, owned by this user, with a valid header of this protocol,
+/// whose studio and engine pids are both gone. Returns the names removed ("/archet-...").
+std::vector<std::string> reclaim_stale_segments(const std::string& folder = "/dev/shm");
+
+/// Whether process `pid` is gone (no such process; a zombie or another user's still counts).
+bool process_gone(std::int32_t pid);
 
 }  // namespace archet::ipc

@@ -29,6 +29,8 @@ struct EngineClientOptions {
     QString haptic = "sim";
     double sample_rate = 48000;  ///< Hz asked of the device; the engine says what it got
     int poll_ms = 15;            ///< display rate
+    /// The take folder: the engine is started with it and records takes only inside it.
+    QString takes;
 };
 
 struct EngineStatus {
@@ -69,6 +71,10 @@ class EngineClient : public QObject {
     /// model or a file written per edit.
     void set_parameter(const QString& element_dot_parameter, double value);
     void gesture(double slide, double press);
+    /// Where takes go: an engine running with another take folder is restarted with this one
+    /// (same model and state), since it records only inside the folder it was started with.
+    void set_takes_folder(const QString& folder);
+    /// Records into `folder`, which must lie inside the take folder.
     void start_take(const QString& folder);
     void stop_take();
 
