@@ -13,6 +13,7 @@
 #include "archet/input_error.hpp"
 #include "archet/ipc/command_decoder.hpp"
 #include "archet/ipc/take_folder.hpp"
+#include "archet/printable_text.hpp"
 #include "test_support.hpp"
 
 namespace archet::ipc {
@@ -100,7 +101,7 @@ TEST(TakeFolder, OnlyPlainPrintablePathsInsideTheTakeDirectory) {
         << "an overlong UTF-8 /";
     EXPECT_NE(take_refusal((root / "x").string(), "").find("--takes"), std::string::npos)
         << "an engine without a take directory records nothing";
-    EXPECT_EQ(quote_safely(std::string(200, 'a'), 8), "\"aaaaaaaa...\"");
+    EXPECT_EQ(quoted_text(std::string(200, 'a'), 8), "\"aaaaaaaa...\"");
 }
 
 }  // namespace

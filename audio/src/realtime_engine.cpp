@@ -37,6 +37,7 @@
 #include "archet/model_validation.hpp"
 #include "archet/output_limiter.hpp"
 #include "archet/parameter_smoother.hpp"
+#include "archet/printable_text.hpp"
 #include "archet/realtime_allocations.hpp"
 #include "archet/simulation.hpp"
 #include "archet/string_points.hpp"
@@ -507,7 +508,7 @@ class Engine final : public AudioRenderer {
         try {
             // The folder came from another process: nothing is made until it is known to lie
             // inside the take directory the studio gave at start.
-            if (!take_problem_.empty()) throw InputError(quote_safely(folder), take_problem_);
+            if (!take_problem_.empty()) throw InputError(quoted_text(folder), take_problem_);
             check_take_folder(folder, take_root_);
             if (current_name_.empty()) throw InputError(folder, "no model is loaded to record");
             if (live_take_)
@@ -741,7 +742,7 @@ int run_engine(const EngineOptions& options) {
                          "names no studio process (owner pid " + std::to_string(studio_pid) +
                              "): give the studio's pid with --studio-pid");
     if (!options.takes.empty() && !std::filesystem::path(options.takes).is_absolute())
-        throw InputError("--takes " + ipc::quote_safely(options.takes),
+        throw InputError("--takes " + quoted_text(options.takes),
                          "the take directory must be an absolute path");
     Engine engine(std::move(segment), options, studio_pid);
     return engine.run();

@@ -44,10 +44,11 @@ bool is_printable_text(std::string_view text) {
     return true;
 }
 
-std::string quoted_text(std::string_view text) {
+std::string quoted_text(std::string_view text, std::size_t limit) {
     static constexpr char kHex[] = "0123456789abcdef";
     std::string out = "\"";
     for (std::size_t i = 0; i < text.size();) {
+        if (i >= limit) return out + "...\"";
         const std::size_t n = printable_character(text, i);
         if (n == 0) {
             const auto b = static_cast<std::uint8_t>(text[i++]);

@@ -12,8 +12,9 @@ namespace archet {
 bool is_printable_text(std::string_view text);
 
 /// `text` between double quotes, with quotes, backslashes, control characters and bytes that
-/// are not valid UTF-8 escaped as \" \\ \xNN: safe to print anywhere.
-std::string quoted_text(std::string_view text);
+/// are not valid UTF-8 escaped as \" \\ \xNN: safe to print anywhere. Past `limit` bytes of
+/// `text` it is cut, and "..." says so.
+std::string quoted_text(std::string_view text, std::size_t limit = std::string_view::npos);
 
 /// `text` with every control character but newline and tab, and every byte that is not valid
 /// UTF-8, escaped as \xNN: for messages that quote the user's input.

@@ -9,10 +9,6 @@
 
 namespace archet::ipc {
 
-/// `text` in double quotes with every byte that is not printable ASCII written as \xNN: safe
-/// to quote in a message, whatever a command carried. Cut (with "...") past `limit` bytes.
-std::string quote_safely(const std::string& text, std::size_t limit = 96);
-
 /// The take directory as the engine holds it: created if missing, then made canonical.
 /// Throws InputError naming it when it is not absolute or cannot be made.
 std::filesystem::path prepare_take_directory(const std::string& directory);
