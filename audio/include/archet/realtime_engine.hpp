@@ -20,6 +20,8 @@ struct EngineOptions {
     int shape_every = 8;  ///< blocks between string-shape frames
     std::string haptic =
         "none";  ///< none: the pad sets the device position; sim: it moves a simulated hand
+    /// mlockall the process (the engine's own); off when a test runs the engine in-process.
+    bool lock_memory = true;
 };
 
 /// Runs until told to quit or the studio dies. Returns the exit status (0 normal; 2 when the
