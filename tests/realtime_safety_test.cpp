@@ -23,6 +23,7 @@
 #include <functional>
 #include <mutex>
 #include <new>
+#include <set>
 #include <shared_mutex>
 #include <string>
 #include <thread>
@@ -67,7 +68,7 @@ RealtimeCalls counted_on_marked_thread(
     return realtime_calls() - before;
 }
 
-struct Control {
+struct ForbiddenCall {
     const char* what;
     RealtimeCall by_name;        ///< the kind it is counted as
     bool c_allocator;            ///< counted by the sanitizer's hooks instead, under one
@@ -76,7 +77,7 @@ struct Control {
     std::function<void()> undo;  ///< after, unmarked
 };
 
-std::vector<Control> controls() {
+std::vector<ForbiddenCall> controls() {
     static void* p = nullptr;
     static int fd = -1;
     static FILE* file = nullptr;
@@ -211,6 +212,28 @@ std::vector<Control> controls() {
              c.wait_for(lock, 1ns);
          },
          [] {}},
+        {"pthread_cond_wait", RealtimeCall::CondWait, false, false,
+         [] {
+             static std::mutex m;
+             static std::condition_variable c;
+             bool waiting = false, woken = false;
+             std::unique_lock lock(m);
+             waiting = true;
+             // It gets the mutex only once the marked thread waits (which releases it).
+             std::thread waker([&] {
+                 for (;;) {
+                     const std::lock_guard held(m);
+                     if (waiting) {
+                         woken = true;
+                         c.notify_one();
+                         return;
+                     }
+                 }
+             });
+             c.wait(lock, [&] { return woken; });
+             waker.join();
+         },
+         [] {}},
         {"pthread_cond_signal", RealtimeCall::CondSignal, false, false,
          [] {
              static std::condition_variable c;
@@ -255,10 +278,12 @@ TEST(RealtimeSafety, EveryForbiddenCallIsSeenOnAMarkedThreadOnly) {
         GTEST_SKIP() << "this sanitizer's runtime is linked into the executable: locks and I/O "
                         "cannot be interposed without hiding them from it";
     const bool by_name = test::c_allocator_interposed_by_name();
-    for (const Control& c : controls()) {
+    std::set<RealtimeCall> proven;
+    for (const ForbiddenCall& c : controls()) {
         RealtimeCall expected = c.by_name;
         if (c.c_allocator && !by_name)  // under a sanitizer: its allocator's hooks count them
             expected = c.frees ? RealtimeCall::SanitizerFree : RealtimeCall::SanitizerAllocation;
+        proven.insert(expected);
         const RealtimeCalls unmarked = [&] {
             const RealtimeCalls before = realtime_calls();
             std::thread([&] {
@@ -274,15 +299,24 @@ TEST(RealtimeSafety, EveryForbiddenCallIsSeenOnAMarkedThreadOnly) {
             << c.what << " on a marked thread was not counted as " << test::name(expected)
             << " (counted: " << seen.describe() << ")";
     }
+    // No kind of call is counted without a control showing that it can be seen.
+    for (int i = 0; i < static_cast<int>(RealtimeCall::Count); ++i) {
+        const auto kind = static_cast<RealtimeCall>(i);
+        const bool sanitizer_kind =
+            kind == RealtimeCall::SanitizerAllocation || kind == RealtimeCall::SanitizerFree;
+        const bool c_allocator_kind = kind <= RealtimeCall::Valloc;
+        if (by_name ? sanitizer_kind : c_allocator_kind) continue;  // not counted in this build
+        EXPECT_TRUE(proven.count(kind)) << test::name(kind) << " has no control";
+    }
 }
 
 // Simulation::step, its probes and output, and a parameter set by slot, on a marked thread.
 TEST(RealtimeSafety, StepProbesAndOutputMakeNoForbiddenCall) {
     BowedStringOptions o;
     Model model = build_bowed_string(o);
-    archet::Control c;
+    Control c;
     c.id = "c", c.target_element = "friction", c.target_parameter = "mu_s",
-    c.source = archet::Control::Source::Envelope;
+    c.source = Control::Source::Envelope;
     c.envelope = {{0, 0.8}, {1, 0.9}}, c.minimum = 0.5, c.maximum = 1.0;
     model.controls.push_back(c);
     Simulation sim(compile(model));
