@@ -236,6 +236,16 @@ void free(void* p) __THROW {
     ARCHET_REAL(free, void (*)(void*))(p);
 }
 
+}  // extern "C"
+
+#endif  // ARCHET_SANITIZER
+
+// ---- the aligned allocations: by name everywhere (a sanitizer's hooks do not see them all)
+
+#ifndef ARCHET_SANITIZER_RUNTIME_IN_EXECUTABLE
+
+extern "C" {
+
 int posix_memalign(void** p, std::size_t alignment, std::size_t size) __THROW {
     count(RealtimeCall::PosixMemalign);
     return ARCHET_REAL(posix_memalign, int (*)(void**, std::size_t, std::size_t))(p, alignment,
@@ -264,7 +274,7 @@ void* pvalloc(std::size_t size) __THROW {
 
 }  // extern "C"
 
-#endif  // ARCHET_SANITIZER
+#endif  // ARCHET_SANITIZER_RUNTIME_IN_EXECUTABLE
 
 // ---- locks and I/O -----------------------------------------------------------------------
 

@@ -6,10 +6,12 @@
 // fopen, fwrite, fputs, printf, ...). Linked into a test executable, its definitions interpose
 // the C library's for the whole process and forward to the real ones (dlsym(RTLD_NEXT)).
 //
-// Under AddressSanitizer or ThreadSanitizer the sanitizer owns malloc: the C allocator is then
-// counted through the sanitizer's own allocation hooks (every allocation and every free, without
-// telling malloc from calloc), and the pthread and I/O calls are forwarded to the sanitizer's
-// interceptors, which come next after the executable.
+// Under AddressSanitizer or ThreadSanitizer the sanitizer owns malloc: malloc, calloc, realloc
+// and free are then counted through the sanitizer's own allocation hooks (every allocation and
+// every free, without telling malloc from calloc); the aligned allocations (which those hooks do
+// not all see), the pthread and the I/O calls are interposed by name as without one, and
+// forwarded to the sanitizer's interceptors, which come next after the executable (GCC links
+// its sanitizer runtimes as shared libraries, first in the search order).
 
 #include <array>
 #include <cstdint>
@@ -70,8 +72,8 @@ RealtimeCalls realtime_calls();
 /// block in it), and so a witness that a real-time thread was marked and its calls seen.
 std::uint64_t realtime_sleeps();
 
-/// Whether malloc and its family are interposed by name (false under a sanitizer: then they are
-/// counted as SanitizerAllocation and SanitizerFree).
+/// Whether malloc, calloc, realloc and free are interposed by name (false under a sanitizer:
+/// then they are counted as SanitizerAllocation and SanitizerFree).
 bool c_allocator_interposed_by_name();
 
 /// Whether the pthread and I/O calls are interposed (false where a sanitizer's runtime is linked
