@@ -47,17 +47,18 @@ void save_screenshot(QWidget& widget, const QString& name) {
     EXPECT_TRUE(widget.grab().save(path)) << path.toStdString();
 }
 
-// Bows with the pad for `seconds` of sound: pressed in, moving across at 0.1 m/s (the pad's
-// wall-clock time, as a hand's). The length is counted in the samples the studio received,
-// not in wall-clock time, which a slow machine (TSan) stretches; a generous minute at most.
+// Bows with the pad for `seconds` of sound: pressed in, moving across at 0.1 m/s. Time is the
+// sound's, counted in the samples the studio received, not wall-clock time, which a slow
+// machine (TSan) stretches (a generous minute at most).
 void bow(MainWindow& window, double seconds, double start_slide = -0.1) {
-    const std::uint64_t until =
-        window.engine().history().frames_received() + static_cast<std::uint64_t>(seconds * 48000);
+    const std::uint64_t from = window.engine().history().frames_received();
+    const std::uint64_t until = from + static_cast<std::uint64_t>(seconds * 48000);
     QElapsedTimer clock;
     clock.start();
     while (window.engine().history().frames_received() < until &&
            clock.elapsed() < 60000 + seconds * 1000) {
-        const double t = clock.elapsed() / 1000.0;
+        const double t =
+            static_cast<double>(window.engine().history().frames_received() - from) / 48000;
         window.pad().set_position(start_slide + 0.1 * t, std::min(0.0015, 0.05 * t));
         QTest::qWait(10);
     }
