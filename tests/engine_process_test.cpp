@@ -81,16 +81,16 @@ TEST(EngineProcess, AParameterSentDuringASwapReachesTheModelThatPlays) {
     double normal = 0, rate_said = 0;
     // (wait_status reads the same status ring: what it passes over is not needed here.)
     // Bows on (pressed, moving), and reads the bow's normal force and the rate said.
+    // The stroke's time is the sound's (samples played), not the wall clock's.
     auto bow_until = [&](const std::function<bool()>& done) {
-        const auto start = std::chrono::steady_clock::now();
+        std::uint64_t played = 0;
         return wait_for(
             [&] {
-                const double t =
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                const double t = static_cast<double>(played) / 44100;
                 link.gesture(-0.05 + 0.05 * t, 0.0015);
                 link.heartbeat();
                 ProbeFrame f;
-                while (probes.try_pop(f)) normal = f.values[4];  // normal_force
+                while (probes.try_pop(f)) normal = f.values[4], ++played;  // normal_force
                 StatusFrame s;
                 while (status.try_pop(s)) rate_said = s.sample_rate;
                 return done();
@@ -250,13 +250,14 @@ TEST(EngineProcess, SwapsModelsWithoutAClick) {
     std::vector<double> played;
     std::uint64_t swap_tick = 0;
     // Bows (0.1 m/s across, pressed) until `frames` samples have been played in all: counted in
-    // the sound, not in wall-clock time, which a slow machine (TSan) stretches.
+    // the sound, not in wall-clock time, which a slow machine (TSan) stretches. The stroke is
+    // timed in the sound too: the second call goes on where the first left the bow (timed on
+    // the wall clock, a slow first call left it further on, and the bow jumped back: a click).
     auto bow_until = [&](std::size_t frames, double from) {
-        const auto start = std::chrono::steady_clock::now();
+        const std::size_t start = played.size();
         return wait_for(
             [&] {
-                const double t =
-                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                const double t = static_cast<double>(played.size() - start) / 48000;
                 link.gesture(from + 0.1 * t, 0.0015);
                 link.heartbeat();
                 ProbeFrame f;
