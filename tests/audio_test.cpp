@@ -140,12 +140,14 @@ class JackServer : public ::testing::Test {
         argv.push_back(nullptr);
         ASSERT_EQ(::posix_spawn(&pid_, argv[0], nullptr, nullptr, argv.data(), environ), 0);
         ::setenv("JACK_DEFAULT_SERVER", name_.c_str(), 1);
-        // Up when it lists its ports.
-        for (int i = 0; i < 100; ++i) {
-            const auto r = test::run_archet({"devices"});
-            if (r.out.find("jack 0: system") != std::string::npos) return;
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
-        }
+        // Up when it lists its ports: waited for, up to a generous minute (not 100 tries).
+        if (test::wait_for(
+                [] {
+                    return test::run_archet({"devices"}).out.find("jack 0: system") !=
+                           std::string::npos;
+                },
+                std::chrono::milliseconds(60000)))
+            return;
         FAIL() << "jackd did not start";
     }
     void TearDown() override {

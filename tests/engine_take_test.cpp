@@ -39,7 +39,7 @@ class EngineSession {
 
     bool start(const std::string& model) {
         link_.start();
-        if (!wait_for([&] { return link_.liveness() == EngineLink::Liveness::Running; }, 5000ms))
+        if (!wait_for([&] { return link_.liveness() == EngineLink::Liveness::Running; }, kGenerous))
             return false;
         const auto loaded = link_.load_model(test::resource(model).string());
         if (!await(StatusKind::ModelLoaded,
@@ -49,16 +49,23 @@ class EngineSession {
         return true;
     }
 
-    // Plays for `seconds`, the pad bowing at 0.1 m/s with a slow swell of pressure.
+    // Plays `seconds` of sound (counted in the samples played, not in wall-clock time, which a
+    // slow machine stretches), the pad bowing at 0.1 m/s with a slow swell of pressure.
     void bow(double seconds) {
-        const auto start = std::chrono::steady_clock::now();
-        while (std::chrono::steady_clock::now() - start < std::chrono::duration<double>(seconds)) {
-            link_.gesture(0.1 * elapsed_, 0.0015 + 0.0005 * std::sin(3 * elapsed_));
-            link_.heartbeat();
-            drain();
-            std::this_thread::sleep_for(5ms);
-            elapsed_ += 0.005;
-        }
+        const auto until = played_ + static_cast<std::uint64_t>(seconds * 48000);
+        bow_until([&] { return played_ >= until; });
+    }
+    // Bows on until `done` (or a generous timeout): true if it holds.
+    bool bow_until(const std::function<bool()>& done) {
+        return wait_for(
+            [&] {
+                link_.gesture(0.1 * elapsed_, 0.0015 + 0.0005 * std::sin(3 * elapsed_));
+                link_.heartbeat();
+                drain();
+                elapsed_ += 0.002;
+                return done();
+            },
+            kGenerous);
     }
 
     // Waits for a status frame of `kind` that `accept`s; remembers errors on the way.
@@ -76,7 +83,7 @@ class EngineSession {
                 drain();
                 return false;
             },
-            5000ms);
+            kGenerous);
     }
 
     bool await_take_written(std::string* text = nullptr) {
@@ -94,8 +101,7 @@ class EngineSession {
   private:
     void drain() {  // the studio reads its scopes, so the engine never waits on them
         ProbeFrame p;
-        while (probes_.try_pop(p)) {
-        }
+        while (probes_.try_pop(p)) ++played_;
         ShapeFrame s;
         while (shapes_.try_pop(s)) {
         }
@@ -107,7 +113,10 @@ class EngineSession {
     SpscRing<ShapeFrame> shapes_ = link_.shapes();
     std::vector<std::string> errors_;
     std::uint64_t realtime_allocations_ = 0;  ///< as the newest status frame counts them
+    std::uint64_t played_ = 0;                ///< probe frames received: samples played
     double elapsed_ = 0;
+    /// Waits for what the machine's speed decides (TSan on two shared cores is slow).
+    static constexpr std::chrono::milliseconds kGenerous{60000};
 };
 
 // Re-renders the take in `dir`/take and expects take.wav to the byte.
@@ -177,10 +186,18 @@ TEST(EngineTake, AKilledEngineLeavesAValidWavUpToTheLastSecond) {
     EngineSession engine;
     ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
     engine.link().start_take((dir / "take").string());
-    engine.bow(2.3);
+    // Until the WAV's header, updated once a second, holds a second of sound: however slowly
+    // the machine plays it.
+    const auto frames_on_disk = [&] {
+        SF_INFO info{};
+        SNDFILE* wav = sf_open((dir / "take" / "take.wav").c_str(), SFM_READ, &info);
+        if (wav) sf_close(wav);
+        return wav ? info.frames : 0;
+    };
+    ASSERT_TRUE(engine.bow_until([&] { return frames_on_disk() >= 48000; }));
     ::kill(engine.link().engine_pid(), SIGKILL);
-    ASSERT_TRUE(
-        wait_for([&] { return engine.link().liveness() == EngineLink::Liveness::Exited; }, 2000ms));
+    ASSERT_TRUE(wait_for([&] { return engine.link().liveness() == EngineLink::Liveness::Exited; },
+                         60000ms));
     SF_INFO info{};
     SNDFILE* wav = sf_open((dir / "take" / "take.wav").c_str(), SFM_READ, &info);
     ASSERT_NE(wav, nullptr) << sf_strerror(nullptr);

@@ -198,8 +198,10 @@ TEST(Haptics, AForceFeedbackJoystickAnswersThroughEvdev) {
     EvdevDevice device(path);
     EXPECT_FALSE(device.capabilities().name.empty());
     device.write(0.1, 0.0, 0.0);  // a gentle push, then let go
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    EXPECT_FALSE(device.stale(0.0, 0.02)) << "its I/O thread answers";
+    bool answered = false;        // waited for, up to a generous minute: not assumed after 50 ms
+    for (int i = 0; i < 12000 && !(answered = !device.stale(0.0, 0.02)); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    EXPECT_TRUE(answered) << "its I/O thread answers";
     const HapticReading r = device.read();
     EXPECT_LE(std::abs(r.slide), device.capabilities().range);
 }

@@ -47,10 +47,10 @@ class VirtualJoystick {
     SDL_Joystick* joystick_ = nullptr;
 };
 
-// Waits (up to a second) until `done` holds.
+// Waits until `done` holds, up to a generous minute (SDL's event thread under TSan is slow).
 template <typename Condition>
 bool eventually(Condition done) {
-    for (int i = 0; i < 200 && !done(); ++i)
+    for (int i = 0; i < 12000 && !done(); ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     return done();
 }

@@ -70,7 +70,7 @@ class NullOutput final : public AudioOutput {
         sched_param param{};
         param.sched_priority = 70;
         scheduling_.store(pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) == 0 ? 1 : 0);
-        mark_realtime_thread();
+        const RealtimeThreadMark mark;  // until the loop ends: the thread's exit is not counted
         const auto period = static_cast<std::int64_t>(1e9 * frames_ / rate_);
         std::int64_t deadline = monotonic_ns();
         while (running_.load(std::memory_order_relaxed)) {

@@ -7,16 +7,24 @@
 
 namespace {
 thread_local bool realtime_thread = false;
-std::atomic<std::uint64_t> counted{0};
+std::atomic<std::uint64_t> allocated{0}, deallocated{0};
+
+void* try_allocate(std::size_t size, std::size_t alignment) noexcept {
+    if (realtime_thread) allocated.fetch_add(1, std::memory_order_relaxed);
+    if (size == 0) size = 1;
+    return alignment > alignof(std::max_align_t)
+               ? std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment)
+               : std::malloc(size);
+}
 
 void* allocate(std::size_t size, std::size_t alignment) {
-    if (realtime_thread) counted.fetch_add(1, std::memory_order_relaxed);
-    if (size == 0) size = 1;
-    void* p = alignment > alignof(std::max_align_t)
-                  ? std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment)
-                  : std::malloc(size);
-    if (!p) throw std::bad_alloc();
-    return p;
+    if (void* p = try_allocate(size, alignment)) return p;
+    throw std::bad_alloc();
+}
+
+void deallocate(void* p) noexcept {
+    if (realtime_thread) deallocated.fetch_add(1, std::memory_order_relaxed);
+    std::free(p);
 }
 }  // namespace
 
@@ -34,29 +42,53 @@ void* operator new(std::size_t size, std::align_val_t a) {
 void* operator new[](std::size_t size, std::align_val_t a) {
     return allocate(size, static_cast<std::size_t>(a));
 }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+    return try_allocate(size, 0);
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+    return try_allocate(size, 0);
+}
+void* operator new(std::size_t size, std::align_val_t a, const std::nothrow_t&) noexcept {
+    return try_allocate(size, static_cast<std::size_t>(a));
+}
+void* operator new[](std::size_t size, std::align_val_t a, const std::nothrow_t&) noexcept {
+    return try_allocate(size, static_cast<std::size_t>(a));
+}
 void operator delete(void* p) noexcept {
-    std::free(p);
+    deallocate(p);
 }
 void operator delete[](void* p) noexcept {
-    std::free(p);
+    deallocate(p);
 }
 void operator delete(void* p, std::size_t) noexcept {
-    std::free(p);
+    deallocate(p);
 }
 void operator delete[](void* p, std::size_t) noexcept {
-    std::free(p);
+    deallocate(p);
 }
 void operator delete(void* p, std::align_val_t) noexcept {
-    std::free(p);
+    deallocate(p);
 }
 void operator delete[](void* p, std::align_val_t) noexcept {
-    std::free(p);
+    deallocate(p);
 }
 void operator delete(void* p, std::size_t, std::align_val_t) noexcept {
-    std::free(p);
+    deallocate(p);
 }
 void operator delete[](void* p, std::size_t, std::align_val_t) noexcept {
-    std::free(p);
+    deallocate(p);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept {
+    deallocate(p);
+}
+void operator delete[](void* p, const std::nothrow_t&) noexcept {
+    deallocate(p);
+}
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+    deallocate(p);
+}
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept {
+    deallocate(p);
 }
 
 namespace archet {
@@ -70,8 +102,14 @@ RealtimeThreadMark::~RealtimeThreadMark() {
 void mark_realtime_thread() {
     realtime_thread = true;
 }
+bool on_realtime_thread() noexcept {
+    return realtime_thread;
+}
 std::uint64_t realtime_allocations() {
-    return counted.load(std::memory_order_relaxed);
+    return allocated.load(std::memory_order_relaxed);
+}
+std::uint64_t realtime_deallocations() {
+    return deallocated.load(std::memory_order_relaxed);
 }
 
 }  // namespace archet

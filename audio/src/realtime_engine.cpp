@@ -326,6 +326,7 @@ class Engine final : public AudioRenderer {
 
     std::string request_realtime_resources() {
         std::string said;
+        if (!options_.lock_memory) return "memory not locked (not asked to); ";
         if (::mlockall(MCL_CURRENT | MCL_FUTURE) != 0)
             said += "memory not locked (" + std::string(std::strerror(errno)) + "); ";
         else
@@ -347,7 +348,7 @@ class Engine final : public AudioRenderer {
             audio.callback_budget_us > 0 ? audio.worst_callback_us / audio.callback_budget_us : 0;
         f.sample_rate = sample_rate_;
         f.energy = energy_.load();
-        f.realtime_allocations = realtime_allocations();
+        f.realtime_allocations = realtime_allocations() + realtime_deallocations();
         copy_text(f.text, text);
         status_.try_push(f);
     }

@@ -12,6 +12,10 @@ namespace {
 constexpr std::uint32_t kSampleCapacity = 1u << 17;  // 2.7 s of samples at 48 kHz
 constexpr std::uint32_t kGestureCapacity = 1u << 13;
 constexpr std::uint32_t kChangeCapacity = 1u << 10;
+// Samples written per round at most: a writer slower than the real-time thread (a loaded
+// machine, a sanitizer) still writes the WAV and updates its header every round, instead of
+// draining a ring that never empties.
+constexpr std::size_t kWriteChunk = 4800;
 }  // namespace
 
 TakeRecorder::TakeRecorder(std::filesystem::path folder, const Model& played, double sample_rate,
@@ -96,10 +100,11 @@ void TakeRecorder::write_loop() {
             const bool last_round = stopping_.load();
             Sample s;
             block.clear();
-            while (samples_.ring().try_pop(s)) {
+            while (block.size() < kWriteChunk && samples_.ring().try_pop(s)) {
                 block.push_back(s.output);
                 csv.write_row(s.time, s.probes);
             }
+            const bool more = block.size() == kWriteChunk;  // the ring may hold more
             if (!block.empty()) wav.write(block.data(), block.size());
             frames_.fetch_add(block.size());
             GestureKeyframe k;
@@ -110,6 +115,7 @@ void TakeRecorder::write_loop() {
                 wav.update_header();  // a crash from here on still leaves a valid WAV
                 last_header = std::chrono::steady_clock::now();
             }
+            if (more) continue;  // at once, without waiting (and not done while it holds more)
             if (last_round) break;
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
         }

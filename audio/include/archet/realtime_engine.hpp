@@ -27,6 +27,8 @@ struct EngineOptions {
     int studio_pid = 0;
     double studio_timeout = 2;   ///< s without the studio's heartbeat: fade out, play nothing
     double studio_give_up = 60;  ///< s without it: exit
+    /// mlockall the process (the engine's own); off when a test runs the engine in-process.
+    bool lock_memory = true;
 };
 
 /// Runs until told to quit, the studio dies (SIGTERM from the kernel when it is the studio's
