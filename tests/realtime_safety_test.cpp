@@ -348,6 +348,7 @@ class EngineSession {
         o.segment = link_.segment_name();
         o.haptic = haptic;
         o.lock_memory = false;  // the engine's own process would; not the test's
+        o.takes = std::filesystem::temp_directory_path().string();  // the takes' temp folders
         engine_ = std::thread([this, o] { exit_status_ = run_engine(o); });
     }
     ~EngineSession() { quit(); }
