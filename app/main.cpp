@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "archet/input_error.hpp"
+#include "archet/interruption.hpp"
 #include "commands.hpp"
 
 #ifndef ARCHET_VERSION
@@ -39,6 +40,9 @@ int main(int argc, char** argv) {
     } catch (const archet::InputError& e) {
         std::cerr << "archet: " << e.what() << "\n";
         return 2;
+    } catch (const archet::Interrupted& e) {  // SIGINT, SIGTERM, SIGHUP: 128 + the signal
+        std::cerr << "archet: " << e.what() << "\n";
+        return e.status();
     } catch (const std::exception& e) {
         std::cerr << "archet: internal error: " << e.what() << "\n";
         return 1;

@@ -1,8 +1,9 @@
 // Takes recorded through the shared-memory protocol: the studio starts one in the middle of
 // a performance, changes a parameter while it records and stops it; `archet render --take`
 // then reproduces the take's audio to the byte from the state where it began. A take refuses
-// a folder that holds files and ends when a new model is loaded; an engine killed mid-take
-// leaves a valid WAV up to the last second.
+// a folder that holds files and ends when a new model is loaded; an engine told to stop
+// finishes its take, one killed outright leaves a take `render --take` recovers, and a take
+// that clips says so.
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "archet/ipc/engine_link.hpp"
@@ -48,11 +50,13 @@ class EngineSession {
         return true;
     }
 
-    // Plays for `seconds`, the pad bowing at 0.1 m/s with a slow swell of pressure.
-    void bow(double seconds) {
+    // Plays for `seconds`, the pad bowing at 0.1 m/s with a slow swell of pressure (or at
+    // `press`).
+    void bow(double seconds, double press = 0) {
         const auto start = std::chrono::steady_clock::now();
         while (std::chrono::steady_clock::now() - start < std::chrono::duration<double>(seconds)) {
-            link_.gesture(0.1 * elapsed_, 0.0015 + 0.0005 * std::sin(3 * elapsed_));
+            link_.gesture(0.1 * elapsed_,
+                          press > 0 ? press : 0.0015 + 0.0005 * std::sin(3 * elapsed_));
             link_.heartbeat();
             drain();
             std::this_thread::sleep_for(5ms);
@@ -171,21 +175,107 @@ TEST(EngineTake, ANewModelEndsTheTake) {
     expect_replayed(dir, "what was recorded before the swap still replays exactly");
 }
 
-TEST(EngineTake, AKilledEngineLeavesAValidWavUpToTheLastSecond) {
+std::uintmax_t size_of(const std::filesystem::path& file) {
+    std::error_code ec;
+    const auto size = std::filesystem::file_size(file, ec);
+    return ec ? 0 : size;
+}
+
+std::vector<int> samples_of(const std::filesystem::path& wav) {
+    SF_INFO info{};
+    SNDFILE* f = sf_open(wav.c_str(), SFM_READ, &info);
+    if (!f) return {};
+    std::vector<int> samples(static_cast<std::size_t>(info.frames));
+    samples.resize(static_cast<std::size_t>(sf_read_int(f, samples.data(), info.frames)));
+    sf_close(f);
+    return samples;
+}
+
+nlohmann::json read_json(const std::filesystem::path& file) {
+    return nlohmann::json::parse(test::read_file(file), nullptr, false);
+}
+
+// Killed outright, the engine finishes nothing: `render --take` recovers what it recorded.
+TEST(EngineTake, AKilledEnginesTakeIsRecoveredByRender) {
     const auto dir = test::temp_dir("engine-take-kill");
     EngineSession engine;
     ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.bow(0.3);
     engine.link().start_take((dir / "take").string());
-    engine.bow(2.3);
+    ASSERT_TRUE(wait_for(
+        [&] {
+            engine.bow(0.05);
+            return size_of(dir / "take" / "take.wav") > 48000 * 3;
+        },
+        30000ms))
+        << "the take never grew";
+    // A change made while it records: streamed, and replayed by the recovered take.
+    engine.link().set_parameter("friction.mu_s", 0.7);
+    const std::uintmax_t before = size_of(dir / "take" / "take.wav");
+    ASSERT_TRUE(wait_for(
+        [&] {
+            engine.bow(0.05);
+            return size_of(dir / "take" / "take.wav") > before + 48000 * 3 / 2;
+        },
+        30000ms));
     ::kill(engine.link().engine_pid(), SIGKILL);
     ASSERT_TRUE(
-        wait_for([&] { return engine.link().liveness() == EngineLink::Liveness::Exited; }, 2000ms));
-    SF_INFO info{};
-    SNDFILE* wav = sf_open((dir / "take" / "take.wav").c_str(), SFM_READ, &info);
-    ASSERT_NE(wav, nullptr) << sf_strerror(nullptr);
-    sf_close(wav);
-    EXPECT_GE(info.frames, 48000) << "at least the last full second before the kill";
-    EXPECT_EQ(info.samplerate, 48000);
+        wait_for([&] { return engine.link().liveness() == EngineLink::Liveness::Exited; }, 5000ms));
+    const std::uintmax_t recorded = (size_of(dir / "take" / "take.wav") - 44) / 3;
+    const auto r = test::run_archet(
+        {"render", "--take", (dir / "take").string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
+    const std::vector<int> original = samples_of(dir / "take" / "take.wav");
+    EXPECT_EQ(original.size(), recorded) << "take.wav's header now counts all its samples";
+    EXPECT_TRUE(samples_of(dir / "again.wav") == original)
+        << "the recovered take reproduces what was recorded, from the state where it began";
+    const TakeDescription take = read_take_file(dir / "take" / "take.json");
+    EXPECT_TRUE(take.has_state && take.has_parameters && take.interrupted);
+    EXPECT_FALSE(std::filesystem::exists(dir / "take" / "gesture.jsonl")) << "now gesture.json";
+}
+
+// SIGTERM (a logout, a service manager) ends the engine, but its take is finished first.
+TEST(EngineTake, ASigtermedEngineFinishesItsTake) {
+    const auto dir = test::temp_dir("engine-take-term");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.bow(0.3);
+    engine.link().start_take((dir / "take").string());
+    ASSERT_TRUE(wait_for(
+        [&] {
+            engine.bow(0.05);
+            return size_of(dir / "take" / "take.wav") > 48000;
+        },
+        30000ms));
+    ::kill(engine.link().engine_pid(), SIGTERM);
+    ASSERT_TRUE(wait_for([&] { return engine.link().liveness() == EngineLink::Liveness::Exited; },
+                         30000ms));
+    const nlohmann::json description = read_json(dir / "take" / "take.json");
+    ASSERT_TRUE(description.is_object()) << "take.json is missing or damaged";
+    EXPECT_EQ(description.value("complete", false), true);
+    EXPECT_EQ(description.value("interrupted", false), true);
+    EXPECT_EQ(description.value("interrupted_by", ""), "SIGTERM");
+    expect_replayed(dir, "the interrupted take re-renders to the byte");
+}
+
+// A take that clips says so in take.json and in the message the studio shows, though the
+// live limiter kept what was heard clean.
+TEST(EngineTake, TheFinishedMessageSaysTheTakeClipped) {
+    const auto dir = test::temp_dir("engine-take-clip");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.link().start_take((dir / "take").string());
+    engine.bow(0.6, 0.1);
+    engine.link().stop_take();
+    std::string said;
+    ASSERT_TRUE(engine.await_take_written(&said)) << said;
+    EXPECT_NE(said.find("clipped"), std::string::npos) << said;
+    EXPECT_NE(said.find("output_gain"), std::string::npos) << said;
+    const nlohmann::json description = read_json(dir / "take" / "take.json");
+    ASSERT_TRUE(description.is_object());
+    EXPECT_GT(description.value("clipped_samples", 0.0), 100.0) << description.dump();
+    EXPECT_GE(description.value("peak", 0.0), 1.0);
 }
 
 }  // namespace

@@ -8,11 +8,16 @@
 
 namespace archet {
 
-ProbeCsvWriter::ProbeCsvWriter(std::filesystem::path path, const std::vector<std::string>& columns)
+ProbeCsvWriter::ProbeCsvWriter(std::filesystem::path path, const std::vector<std::string>& columns,
+                               WriteMode mode)
     : path_(std::move(path)),
-      temp_(path_.string() + ".tmp-" + std::to_string(static_cast<long>(::getpid()))),
+      temp_(mode == WriteMode::Direct
+                ? path_.string()
+                : path_.string() + ".tmp-" + std::to_string(static_cast<long>(::getpid()))),
+      mode_(mode),
       columns_(columns.size()) {
-    file_ = std::fopen(temp_.c_str(), "w");
+    // Direct: "x" refuses a file that exists (a take never overwrites one).
+    file_ = std::fopen(temp_.c_str(), mode == WriteMode::Direct ? "wx" : "w");
     if (!file_)
         throw InputError(path_.string(), "cannot write the probe file (is the folder writable?)");
     std::fputs("time", file_);
@@ -24,8 +29,12 @@ ProbeCsvWriter::~ProbeCsvWriter() {
     if (file_) {
         std::fclose(file_);
         std::error_code ignored;
-        std::filesystem::remove(temp_, ignored);
+        if (mode_ == WriteMode::Safe) std::filesystem::remove(temp_, ignored);
     }
+}
+
+void ProbeCsvWriter::flush() {
+    if (file_) std::fflush(file_);
 }
 
 void ProbeCsvWriter::write_row(double time, const double* values) {
@@ -41,12 +50,15 @@ void ProbeCsvWriter::close() {
     file_ = nullptr;
     std::error_code ec;
     if (failed || close_failed) {
-        std::filesystem::remove(temp_, ec);
+        if (mode_ == WriteMode::Safe) std::filesystem::remove(temp_, ec);
         throw InputError(path_.string(), "could not write the probe file (disk full?)");
     }
+    if (mode_ == WriteMode::Direct) return;
     std::filesystem::rename(temp_, path_, ec);
-    if (ec)
+    if (ec) {
+        std::filesystem::remove(temp_, ec);
         throw InputError(path_.string(), "cannot move the probe file into place: " + ec.message());
+    }
 }
 
 }  // namespace archet

@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <memory>
@@ -23,6 +24,7 @@
 #include "archet/haptic_choice.hpp"
 #include "archet/haptic_loop.hpp"
 #include "archet/input_error.hpp"
+#include "archet/interruption.hpp"
 #include "archet/ipc/command_decoder.hpp"
 #include "archet/ipc/shared_segment.hpp"
 #include "archet/model_file.hpp"
@@ -105,11 +107,12 @@ class Engine final : public AudioRenderer {
         header.engine_state.store(static_cast<std::uint32_t>(EngineState::Ready));
         publish(StatusKind::Heartbeat, 0, said);
         auto last_status = std::chrono::steady_clock::now();
-        while (!quit_.load()) {
+        while (!quit_.load() && !interruption_signal()) {  // SIGTERM & co: finish the takes
             header.engine_heartbeat.fetch_add(1);
             if (studio_gone()) {
                 // Nobody will read or unlink the segment: silence, clean up, leave.
                 segment_.unlink();
+                take_interruption_ = "the studio exited";
                 break;
             }
             CommandFrame command;
@@ -130,13 +133,15 @@ class Engine final : public AudioRenderer {
         if (recording_) finished_takes_.ring().try_push(recording_);
         if (waiting_take_) finished_takes_.ring().try_push(waiting_take_);
         recording_ = waiting_take_ = nullptr;
+        const int signal = interruption_signal();
+        if (signal) take_interruption_ = signal_name(signal);
         collect_takes();
         delete pending_.exchange(nullptr);
         delete fading_from_;
         fading_from_ = nullptr;
         delete running_model_;
         running_model_ = nullptr;
-        return 0;
+        return signal ? 128 + signal : 0;
     }
 
     // ---- real-time thread: the device's callback ----------------------------------------
@@ -382,8 +387,18 @@ class Engine final : public AudioRenderer {
             if (take == live_take_) live_take_ = nullptr;
             std::string said = "written " + take->folder().string();
             try {
-                take->finish();
-                said += " (" + std::to_string(take->frames()) + " samples)";
+                take->finish(take_interruption_);
+                said += " (" + std::to_string(take->frames()) + " samples";
+                if (!take_interruption_.empty()) said += ", interrupted: " + take_interruption_;
+                said += ")";
+                // The live limiter kept the monitor clean; the take holds the raw output.
+                if (take->clipped_samples() > 0) {
+                    char peak[32];
+                    std::snprintf(peak, sizeof peak, "%.2f", take->peak());
+                    said += "; " + std::to_string(take->clipped_samples()) +
+                            " samples clipped at full scale (peak " + peak +
+                            "): " + gain_advice(take->peak());
+                }
             } catch (const std::exception& e) {
                 said = std::string("take failed: ") + e.what();
             }
@@ -528,6 +543,7 @@ class Engine final : public AudioRenderer {
     std::uint64_t waiting_generation_ = 0;  ///< real-time thread: the model it was made for
     TakeRecorder* recording_ = nullptr;     ///< real-time thread: the take being fed
     TakeRecorder* live_take_ = nullptr;     ///< control thread: the take it last started
+    std::string take_interruption_;         ///< control thread: why takes end early, if they do
     HapticChoice haptic_;         ///< the device, used by the real-time thread (none by default)
     ParameterSmoother smoother_;  ///< real-time thread only
     static constexpr double kGlideSeconds = 0.01;  ///< parameter changes arrive over 10 ms
@@ -554,6 +570,7 @@ class Engine final : public AudioRenderer {
 }  // namespace
 
 int run_engine(const EngineOptions& options) {
+    const InterruptionGuard signals;  // SIGINT, SIGTERM, SIGHUP end the loop; takes finish
     ipc::SharedSegment segment = ipc::SharedSegment::attach(options.segment);
     Engine engine(std::move(segment), options);
     return engine.run();
