@@ -117,7 +117,7 @@ class Player final : public AudioRenderer {
 };
 
 int run_play(const PlayArguments& a) {
-    const InterruptionGuard signals;  // SIGINT, SIGTERM, SIGHUP: stop and finish the take
+    const InterruptionGuard stop_on_signal;  // SIGINT, SIGTERM, SIGHUP: stop and finish the take
     if (a.duration < 0 || !std::isfinite(a.duration))
         throw InputError("--duration", "must be positive seconds");
     const Model model = load_validated_model(a.model, {});

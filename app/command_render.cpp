@@ -102,7 +102,8 @@ RenderPlan plan_from_take(const RenderArguments& a) {
 }
 
 int run_render(const RenderArguments& a) {
-    const InterruptionGuard signals;  // SIGINT, SIGTERM, SIGHUP: stop, leave no temporary file
+    const InterruptionGuard
+        stop_on_signal;  // SIGINT, SIGTERM, SIGHUP: stop, leave no temporary file
     const SoundFormat format = parse_sound_format(a.format);
     RenderPlan plan = a.take.empty() ? plan_from_arguments(a) : plan_from_take(a);
     const Model& model = plan.model;

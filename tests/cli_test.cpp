@@ -215,6 +215,34 @@ TEST(Cli, ASigtermedRenderLeavesNoTemporaryFile) {
     EXPECT_EQ(files_in(dir), std::vector<std::string>{});
 }
 
+TEST(Cli, ASigtermedExamplesRunLeavesNoTemporaryFile) {
+    const auto dir = test::temp_dir("examples-sigterm");
+    std::vector<std::string> args{ARCHET_BINARY, "examples", "-o", dir.string()};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+    auto temporaries = [&] {
+        std::vector<std::string> found;
+        for (const auto& name : files_in(dir))
+            if (name.find(".tmp-") != std::string::npos) found.push_back(name);
+        return found;
+    };
+    const bool rendering =
+        test::wait_for([&] { return !temporaries().empty(); }, std::chrono::seconds(60));
+    ::kill(pid, SIGTERM);
+    int status = -1;
+    const bool ended = test::wait_for([&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
+                                      std::chrono::seconds(60));
+    if (!ended) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(rendering) << "no example was being written";
+    ASSERT_TRUE(WIFEXITED(status))
+        << "killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+    EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+    EXPECT_EQ(temporaries(), std::vector<std::string>{});
+}
+
 TEST(Cli, ARefusedSoundFormatLeavesNoTemporaryFile) {
     const auto dir = test::temp_dir("render-refused");
     const auto r = test::run_archet(

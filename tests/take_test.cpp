@@ -226,6 +226,27 @@ TEST(Take, AKilledTakeIsRecoveredByRender) {
     EXPECT_EQ(test::read_file(dir / "twice.wav"), test::read_file(dir / "again.wav"));
 }
 
+// A take being recorded is not "recovered" under its recorder's feet: render refuses it.
+TEST(Take, RenderRefusesATakeStillBeingRecorded) {
+    const auto dir = test::temp_dir("take-busy-render");
+    const auto take = dir / "take";
+    const pid_t pid = spawn_play(take);
+    ASSERT_GT(pid, 0);
+    const bool recording = test::wait_for(
+        [&] { return size_of(take / "take.wav") > kOneSecondOfWav / 4; }, std::chrono::seconds(60));
+    const auto r =
+        test::run_archet({"render", "--take", take.string(), "-o", (dir / "again.wav").string()});
+    ::kill(pid, SIGTERM);
+    const int status = wait_status(pid);
+    ASSERT_TRUE(recording) << "take.wav never grew";
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("is being recorded right now"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "again.wav"));
+    ASSERT_TRUE(WIFEXITED(status));
+    const nlohmann::json description = read_json(take / "take.json");
+    EXPECT_EQ(description.value("interrupted_by", ""), "SIGTERM") << "the player finished it";
+}
+
 // A take that clips says so, in take.json and on the terminal: the live limiter kept what
 // was heard clean, but take.wav holds the model's own output.
 TEST(Take, ClippingIsRecordedAndWarned) {

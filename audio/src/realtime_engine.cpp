@@ -570,7 +570,7 @@ class Engine final : public AudioRenderer {
 }  // namespace
 
 int run_engine(const EngineOptions& options) {
-    const InterruptionGuard signals;  // SIGINT, SIGTERM, SIGHUP end the loop; takes finish
+    const InterruptionGuard stop_on_signal;  // SIGINT, SIGTERM, SIGHUP end the loop; takes finish
     ipc::SharedSegment segment = ipc::SharedSegment::attach(options.segment);
     Engine engine(std::move(segment), options);
     return engine.run();
