@@ -200,7 +200,7 @@ TEST(Take, AKilledTakeIsRecoveredByRender) {
         spawn_play(take, {"--gesture", test::resource("gestures/detache.json").string()});
     ASSERT_GT(pid, 0);
     const bool recording =
-        test::wait_for([&] { return size_of(take / "take.wav") > kOneSecondOfWav * 3 / 2; },
+        test::wait_for([&] { return size_of(take / "take.wav") > kOneSecondOfWav * 3 / 4; },
                        std::chrono::seconds(60));
     ::kill(pid, SIGKILL);
     ::waitpid(pid, nullptr, 0);

@@ -14,6 +14,9 @@ namespace {
 constexpr std::uint32_t kSampleCapacity = 1u << 17;  // 2.7 s of samples at 48 kHz
 constexpr std::uint32_t kGestureCapacity = 1u << 13;
 constexpr std::uint32_t kChangeCapacity = 1u << 10;
+// Samples written per round at most: a writer that falls behind still writes take.wav and
+// the streams every round instead of draining an ever-refilled ring into probes.csv alone.
+constexpr std::size_t kRoundSamples = 1u << 13;
 
 std::FILE* open_stream(const std::filesystem::path& path) {
     std::FILE* f = std::fopen(path.c_str(), "wx");  // new: a take never overwrites a file
@@ -137,16 +140,18 @@ void TakeRecorder::write_loop() {
         std::vector<GestureKeyframe> keyframes;
         std::vector<Change> changes;
         std::vector<double> block;
+        block.reserve(kRoundSamples);
         bool described = false;
         auto last_header = std::chrono::steady_clock::now();
         for (;;) {
             const bool last_round = stopping_.load();
             Sample s;
             block.clear();
-            while (samples_.ring().try_pop(s)) {
+            while (block.size() < kRoundSamples && samples_.ring().try_pop(s)) {
                 block.push_back(s.output);
                 csv.write_row(s.time, s.probes);
             }
+            const bool behind = block.size() == kRoundSamples;
             // Begun before its first sample was pushed: where it began is known now.
             if (!described && begun_.load(std::memory_order_acquire)) {
                 described = true;
@@ -184,6 +189,7 @@ void TakeRecorder::write_loop() {
                 wav.update_header();  // a crash from here on still leaves a valid WAV
                 last_header = std::chrono::steady_clock::now();
             }
+            if (behind) continue;  // more are waiting (the last round too drains them all)
             if (last_round) break;
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
         }
