@@ -12,6 +12,7 @@
 #include "archet/comparison.hpp"
 #include "archet/input_error.hpp"
 #include "archet/input_limits.hpp"
+#include "archet/interruption.hpp"
 #include "archet/model_file.hpp"
 #include "archet/model_variants.hpp"
 #include "archet/probe_csv_writer.hpp"
@@ -47,6 +48,7 @@ void write_figure(const std::filesystem::path& path, const std::vector<Compariso
 }
 
 int run_compare(const CompareArguments& a) {
+    const InterruptionGuard stop_on_signal;  // SIGINT, SIGTERM, SIGHUP: stop between two variants
     const auto [parameter, values] = parse_variation(a.vary);
     const Model model = load_validated_model(a.model, {});
     Gesture gesture;
@@ -79,6 +81,7 @@ int run_compare(const CompareArguments& a) {
     std::cout << std::left << std::setw(32) << "variant" << std::setw(12) << "f1 Hz"
               << "dissipated per period (µJ)\n";
     for (double v : values) {
+        throw_if_interrupted("the variants before were written, comparison.json was not");
         ComparisonRun run = compare_variant(model, gesture, parameter, v, seconds);
         const std::string stem = file_stem(run.label);
         SoundFileWriter wav(dir / (stem + ".wav"), SoundFormat::Wav,

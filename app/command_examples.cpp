@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "archet/interruption.hpp"
 #include "archet/sound_examples.hpp"
 #include "commands.hpp"
 #include "resource_folder.hpp"
@@ -16,6 +17,8 @@ struct ExamplesArguments {
 };
 
 int run_examples(const ExamplesArguments& a) {
+    const InterruptionGuard
+        stop_on_signal;  // SIGINT, SIGTERM, SIGHUP: stop, leave no temporary file
     for (const SoundExample& e : sound_examples()) {
         const auto path = render_sound_example(e, a.resources, a.output);
         std::cout << path.string() << "  " << e.what << "\n";

@@ -22,6 +22,7 @@
 #include "archet/haptic_loop.hpp"
 #include "archet/input_error.hpp"
 #include "archet/input_limits.hpp"
+#include "archet/interruption.hpp"
 #include "archet/model_file.hpp"
 #include "archet/monotonic_clock.hpp"
 #include "archet/output_limiter.hpp"
@@ -118,6 +119,7 @@ class Player final : public AudioRenderer {
 };
 
 int run_play(const PlayArguments& a) {
+    const InterruptionGuard stop_on_signal;  // SIGINT, SIGTERM, SIGHUP: stop and finish the take
     if (a.duration < 0 || !std::isfinite(a.duration))
         throw InputError("--duration", "must be positive seconds");
     const Model model = load_validated_model(a.model, {});
@@ -154,15 +156,29 @@ int run_play(const PlayArguments& a) {
     const std::uint64_t allocations_before = realtime_allocations();
     output->start(player);
     std::cerr << "archet: " << output->scheduling() << "\n";
-    std::this_thread::sleep_for(std::chrono::duration<double>(duration));
+    // Plays until the duration is over or a signal asks to stop.
+    const auto end = std::chrono::steady_clock::now() +
+                     std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                         std::chrono::duration<double>(duration));
+    for (auto now = std::chrono::steady_clock::now(); now < end && !interruption_signal();
+         now = std::chrono::steady_clock::now())
+        std::this_thread::sleep_for(std::min<std::chrono::steady_clock::duration>(
+            end - now, std::chrono::milliseconds(10)));
+    const int signal = interruption_signal();
     output->stop();
     if (take) {
-        take->finish();
+        take->finish(signal ? signal_name(signal) : "");
         std::cerr << "archet: take written to " << take->folder().string()
                   << " (take.wav, gesture.json, probes.csv; `archet render --take "
                   << take->folder().string() << " -o FILE` re-renders it)"
                   << (take->dropped() ? ", some samples dropped: the disk was too slow" : "")
                   << "\n";
+        if (signal)
+            std::cerr << "archet: the take was interrupted by " << signal_name(signal) << " after "
+                      << static_cast<double>(take->frames()) / sim.sample_rate()
+                      << " s; take.json says so\n";
+        if (const std::string note = take->clipping_note(); !note.empty())
+            std::cerr << "archet: warning: " << note << "\n";
     }
     if (a.stats) {
         const AudioStats s = output->stats();
@@ -177,6 +193,10 @@ int run_play(const PlayArguments& a) {
             {"limited_samples", player.limiter().limited()},
             {"output", output->description()}};
         std::cout << stats.dump() << "\n";
+    }
+    if (signal) {
+        std::cerr << "archet: interrupted by " << signal_name(signal) << "\n";
+        return 128 + signal;
     }
     return 0;
 }

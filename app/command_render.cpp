@@ -12,6 +12,7 @@
 #include "archet/compiled_model.hpp"
 #include "archet/input_error.hpp"
 #include "archet/input_limits.hpp"
+#include "archet/interruption.hpp"
 #include "archet/model_file.hpp"
 #include "archet/number_text.hpp"
 #include "archet/parameter_smoother.hpp"
@@ -20,6 +21,7 @@
 #include "archet/sound_file_writer.hpp"
 #include "archet/state_file.hpp"
 #include "archet/take_file.hpp"
+#include "archet/take_recovery.hpp"
 #include "commands.hpp"
 #include "model_loading.hpp"
 #include "option_checks.hpp"
@@ -69,7 +71,7 @@ RenderPlan plan_from_arguments(const RenderArguments& a) {
 }
 
 // A take replays as it was played: its model, gesture, starting state and parameter changes,
-// for exactly as many samples as it holds.
+// for exactly as many samples as it holds. One its recorder never finished is recovered first.
 RenderPlan plan_from_take(const RenderArguments& a) {
     if (!a.model.empty() || !a.gesture.empty() || a.duration > 0 || a.sample_rate > 0 ||
         !a.set.empty())
@@ -77,7 +79,27 @@ RenderPlan plan_from_take(const RenderArguments& a) {
                          "replays the take as it was played; drop the model, "
                          "--gesture, --duration, --sample-rate and --set");
     const std::filesystem::path folder = a.take;
-    const TakeDescription take = read_take_file(folder / "take.json");
+    TakeDescription take = read_take_file(folder / "take.json");
+    if (!take.complete) {
+        const RecoveredTake recovered = recover_take(folder);
+        take = recovered.take;
+        std::cerr << "archet: note: " << folder.string() << " was interrupted ("
+                  << take.interrupted_by << "); recovered "
+                  << static_cast<double>(take.frames) / take.sample_rate << " s (" << take.frames
+                  << " samples)";
+        if (recovered.header_frames != take.frames)
+            std::cerr << ": take.wav's header counted " << recovered.header_frames
+                      << " and is repaired";
+        std::cerr << "; rendering what was recorded\n";
+    } else if (take.interrupted) {
+        std::cerr << "archet: note: " << folder.string() << " was interrupted ("
+                  << take.interrupted_by << ") after "
+                  << static_cast<double>(take.frames) / take.sample_rate
+                  << " s; rendering what was recorded\n";
+    }
+    if (take.frames == 0)
+        throw InputError((folder / "take.json").string(),
+                         "the take holds no sample (it ended before it began); nothing to render");
     RenderPlan plan;
     plan.model = load_validated_model((folder / "model.json").string(), {}, take.sample_rate);
     plan.gesture = load_gesture_file(folder / "gesture.json");
@@ -89,6 +111,8 @@ RenderPlan plan_from_take(const RenderArguments& a) {
 }
 
 int run_render(const RenderArguments& a) {
+    const InterruptionGuard
+        stop_on_signal;  // SIGINT, SIGTERM, SIGHUP: stop, leave no temporary file
     const SoundFormat format = parse_sound_format(a.format);
     RenderPlan plan = a.take.empty() ? plan_from_arguments(a) : plan_from_take(a);
     const Model& model = plan.model;
@@ -143,6 +167,14 @@ int run_render(const RenderArguments& a) {
             smoother.advance(s);
         };
     render(sim, options, [&](const RenderBlock& block) {
+        // Unwinding removes the temporary files: nothing is left, the output is untouched.
+        if (interruption_signal()) {
+            if (show_progress) std::fputc('\n', stderr);
+            throw_if_interrupted(
+                "stopped at " +
+                std::to_string(static_cast<double>(block.first_tick) / sim.sample_rate()) +
+                " s; nothing written, " + a.output + " is as it was");
+        }
         audio.write(block.audio, block.frames);
         for (std::size_t i = 0; csv && i < block.frames; ++i)
             csv->write_row(static_cast<double>(block.first_tick + i + 1) / sim.sample_rate(),

@@ -4,6 +4,7 @@
 #include <iostream>
 
 #include "archet/input_error.hpp"
+#include "archet/interruption.hpp"
 #include "archet/printable_text.hpp"
 #include "commands.hpp"
 
@@ -40,6 +41,9 @@ int main(int argc, char** argv) {
     } catch (const archet::InputError& e) {
         std::cerr << "archet: " << archet::printable_message(e.what()) << "\n";
         return 2;
+    } catch (const archet::Interrupted& e) {  // SIGINT, SIGTERM, SIGHUP: 128 + the signal
+        std::cerr << "archet: " << e.what() << "\n";
+        return e.status();
     } catch (const std::exception& e) {
         std::cerr << "archet: internal error: " << archet::printable_message(e.what()) << "\n";
         return 1;

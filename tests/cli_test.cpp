@@ -1,8 +1,12 @@
 // The command line as a user runs it: build a string, check it, render it with probes,
-// deterministically, and every option's help shows its default and unit.
+// deterministically, and every option's help shows its default and unit; a failed or
+// interrupted render leaves no temporary file.
 
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sndfile.h>
+#include <spawn.h>
+#include <sys/wait.h>
 
 #include <cmath>
 #include <fstream>
@@ -10,6 +14,8 @@
 #include <sstream>
 
 #include "test_support.hpp"
+
+extern char** environ;
 
 namespace archet {
 namespace {
@@ -152,6 +158,99 @@ TEST(Cli, BowingComparesAttacksSideBySide) {
     EXPECT_EQ(text.status, 0);
     EXPECT_NE(text.out.find("never"), std::string::npos)
         << "no Helmholtz motion, said plainly: " << text.out;
+}
+
+}  // namespace
+}  // namespace archet
+
+// A failed or interrupted render leaves nothing behind: no temporary file, no output.
+namespace archet {
+namespace {
+
+std::vector<std::string> files_in(const std::filesystem::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+        names.push_back(e.path().filename().string());
+    return names;
+}
+
+TEST(Cli, ASigtermedRenderLeavesNoTemporaryFile) {
+    const auto dir = test::temp_dir("render-sigterm");
+    std::vector<std::string> args{ARCHET_BINARY,
+                                  "render",
+                                  test::resource("models/bowed-string-220.json").string(),
+                                  "--duration",
+                                  "3000",
+                                  "-o",
+                                  (dir / "long.wav").string(),
+                                  "--probes",
+                                  (dir / "long.csv").string()};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+    // Once both temporaries hold samples: the render is under way.
+    const bool rendering = test::wait_for(
+        [&] {
+            std::uintmax_t written = 0;
+            std::error_code ec;
+            for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+                written += e.path().filename().string().find(".tmp-") != std::string::npos
+                               ? std::filesystem::file_size(e.path(), ec)
+                               : 0;
+            return written > 1'000'000;
+        },
+        std::chrono::seconds(60));
+    ::kill(pid, SIGTERM);
+    int status = -1;
+    const bool ended = test::wait_for([&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
+                                      std::chrono::seconds(60));
+    if (!ended) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(rendering) << "the render never wrote";
+    ASSERT_TRUE(ended);
+    ASSERT_TRUE(WIFEXITED(status))
+        << "killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+    EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{});
+}
+
+TEST(Cli, ASigtermedExamplesRunLeavesNoTemporaryFile) {
+    const auto dir = test::temp_dir("examples-sigterm");
+    std::vector<std::string> args{ARCHET_BINARY, "examples", "-o", dir.string()};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+    auto temporaries = [&] {
+        std::vector<std::string> found;
+        for (const auto& name : files_in(dir))
+            if (name.find(".tmp-") != std::string::npos) found.push_back(name);
+        return found;
+    };
+    const bool rendering =
+        test::wait_for([&] { return !temporaries().empty(); }, std::chrono::seconds(60));
+    ::kill(pid, SIGTERM);
+    int status = -1;
+    const bool ended = test::wait_for([&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
+                                      std::chrono::seconds(60));
+    if (!ended) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(rendering) << "no example was being written";
+    ASSERT_TRUE(WIFEXITED(status))
+        << "killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+    EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);
+    EXPECT_EQ(temporaries(), std::vector<std::string>{});
+}
+
+TEST(Cli, ARefusedSoundFormatLeavesNoTemporaryFile) {
+    const auto dir = test::temp_dir("render-refused");
+    const auto r = test::run_archet(
+        {"render", test::resource("models/bowed-string-220.json").string(), "--duration", "0.01",
+         "--format", "flac", "--sample-rate", "1000000", "-o", (dir / "fast.flac").string()});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("fast.flac"), std::string::npos) << r.err;
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{});
 }
 
 }  // namespace

@@ -45,8 +45,7 @@ constexpr std::chrono::milliseconds kGenerous{60000};
 
 // Reads status frames until one of `kind` answers `sequence` (errors are collected).
 bool wait_status(EngineLink& link, StatusKind kind, std::uint32_t sequence,
-                 std::vector<std::string>& errors,
-                 std::chrono::milliseconds limit = kGenerous) {
+                 std::vector<std::string>& errors, std::chrono::milliseconds limit = kGenerous) {
     auto status = link.status();
     return wait_for(
         [&] {
@@ -492,7 +491,7 @@ TEST(EngineProcess, RecordsTakesOnlyInsideTheStudiosTakeDirectory) {
                     return true;
             return false;
         },
-        10000ms));
+        kGenerous));
     EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(good) / "take.wav"));
 }
 
@@ -542,7 +541,7 @@ TEST(EngineProcess, WatchesTheStudioItStartedWithWhateverTheHeaderSaysLater) {
     const pid_t engine = crashed.first;
     const std::string name = crashed.second;
     ASSERT_GT(engine, 0);
-    const bool gone = wait_for([&] { return exited(engine); }, 10000ms);
+    const bool gone = wait_for([&] { return exited(engine); }, kGenerous);
     if (!gone) ::kill(engine, SIGKILL);  // it holds ctest's output pipe open
     ASSERT_TRUE(gone) << "an orphaned engine";
     const int fd = ::shm_open(name.c_str(), O_RDONLY, 0);
@@ -582,14 +581,14 @@ TEST(EngineProcess, AnEngineNotStartedByItsStudioWatchesTheOwnerItAttachedTo) {
                 return seen.header().engine_state.load() ==
                        static_cast<std::uint32_t>(EngineState::Ready);
             },
-            10000ms))
+            kGenerous))
             << "the engine attached";
     }
     ASSERT_EQ(::write(go_pipe[1], "g", 1), 1);
     ::waitpid(studio, nullptr, 0);
     int status = -1;
     const bool gone =
-        wait_for([&] { return ::waitpid(engine, &status, WNOHANG) == engine; }, 10000ms);
+        wait_for([&] { return ::waitpid(engine, &status, WNOHANG) == engine; }, kGenerous);
     if (!gone) ::kill(engine, SIGKILL), ::waitpid(engine, nullptr, 0);
     EXPECT_TRUE(gone) << "the engine outlived the studio it attached to";
     EXPECT_FALSE(::shm_open(name, O_RDONLY, 0) >= 0) << "and left its segment behind";
@@ -642,25 +641,27 @@ TEST(EngineProcess, AFrozenStudioSilencesTheEngineUntilItBeatsAgain) {
         while (probes.try_pop(f)) ++frames, loud = std::max(loud, std::abs(f.output));
         watch();
     };
-    ASSERT_TRUE(wait_for([&] { return bow(), loud > 1e-4; }, 10000ms)) << "it sounds";
+    ASSERT_TRUE(wait_for([&] { return bow(), loud > 1e-4; }, kGenerous)) << "it sounds";
 
     ::kill(studio, SIGSTOP);
     auto state = [&] { return static_cast<EngineState>(link.header().engine_state.load()); };
-    EXPECT_TRUE(wait_for([&] { return bow(), state() == EngineState::Silent; }, 20000ms));
+    // The state changes first, then the status frame that says why: wait for both.
+    EXPECT_TRUE(wait_for([&] { return bow(), state() == EngineState::Silent && !said.empty(); },
+                         kGenerous));
     EXPECT_NE(said.find("heartbeat stopped"), std::string::npos) << said;
     // Past the fade (10 ms, a few blocks), nothing plays while the device's clock runs on.
     const std::uint64_t silent_at = blocks;
-    ASSERT_TRUE(wait_for([&] { return bow(), blocks > silent_at + 40; }, 20000ms));
+    ASSERT_TRUE(wait_for([&] { return bow(), blocks > silent_at + 40; }, kGenerous));
     frames = 0, loud = 0;
     const std::uint64_t quiet_from = blocks;
-    ASSERT_TRUE(wait_for([&] { return bow(), blocks > quiet_from + 100; }, 20000ms));
+    ASSERT_TRUE(wait_for([&] { return bow(), blocks > quiet_from + 100; }, kGenerous));
     EXPECT_EQ(frames, 0u) << "the model was not stepped";
     EXPECT_EQ(loud, 0.0);
     EXPECT_EQ(state(), EngineState::Silent);
 
     ::kill(studio, SIGCONT);
-    EXPECT_TRUE(wait_for([&] { return bow(), state() == EngineState::Ready; }, 20000ms));
-    EXPECT_TRUE(wait_for([&] { return bow(), loud > 1e-4; }, 20000ms)) << "the sound is back";
+    EXPECT_TRUE(wait_for([&] { return bow(), state() == EngineState::Ready; }, kGenerous));
+    EXPECT_TRUE(wait_for([&] { return bow(), loud > 1e-4; }, kGenerous)) << "the sound is back";
     ::kill(studio, SIGKILL);
     ::waitpid(studio, nullptr, 0);
     EXPECT_EQ(link.liveness(), EngineLink::Liveness::Running);
@@ -673,11 +674,13 @@ TEST(EngineProcess, AStudioFrozenForGoodLetsTheEngineExit) {
     o.studio_give_up = 2000ms;
     EngineLink link(o);
     link.start();
-    ASSERT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 5000ms));
+    ASSERT_TRUE(
+        wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, kGenerous));
     const pid_t studio = heartbeat_process(link);
     ASSERT_GT(studio, 0);
     ::kill(studio, SIGSTOP);
-    EXPECT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Exited; }, 30000ms));
+    EXPECT_TRUE(
+        wait_for([&] { return link.liveness() == EngineLink::Liveness::Exited; }, kGenerous));
     EXPECT_EQ(link.exit_status(), 0);
     ::kill(studio, SIGKILL);
     ::waitpid(studio, nullptr, 0);
@@ -773,7 +776,8 @@ TEST(EngineProcess, RefusesAModelTooHeavyForRealTime) {
     o.sample_rate = 192000;
     EngineLink link(o);
     link.start();
-    ASSERT_TRUE(wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, 5000ms));
+    ASSERT_TRUE(
+        wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, kGenerous));
     std::vector<std::string> errors;
     const auto heavy_load = link.load_model((dir / "heavy.json").string());
     ASSERT_TRUE(wait_status(link, StatusKind::Error, heavy_load, errors, 120000ms));
@@ -785,7 +789,7 @@ TEST(EngineProcess, RefusesAModelTooHeavyForRealTime) {
 
     errors.clear();
     const auto light = link.load_model(test::resource("models/bowed-string-220.json").string());
-    EXPECT_TRUE(wait_status(link, StatusKind::ModelLoaded, light, errors, 20000ms))
+    EXPECT_TRUE(wait_status(link, StatusKind::ModelLoaded, light, errors, kGenerous))
         << (errors.empty() ? "" : errors.back());
     EXPECT_EQ(link.liveness(), EngineLink::Liveness::Running);
 }

@@ -1,8 +1,9 @@
 // Takes recorded through the shared-memory protocol: the studio starts one in the middle of
 // a performance, changes a parameter while it records and stops it; `archet render --take`
 // then reproduces the take's audio to the byte from the state where it began. A take refuses
-// a folder that holds files and ends when a new model is loaded; an engine killed mid-take
-// leaves a valid WAV up to the last second.
+// a folder that holds files and ends when a new model is loaded; an engine told to stop
+// finishes its take, one killed outright leaves a take `render --take` recovers, and a take
+// that clips says so.
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -12,20 +13,29 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "archet/ipc/engine_link.hpp"
 #include "archet/take_file.hpp"
+#include "take_file_support.hpp"
 #include "test_support.hpp"
 
 namespace archet::ipc {
 namespace {
+
+using test::read_json;
+using test::samples_of;
+using test::size_of;
 
 using namespace std::chrono_literals;
 
 using test::wait_for;
 
 // The engine, playing a shipped model, with the status frames it has sent so far.
+/// Waits for what the machine's speed decides (TSan on two shared cores is slow).
+constexpr std::chrono::milliseconds kGenerous{60000};
+
 class EngineSession {
   public:
     EngineSession() : link_(options()) {}
@@ -50,16 +60,18 @@ class EngineSession {
     }
 
     // Plays `seconds` of sound (counted in the samples played, not in wall-clock time, which a
-    // slow machine stretches), the pad bowing at 0.1 m/s with a slow swell of pressure.
-    void bow(double seconds) {
+    // slow machine stretches), the pad bowing at 0.1 m/s with a slow swell of pressure (or at
+    // `press`).
+    void bow(double seconds, double press = 0) {
         const auto until = played_ + static_cast<std::uint64_t>(seconds * 48000);
-        bow_until([&] { return played_ >= until; });
+        bow_until([&] { return played_ >= until; }, press);
     }
     // Bows on until `done` (or a generous timeout): true if it holds.
-    bool bow_until(const std::function<bool()>& done) {
+    bool bow_until(const std::function<bool()>& done, double press = 0) {
         return wait_for(
             [&] {
-                link_.gesture(0.1 * elapsed_, 0.0015 + 0.0005 * std::sin(3 * elapsed_));
+                link_.gesture(0.1 * elapsed_,
+                              press > 0 ? press : 0.0015 + 0.0005 * std::sin(3 * elapsed_));
                 link_.heartbeat();
                 drain();
                 elapsed_ += 0.002;
@@ -115,8 +127,6 @@ class EngineSession {
     std::uint64_t realtime_allocations_ = 0;  ///< as the newest status frame counts them
     std::uint64_t played_ = 0;                ///< probe frames received: samples played
     double elapsed_ = 0;
-    /// Waits for what the machine's speed decides (TSan on two shared cores is slow).
-    static constexpr std::chrono::milliseconds kGenerous{60000};
 };
 
 // Re-renders the take in `dir`/take and expects take.wav to the byte.
@@ -181,29 +191,74 @@ TEST(EngineTake, ANewModelEndsTheTake) {
     expect_replayed(dir, "what was recorded before the swap still replays exactly");
 }
 
-TEST(EngineTake, AKilledEngineLeavesAValidWavUpToTheLastSecond) {
+// Killed outright, the engine finishes nothing: `render --take` recovers what it recorded.
+TEST(EngineTake, AKilledEnginesTakeIsRecoveredByRender) {
     const auto dir = test::temp_dir("engine-take-kill");
     EngineSession engine;
     ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.bow(0.3);
     engine.link().start_take((dir / "take").string());
-    // Until the WAV's header, updated once a second, holds a second of sound: however slowly
-    // the machine plays it.
-    const auto frames_on_disk = [&] {
-        SF_INFO info{};
-        SNDFILE* wav = sf_open((dir / "take" / "take.wav").c_str(), SFM_READ, &info);
-        if (wav) sf_close(wav);
-        return wav ? info.frames : 0;
-    };
-    ASSERT_TRUE(engine.bow_until([&] { return frames_on_disk() >= 48000; }));
+    ASSERT_TRUE(engine.bow_until([&] {
+        return size_of(dir / "take" / "take.wav") > 48000 * 3 / 2;
+    })) << "the take never grew";
+    // A change made while it records: streamed, and replayed by the recovered take.
+    engine.link().set_parameter("friction.mu_s", 0.7);
+    const std::uintmax_t before = size_of(dir / "take" / "take.wav");
+    ASSERT_TRUE(engine.bow_until(
+        [&] { return size_of(dir / "take" / "take.wav") > before + 48000 * 3 / 2; }));
     ::kill(engine.link().engine_pid(), SIGKILL);
     ASSERT_TRUE(wait_for([&] { return engine.link().liveness() == EngineLink::Liveness::Exited; },
-                         60000ms));
-    SF_INFO info{};
-    SNDFILE* wav = sf_open((dir / "take" / "take.wav").c_str(), SFM_READ, &info);
-    ASSERT_NE(wav, nullptr) << sf_strerror(nullptr);
-    sf_close(wav);
-    EXPECT_GE(info.frames, 48000) << "at least the last full second before the kill";
-    EXPECT_EQ(info.samplerate, 48000);
+                         kGenerous));
+    const std::uintmax_t recorded = (size_of(dir / "take" / "take.wav") - 44) / 3;
+    const auto r = test::run_archet(
+        {"render", "--take", (dir / "take").string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
+    const std::vector<int> original = samples_of(dir / "take" / "take.wav");
+    EXPECT_EQ(original.size(), recorded) << "take.wav's header now counts all its samples";
+    EXPECT_TRUE(samples_of(dir / "again.wav") == original)
+        << "the recovered take reproduces what was recorded, from the state where it began";
+    const TakeDescription take = read_take_file(dir / "take" / "take.json");
+    EXPECT_TRUE(take.has_state && take.has_parameters && take.interrupted);
+    EXPECT_FALSE(std::filesystem::exists(dir / "take" / "gesture.jsonl")) << "now gesture.json";
+}
+
+// SIGTERM (a logout, a service manager) ends the engine, but its take is finished first.
+TEST(EngineTake, ASigtermedEngineFinishesItsTake) {
+    const auto dir = test::temp_dir("engine-take-term");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.bow(0.3);
+    engine.link().start_take((dir / "take").string());
+    ASSERT_TRUE(engine.bow_until([&] { return size_of(dir / "take" / "take.wav") > 48000; }));
+    ::kill(engine.link().engine_pid(), SIGTERM);
+    ASSERT_TRUE(wait_for([&] { return engine.link().liveness() == EngineLink::Liveness::Exited; },
+                         kGenerous));
+    const nlohmann::json description = read_json(dir / "take" / "take.json");
+    ASSERT_TRUE(description.is_object()) << "take.json is missing or damaged";
+    EXPECT_EQ(description.value("complete", false), true);
+    EXPECT_EQ(description.value("interrupted", false), true);
+    EXPECT_EQ(description.value("interrupted_by", ""), "SIGTERM");
+    expect_replayed(dir, "the interrupted take re-renders to the byte");
+}
+
+// A take that clips says so in take.json and in the message the studio shows, though the
+// live limiter kept what was heard clean.
+TEST(EngineTake, TheFinishedMessageSaysTheTakeClipped) {
+    const auto dir = test::temp_dir("engine-take-clip");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.link().start_take((dir / "take").string());
+    engine.bow(0.6, 0.1);
+    engine.link().stop_take();
+    std::string said;
+    ASSERT_TRUE(engine.await_take_written(&said)) << said;
+    EXPECT_NE(said.find("clipped"), std::string::npos) << said;
+    EXPECT_NE(said.find("output_gain"), std::string::npos) << said;
+    const nlohmann::json description = read_json(dir / "take" / "take.json");
+    ASSERT_TRUE(description.is_object());
+    EXPECT_GT(description.value("clipped_samples", 0.0), 100.0) << description.dump();
+    EXPECT_GE(description.value("peak", 0.0), 1.0);
 }
 
 }  // namespace

@@ -6,12 +6,15 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <fstream>
+
 #include <QApplication>
 #include <QDir>
 #include <QFileInfo>
 #include <QListWidget>
 #include <QMouseEvent>
 #include <QStandardPaths>
+#include <QStatusBar>
 #include <QTest>
 #include <QWheelEvent>
 
@@ -188,6 +191,34 @@ TEST(Studio, RecordsATakeAndPlaysAndExportsIt) {
         EXPECT_TRUE(save_widget_image(window.scopes(), path)) << name;
         EXPECT_GT(QFileInfo(path).size(), 5000) << name;
     }
+}
+
+// A take that clips says so where the player sees it, in the Takes tab and the status bar,
+// though the live limiter kept what was heard clean.
+TEST(Studio, ATakeThatClippedSaysSo) {
+    const auto dir = test::temp_dir("studio-take-clip");
+    auto text = test::read_file(test::resource("models/bowed-string-220.json"));
+    const auto at = text.find("\"output_gain\": ");
+    text.replace(at, text.find(',', at) - at, "\"output_gain\": 500.0");
+    { std::ofstream(dir / "loud.json") << text; }
+    MainWindow window(engine_options());
+    window.set_takes_folder(QString::fromStdString((dir / "takes").string()));
+    ASSERT_TRUE(window.open_file(QString::fromStdString((dir / "loud.json").string())));
+    window.show();
+    window.activateWindow();
+    ASSERT_TRUE(QTest::qWaitForWindowActive(&window)) << "keyboard shortcuts need it";
+    ASSERT_TRUE(
+        wait_until([&] { return window.engine().status().model == "bowed-string-220"; }, 5000));
+    QTest::keyClick(&window, Qt::Key_R);  // record
+    bow(window, 0.8, -0.07);
+    QTest::keyClick(&window, Qt::Key_R);  // stop
+    ASSERT_TRUE(wait_until([&] { return window.takes().note().startsWith("take written"); }, 10000))
+        << window.takes().note().toStdString();
+    EXPECT_TRUE(window.takes().note().contains("clipped at full scale"))
+        << window.takes().note().toStdString();
+    EXPECT_TRUE(window.takes().note().contains("output_gain"));
+    EXPECT_TRUE(window.statusBar()->currentMessage().contains("clipped"))
+        << window.statusBar()->currentMessage().toStdString();
 }
 
 TEST(Studio, NewSettingsRestartTheEngineWithTheSameModel) {

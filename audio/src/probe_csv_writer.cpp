@@ -5,14 +5,26 @@
 #include <system_error>
 
 #include "archet/input_error.hpp"
+#include "archet/output_target.hpp"
 
 namespace archet {
 
-ProbeCsvWriter::ProbeCsvWriter(std::filesystem::path path, const std::vector<std::string>& columns)
-    : path_(std::move(path)),
-      temp_(path_.string() + ".tmp-" + std::to_string(static_cast<long>(::getpid()))),
-      columns_(columns.size()) {
-    file_ = std::fopen(temp_.c_str(), "w");
+ProbeCsvWriter::ProbeCsvWriter(std::filesystem::path path, const std::vector<std::string>& columns,
+                               WriteMode mode)
+    : path_(std::move(path)), mode_(mode), columns_(columns.size()) {
+    // Direct: "x" refuses a file that exists (a take never overwrites one). Safe: a device or
+    // FIFO (--probes /dev/null) is written in place, never renamed over.
+    const char* how = "wx";
+    if (mode_ == WriteMode::Safe) {
+        const OutputTarget target = output_target(path_);
+        temp_ = target.in_place ? target.path : target.temporary();
+        final_ = target.path;
+        if (target.in_place) mode_ = WriteMode::Direct;
+        how = "w";
+    } else {
+        temp_ = final_ = path_;
+    }
+    file_ = std::fopen(temp_.c_str(), how);
     if (!file_)
         throw InputError(path_.string(), "cannot write the probe file (is the folder writable?)");
     std::fputs("time", file_);
@@ -24,8 +36,12 @@ ProbeCsvWriter::~ProbeCsvWriter() {
     if (file_) {
         std::fclose(file_);
         std::error_code ignored;
-        std::filesystem::remove(temp_, ignored);
+        if (mode_ == WriteMode::Safe) std::filesystem::remove(temp_, ignored);
     }
+}
+
+void ProbeCsvWriter::flush() {
+    if (file_) std::fflush(file_);
 }
 
 void ProbeCsvWriter::write_row(double time, const double* values) {
@@ -41,12 +57,15 @@ void ProbeCsvWriter::close() {
     file_ = nullptr;
     std::error_code ec;
     if (failed || close_failed) {
-        std::filesystem::remove(temp_, ec);
+        if (mode_ == WriteMode::Safe) std::filesystem::remove(temp_, ec);
         throw InputError(path_.string(), "could not write the probe file (disk full?)");
     }
-    std::filesystem::rename(temp_, path_, ec);
-    if (ec)
+    if (mode_ == WriteMode::Direct) return;
+    std::filesystem::rename(temp_, final_, ec);
+    if (ec) {
+        std::filesystem::remove(temp_, ec);
         throw InputError(path_.string(), "cannot move the probe file into place: " + ec.message());
+    }
 }
 
 }  // namespace archet

@@ -29,6 +29,7 @@
 #include "archet/haptic_choice.hpp"
 #include "archet/haptic_loop.hpp"
 #include "archet/input_error.hpp"
+#include "archet/interruption.hpp"
 #include "archet/ipc/command_decoder.hpp"
 #include "archet/ipc/shared_segment.hpp"
 #include "archet/ipc/take_folder.hpp"
@@ -48,14 +49,6 @@ namespace archet {
 namespace {
 
 using namespace ipc;
-
-// SIGTERM: from the kernel when the studio that started the engine dies (PR_SET_PDEATHSIG), or
-// from a user. The control thread sees it at its next round.
-std::atomic<bool> terminated{false};
-static_assert(std::atomic<bool>::is_always_lock_free);
-extern "C" void on_terminate(int) {
-    terminated.store(true);
-}
 
 // A sanitizer's instrumented build runs the same code several times slower than the release
 // build whose real-time behaviour the model-cost check judges: its measurements are scaled
@@ -157,19 +150,22 @@ class Engine final : public AudioRenderer {
         studio_beat_at_ = last_status;
         while (!quit_.load()) {
             header.engine_heartbeat.fetch_add(1);
-            // Read first: a SIGTERM seen here because the studio died is caught just below, or
-            // within the grace: the death signal comes when the studio's thread that started
-            // the engine exits, which in a studio with several threads can be a moment before
-            // the whole process is gone.
-            if (terminated.load() && terminated_at_ == std::chrono::steady_clock::time_point{})
+            // SIGINT, SIGTERM, SIGHUP (InterruptionGuard) end the loop and the takes finish. A
+            // SIGTERM may be the kernel's news that the studio died (PR_SET_PDEATHSIG): it is
+            // caught just below, or within the grace, since the death signal comes when the
+            // studio's thread that started the engine exits, which can be a moment before the
+            // whole process is gone. Still alive after it, the studio did not die: a user's.
+            const int signal = interruption_signal();
+            if (signal && terminated_at_ == std::chrono::steady_clock::time_point{})
                 terminated_at_ = std::chrono::steady_clock::now();
             if (studio_gone()) {
                 // Nobody will read or unlink the segment: silence, clean up, leave.
                 segment_.unlink();
+                take_interruption_ = "the studio exited";
                 break;
             }
-            if (terminated_at_ != std::chrono::steady_clock::time_point{} &&
-                std::chrono::steady_clock::now() - terminated_at_ > kTerminateGrace)
+            if (signal && (signal != SIGTERM || !child_of_studio_ ||
+                           std::chrono::steady_clock::now() - terminated_at_ > kTerminateGrace))
                 break;  // the studio lives: the segment is its to remove
             if (!watch_studio_heartbeat()) break;
             CommandFrame command;
@@ -190,13 +186,16 @@ class Engine final : public AudioRenderer {
         if (recording_) finished_takes_.ring().try_push(recording_);
         if (waiting_take_) finished_takes_.ring().try_push(waiting_take_);
         recording_ = waiting_take_ = nullptr;
+        const bool studio_exited = !take_interruption_.empty();
+        const int signal = studio_exited ? 0 : interruption_signal();
+        if (signal) take_interruption_ = signal_name(signal);
         collect_takes();
         delete pending_.exchange(nullptr);
         delete fading_from_;
         fading_from_ = nullptr;
         delete running_model_;
         running_model_ = nullptr;
-        return 0;
+        return signal ? 128 + signal : 0;
     }
 
     // ---- real-time thread: the device's callback ----------------------------------------
@@ -266,11 +265,7 @@ class Engine final : public AudioRenderer {
     // child the engine asks the kernel for SIGTERM when it dies; in any case it holds a pidfd,
     // readable once the process has exited, or (without pidfd_open) asks kill(pid, 0).
     void watch_studio() {
-        struct sigaction action {};
-        action.sa_handler = on_terminate;
-        sigemptyset(&action.sa_mask);
-        ::sigaction(SIGTERM, &action, nullptr);
-        if (::getppid() == studio_pid_) {
+        if (::getppid() == studio_pid_) {  // SIGTERM is handled by run_engine's guard
             ::prctl(PR_SET_PDEATHSIG, SIGTERM);
             child_of_studio_ = true;
         }
@@ -539,8 +534,18 @@ class Engine final : public AudioRenderer {
             if (take == live_take_) live_take_ = nullptr;
             std::string said = "written " + take->folder().string();
             try {
-                take->finish();
-                said += " (" + std::to_string(take->frames()) + " samples)";
+                take->finish(take_interruption_);
+                said += " (" + std::to_string(take->frames()) + " samples";
+                if (!take_interruption_.empty()) said += ", interrupted: " + take_interruption_;
+                said += ")";
+                // The live limiter kept the monitor clean; the take holds the raw output.
+                if (take->clipped_samples() > 0) {
+                    char peak[32];
+                    std::snprintf(peak, sizeof peak, "%.2f", take->peak());
+                    said += "; " + std::to_string(take->clipped_samples()) +
+                            " samples clipped at full scale (peak " + peak +
+                            "): " + gain_advice(take->peak());
+                }
             } catch (const std::exception& e) {
                 said = std::string("take failed: ") + e.what();
             }
@@ -708,6 +713,7 @@ class Engine final : public AudioRenderer {
     std::uint64_t waiting_generation_ = 0;  ///< real-time thread: the model it was made for
     TakeRecorder* recording_ = nullptr;     ///< real-time thread: the take being fed
     TakeRecorder* live_take_ = nullptr;     ///< control thread: the take it last started
+    std::string take_interruption_;         ///< control thread: why takes end early, if they do
     HapticChoice haptic_;         ///< the device, used by the real-time thread (none by default)
     ParameterSmoother smoother_;  ///< real-time thread only
     static constexpr double kGlideSeconds = 0.01;  ///< parameter changes arrive over 10 ms
@@ -734,6 +740,7 @@ class Engine final : public AudioRenderer {
 }  // namespace
 
 int run_engine(const EngineOptions& options) {
+    const InterruptionGuard stop_on_signal;  // SIGINT, SIGTERM, SIGHUP end the loop; takes finish
     ipc::SharedSegment segment = ipc::SharedSegment::attach(options.segment);
     // Read once: whatever is written into the header later, this is the studio watched.
     const std::int32_t studio_pid =

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "archet/compiled_model.hpp"
+#include "archet/interruption.hpp"
 #include "archet/model_file.hpp"
 #include "archet/model_validation.hpp"
 #include "archet/renderer.hpp"
@@ -56,7 +57,11 @@ std::filesystem::path render_sound_example(const SoundExample& example,
     RenderOptions options;
     options.frames =
         static_cast<std::uint64_t>(std::llround((gesture.duration() + 0.5) * sim.sample_rate()));
-    render(sim, options, [&](const RenderBlock& b) { wav.write(b.audio, b.frames); });
+    render(sim, options, [&](const RenderBlock& b) {
+        // Under an InterruptionGuard (`archet examples`), a signal stops it: no temporary left.
+        throw_if_interrupted(path.string() + " not written");
+        wav.write(b.audio, b.frames);
+    });
     wav.close();
     return path;
 }

@@ -3,7 +3,9 @@
 #include <sndfile.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 #include <system_error>
 
 #include "archet/input_error.hpp"
@@ -15,6 +17,14 @@ SoundFormat parse_sound_format(const std::string& text) {
     if (text == "wav") return SoundFormat::Wav;
     if (text == "flac") return SoundFormat::Flac;
     throw InputError("--format", "\"" + text + "\" is not a sound format; use wav or flac");
+}
+
+std::string gain_advice(double peak) {
+    std::ostringstream s;
+    s << "lower the model's output_gain by at least "
+      << std::max(0.1, std::ceil(20 * std::log10(std::max(peak, 1.0)) * 10) / 10)
+      << " dB (the \"output_gain\" field of the model file)";
+    return s.str();
 }
 
 SoundFileWriter::SoundFileWriter(std::filesystem::path path, SoundFormat format, int sample_rate,
@@ -37,10 +47,20 @@ SoundFileWriter::SoundFileWriter(std::filesystem::path path, SoundFormat format,
     info.format = format == SoundFormat::Wav ? (SF_FORMAT_WAV | SF_FORMAT_PCM_24)
                                              : (SF_FORMAT_FLAC | SF_FORMAT_PCM_24);
     file_ = sf_open(temp_.c_str(), SFM_WRITE, &info);
-    if (!file_)
-        throw InputError(path_.string(), std::string("cannot write the sound file: ") +
-                                             sf_strerror(nullptr) +
-                                             (temp_ == path_ ? "" : " (is the folder writable?)"));
+    if (!file_) {
+        const std::string why = sf_strerror(nullptr);
+        // libsndfile may have created the file before refusing the format: it was ours (a
+        // device written in place is not a file of ours to remove).
+        std::error_code ignored;
+        if (std::filesystem::is_regular_file(temp_, ignored))
+            std::filesystem::remove(temp_, ignored);
+        throw InputError(
+            path_.string(),
+            "cannot write the sound file: " + why +
+                (temp_ == path_ ? std::string()
+                                : " (is the folder writable, and does the format take " +
+                                      std::to_string(sample_rate) + " Hz?)"));
+    }
     // Saturate rather than wrap around when a sample is beyond full scale.
     sf_command(file_, SFC_SET_CLIPPING, nullptr, SF_TRUE);
 }
@@ -61,7 +81,7 @@ void SoundFileWriter::write(const double* samples, std::size_t count) {
     for (std::size_t i = 0; i < count; ++i) {
         const double a = std::abs(samples[i]);
         peak_ = std::max(peak_, a);
-        if (a > 1.0) ++clipped_;
+        if (a >= 1.0) ++clipped_;  // 24-bit PCM ends just below 1.0: full scale is clipped
     }
     if (sf_write_double(file_, samples, static_cast<sf_count_t>(count)) !=
         static_cast<sf_count_t>(count))

@@ -1,6 +1,8 @@
 #include "archet/take_recorder.hpp"
 
 #include <chrono>
+#include <cmath>
+#include <sstream>
 
 #include "archet/input_error.hpp"
 #include "archet/model_file.hpp"
@@ -12,10 +14,20 @@ namespace {
 constexpr std::uint32_t kSampleCapacity = 1u << 17;  // 2.7 s of samples at 48 kHz
 constexpr std::uint32_t kGestureCapacity = 1u << 13;
 constexpr std::uint32_t kChangeCapacity = 1u << 10;
-// Samples written per round at most: a writer slower than the real-time thread (a loaded
-// machine, a sanitizer) still writes the WAV and updates its header every round, instead of
-// draining a ring that never empties.
-constexpr std::size_t kWriteChunk = 4800;
+// Samples written per round at most: a writer that falls behind still writes take.wav and
+// the streams every round instead of draining an ever-refilled ring into probes.csv alone.
+constexpr std::size_t kRoundSamples = 1u << 13;
+
+std::FILE* open_stream(const std::filesystem::path& path) {
+    std::FILE* f = std::fopen(path.c_str(), "wx");  // new: a take never overwrites a file
+    if (!f) throw InputError(path.string(), "cannot be created (is the folder writable?)");
+    return f;
+}
+
+void put(std::FILE* f, const std::string& line, const std::filesystem::path& path) {
+    if (std::fputs(line.c_str(), f) < 0)
+        throw InputError(path.string(), "write failed (disk full?)");
+}
 }  // namespace
 
 TakeRecorder::TakeRecorder(std::filesystem::path folder, const Model& played, double sample_rate,
@@ -33,16 +45,26 @@ TakeRecorder::TakeRecorder(std::filesystem::path folder, const Model& played, do
                          "already holds files; a take goes into a new or empty folder");
     std::filesystem::create_directories(folder_, ec);
     if (ec) throw InputError(folder_.string(), "cannot create the take folder: " + ec.message());
+    lock_ = std::make_unique<TakeFolderLock>(folder_);
+    if (!lock_->held())
+        throw InputError(folder_.string(),
+                         "is being recorded into by another take; choose another");
     if (probe_names_.size() > ipc::kMaxProbes) probe_names_.resize(ipc::kMaxProbes);
     // The instrument as it plays: at the device's rate, without a gesture of its own.
     Model model = played;
     model.sample_rate = sample_rate_;
     model.gesture.reset();
     write_file_atomically(folder_ / "model.json", format_model(model));
+    // What the take is, from its first moment: a take killed outright is still one.
+    TakeDescription take = description();
+    take.complete = false;
+    write_file_atomically(folder_ / "take.json", format_take(take));
     // Files are opened before playing starts, so that a bad folder fails now, not mid-take.
     wav_ = std::make_unique<SoundFileWriter>(folder_ / "take.wav", SoundFormat::Wav,
                                              static_cast<int>(sample_rate_), WriteMode::Direct);
-    csv_ = std::make_unique<ProbeCsvWriter>(folder_ / "probes.csv", probe_names_);
+    csv_ =
+        std::make_unique<ProbeCsvWriter>(folder_ / "probes.csv", probe_names_, WriteMode::Direct);
+    gesture_stream_ = open_stream(folder_ / "gesture.jsonl");
     writer_ = std::thread([this] { write_loop(); });
 }
 
@@ -51,6 +73,8 @@ TakeRecorder::~TakeRecorder() {
         finish();
     } catch (...) {
     }
+    if (gesture_stream_) std::fclose(gesture_stream_);
+    if (parameter_stream_) std::fclose(parameter_stream_);
 }
 
 std::uint32_t TakeRecorder::parameter_name(const std::string& name) {
@@ -88,6 +112,27 @@ std::uint64_t TakeRecorder::dropped() const {
     return samples_.ring().dropped() + gestures_.ring().dropped() + changes_.ring().dropped();
 }
 
+TakeDescription TakeRecorder::description() const {
+    TakeDescription take;
+    take.sample_rate = sample_rate_;
+    take.frames = frames_.load();
+    const bool begun = begun_.load(std::memory_order_acquire);
+    take.start_tick = begun ? start_tick_.load(std::memory_order_relaxed) : 0;
+    take.has_state = begun && !state_.empty();
+    return take;
+}
+
+std::vector<ParameterChange> TakeRecorder::named(const std::vector<Change>& changes) {
+    std::vector<ParameterChange> list;
+    const std::lock_guard lock(names_mutex_);
+    for (const auto& c : changes)
+        list.push_back({c.tick, names_.at(c.name), c.value, c.glide_samples});
+    return list;
+}
+
+// Each round: the samples that came, then the gesture and changes that came before them (the
+// real-time side pushes those first), which reach the disk first. So whatever take.wav holds
+// when the process dies, the streams hold what replays it.
 void TakeRecorder::write_loop() {
     try {
         SoundFileWriter& wav = *wav_;
@@ -95,32 +140,63 @@ void TakeRecorder::write_loop() {
         std::vector<GestureKeyframe> keyframes;
         std::vector<Change> changes;
         std::vector<double> block;
+        block.reserve(kRoundSamples);
+        bool described = false;
         auto last_header = std::chrono::steady_clock::now();
         for (;;) {
             const bool last_round = stopping_.load();
             Sample s;
             block.clear();
-            while (block.size() < kWriteChunk && samples_.ring().try_pop(s)) {
+            while (block.size() < kRoundSamples && samples_.ring().try_pop(s)) {
                 block.push_back(s.output);
                 csv.write_row(s.time, s.probes);
             }
-            const bool more = block.size() == kWriteChunk;  // the ring may hold more
-            if (!block.empty()) wav.write(block.data(), block.size());
-            frames_.fetch_add(block.size());
+            const bool behind = block.size() == kRoundSamples;
+            // Begun before its first sample was pushed: where it began is known now.
+            if (!described && begun_.load(std::memory_order_acquire)) {
+                described = true;
+                const TakeDescription take = description();
+                if (take.has_state) write_state_file(folder_ / "state.bin", state_);
+                TakeDescription recording = take;
+                recording.complete = false;
+                write_file_atomically(folder_ / "take.json", format_take(recording));
+            }
             GestureKeyframe k;
-            while (gestures_.ring().try_pop(k)) keyframes.push_back(k);
+            bool streamed = false;
+            while (gestures_.ring().try_pop(k)) {
+                keyframes.push_back(k);
+                put(gesture_stream_, format_gesture_line(k), folder_ / "gesture.jsonl");
+                streamed = true;
+            }
+            if (streamed) std::fflush(gesture_stream_);
             Change c;
+            const std::size_t known = changes.size();
             while (changes_.ring().try_pop(c)) changes.push_back(c);
+            if (changes.size() > known) {
+                if (!parameter_stream_)
+                    parameter_stream_ = open_stream(folder_ / "parameters.jsonl");
+                const std::vector<Change> fresh(
+                    changes.begin() + static_cast<std::ptrdiff_t>(known), changes.end());
+                for (const auto& change : named(fresh))
+                    put(parameter_stream_, format_parameter_line(change),
+                        folder_ / "parameters.jsonl");
+                std::fflush(parameter_stream_);
+            }
+            if (!block.empty()) wav.write(block.data(), block.size());
+            csv.flush();
+            frames_.fetch_add(block.size());
             if (std::chrono::steady_clock::now() - last_header > std::chrono::seconds(1)) {
                 wav.update_header();  // a crash from here on still leaves a valid WAV
                 last_header = std::chrono::steady_clock::now();
             }
-            if (more) continue;  // at once, without waiting (and not done while it holds more)
+            if (behind) continue;  // more are waiting (the last round too drains them all)
             if (last_round) break;
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
         }
         wav.close();
         csv.close();
+        clipped_ = wav.clipped_samples();
+        peak_ = wav.peak();
         write_description(std::move(keyframes), changes);
     } catch (const std::exception& e) {
         error_ = e.what();
@@ -131,31 +207,50 @@ void TakeRecorder::write_description(std::vector<GestureKeyframe> keyframes,
                                      const std::vector<Change>& changes) {
     write_file_atomically(folder_ / "gesture.json",
                           format_gesture(Gesture("take", std::move(keyframes))));
-    TakeDescription take;
-    take.sample_rate = sample_rate_;
-    take.frames = frames_.load();
-    const bool begun = begun_.load(std::memory_order_acquire);
-    take.start_tick = begun ? start_tick_.load(std::memory_order_relaxed) : 0;
-    take.has_state = begun && !state_.empty();
-    if (take.has_state) write_state_file(folder_ / "state.bin", state_);
+    TakeDescription take = description();
+    if (take.has_state && !std::filesystem::exists(folder_ / "state.bin"))
+        write_state_file(folder_ / "state.bin", state_);
     take.has_parameters = !changes.empty();
-    if (take.has_parameters) {
-        std::vector<ParameterChange> named;
-        const std::lock_guard lock(names_mutex_);
-        for (const auto& c : changes)
-            named.push_back({c.tick, names_.at(c.name), c.value, c.glide_samples});
-        write_file_atomically(folder_ / "parameters.json", format_parameter_changes(named));
+    if (take.has_parameters)
+        write_file_atomically(folder_ / "parameters.json",
+                              format_parameter_changes(named(changes)));
+    take.interrupted = !interrupted_by_.empty();
+    take.interrupted_by = interrupted_by_;
+    take.clipped_samples = clipped_;
+    take.peak = peak_;
+    write_file_atomically(folder_ / "take.json", format_take(take));  // whole from here on
+    // The streams served a take that might not be finished; this one is.
+    std::fclose(gesture_stream_);
+    gesture_stream_ = nullptr;
+    std::error_code ignored;
+    std::filesystem::remove(folder_ / "gesture.jsonl", ignored);
+    if (parameter_stream_) {
+        std::fclose(parameter_stream_);
+        parameter_stream_ = nullptr;
+        std::filesystem::remove(folder_ / "parameters.jsonl", ignored);
     }
-    write_file_atomically(folder_ / "take.json", format_take(take));
 }
 
-void TakeRecorder::finish() {
+void TakeRecorder::finish(const std::string& interrupted_by) {
     if (finished_) return;
     finished_ = true;
+    interrupted_by_ = interrupted_by;  // read by the writer after it sees stopping_
     stopping_.store(true);
     if (writer_.joinable()) writer_.join();
+    lock_.reset();
     if (!error_.empty())
         throw InputError(folder_.string(), "the take could not be written: " + error_);
+}
+
+std::string TakeRecorder::clipping_note() const {
+    if (clipped_ == 0) return {};
+    std::ostringstream s;
+    s << "the take clipped: " << clipped_ << " of " << frames_.load()
+      << " samples at full scale (peak " << peak_
+      << "); the live limiter kept what was heard clean, but take.wav holds the model's own "
+         "output; "
+      << gain_advice(peak_);
+    return s.str();
 }
 
 }  // namespace archet

@@ -13,12 +13,19 @@ namespace {
 
 using Json = nlohmann::ordered_json;
 
-Json parse(const std::filesystem::path& path) {
+Json parse(const std::string& text, const std::string& source) {
     try {
-        return Json::parse(read_text_file(path));
+        return Json::parse(text);
     } catch (const Json::exception& e) {
-        throw InputError(path.string(), std::string("is not valid JSON: ") + e.what());
+        throw InputError(source, std::string("is not valid JSON: ") + e.what());
     }
+}
+
+bool flag(JsonObjectReader& r, const std::string& key, bool fallback) {
+    const Json* value = r.optional(key);
+    if (!value) return fallback;
+    if (!value->is_boolean()) throw InputError(r.where() + "." + key, "must be true or false");
+    return value->get<bool>();
 }
 
 void expect_format(JsonObjectReader& r, const std::string& format) {
@@ -46,27 +53,49 @@ std::string format_take(const TakeDescription& t) {
     j["start_tick"] = t.start_tick;
     j["state"] = t.has_state;
     j["parameters"] = t.has_parameters;
+    j["complete"] = t.complete;
+    j["interrupted"] = t.interrupted;
+    if (t.interrupted) j["interrupted_by"] = t.interrupted_by;
+    j["clipped_samples"] = t.clipped_samples;
+    j["peak"] = t.peak;
     return j.dump(2) + "\n";
 }
 
-TakeDescription read_take_file(const std::filesystem::path& path) {
-    const Json j = parse(path);
-    if (!j.is_object()) throw InputError(path.string(), "must hold a JSON object");
-    JsonObjectReader r(j, path.string());
+TakeDescription parse_take(const std::string& text, const std::string& source) {
+    const Json j = parse(text, source);
+    if (!j.is_object()) throw InputError(source, "must hold a JSON object");
+    JsonObjectReader r(j, source);
     expect_format(r, "archet-take");
     TakeDescription t;
     t.sample_rate = r.number("sample_rate");
     if (!(t.sample_rate >= 1000 && t.sample_rate <= 1e6))
-        throw InputError(path.string() + ".sample_rate", "must be 1000 to 1000000 Hz");
+        throw InputError(source + ".sample_rate", "must be 1000 to 1000000 Hz");
     t.frames = count(r, "frames");
     t.start_tick = count(r, "start_tick");
     const Json* state = r.optional("state");
     const Json* parameters = r.optional("parameters");
     if (!state || !state->is_boolean() || !parameters || !parameters->is_boolean())
-        throw InputError(path.string(), "\"state\" and \"parameters\" must be true or false");
+        throw InputError(source, "\"state\" and \"parameters\" must be true or false");
     t.has_state = state->get<bool>(), t.has_parameters = parameters->get<bool>();
+    t.complete = flag(r, "complete", true);
+    t.interrupted = flag(r, "interrupted", false);
+    t.interrupted_by = r.text("interrupted_by", t.interrupted ? "unknown" : "");
+    if (!t.interrupted && !t.interrupted_by.empty())
+        throw InputError(source + ".interrupted_by", "is given but \"interrupted\" is false");
+    if (t.interrupted && t.interrupted_by.empty())
+        throw InputError(source + ".interrupted_by", "must say why the take was interrupted");
+    t.clipped_samples = r.has("clipped_samples") ? count(r, "clipped_samples") : 0;
+    t.peak = r.number("peak", 0.0);
+    if (!(t.peak >= 0) || !std::isfinite(t.peak))
+        throw InputError(source + ".peak", "must be a finite level of 0 or more");
+    if (t.clipped_samples > t.frames && t.complete)
+        throw InputError(source + ".clipped_samples", "counts more samples than the take holds");
     r.finish();
     return t;
+}
+
+TakeDescription read_take_file(const std::filesystem::path& path) {
+    return parse_take(read_text_file(path), path.string());
 }
 
 std::string format_parameter_changes(const std::vector<ParameterChange>& changes) {
@@ -82,15 +111,16 @@ std::string format_parameter_changes(const std::vector<ParameterChange>& changes
     return j.dump(2) + "\n";
 }
 
-std::vector<ParameterChange> read_parameter_changes(const std::filesystem::path& path) {
-    const Json j = parse(path);
-    if (!j.is_object()) throw InputError(path.string(), "must hold a JSON object");
-    JsonObjectReader r(j, path.string());
+std::vector<ParameterChange> parse_parameter_changes(const std::string& text,
+                                                     const std::string& source) {
+    const Json j = parse(text, source);
+    if (!j.is_object()) throw InputError(source, "must hold a JSON object");
+    JsonObjectReader r(j, source);
     expect_format(r, "archet-take-parameters");
     std::vector<ParameterChange> changes;
     const Json& list = r.array("changes");
     for (std::size_t i = 0; i < list.size(); ++i) {
-        const std::string where = path.string() + ": change " + std::to_string(i);
+        const std::string where = source + ": change " + std::to_string(i);
         if (!list[i].is_object()) throw InputError(where, "must be an object");
         JsonObjectReader c(list[i], where);
         ParameterChange change;
@@ -106,6 +136,10 @@ std::vector<ParameterChange> read_parameter_changes(const std::filesystem::path&
     }
     r.finish();
     return changes;
+}
+
+std::vector<ParameterChange> read_parameter_changes(const std::filesystem::path& path) {
+    return parse_parameter_changes(read_text_file(path), path.string());
 }
 
 }  // namespace archet

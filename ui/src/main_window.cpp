@@ -153,8 +153,13 @@ MainWindow::MainWindow(EngineClientOptions options, QWidget* parent) : QMainWind
     connect(engine_, &EngineClient::status_changed, this,
             [this] { document_->set_running_rate(engine_->status().sample_rate); });
     connect(engine_, &EngineClient::message, this, [this](const QString& text) {
-        statusBar()->showMessage(text, 8000);
+        // A take that clipped or was cut short stays said: longer in the status bar, and in
+        // the Takes tab until the next take's news.
+        const bool take = text.startsWith("take ");
+        const bool warning = text.contains("clipped") || text.contains("interrupted");
+        statusBar()->showMessage(text, take && warning ? 30000 : 8000);
         if (text.startsWith("take written")) takes_->refresh();
+        if (take) takes_->show_note(text);
     });
     connect(engine_, &EngineClient::engine_lost, this,
             [this](const QString& why) { statusBar()->showMessage(why, 10000); });

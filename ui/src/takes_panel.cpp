@@ -57,6 +57,14 @@ void TakesPanel::refresh() {
     if (!current.isEmpty()) select(current);
 }
 
+void TakesPanel::show_note(const QString& text) {
+    message_->setText(text);
+}
+
+QString TakesPanel::note() const {
+    return message_->text();
+}
+
 QStringList TakesPanel::takes() const {
     QStringList names;
     for (int i = 0; i < list_->count(); ++i) names << list_->item(i)->text();

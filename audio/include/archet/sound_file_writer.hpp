@@ -18,6 +18,9 @@ enum class SoundFormat { Wav, Flac };
 /// update_header(), so that a crash leaves a valid file up to the last update (takes).
 enum class WriteMode { Safe, Direct };
 
+/// What to change when a sound of this peak clipped: "lower the model's output_gain by ...".
+std::string gain_advice(double peak);
+
 /// Parses "wav" / "flac"; throws InputError otherwise.
 SoundFormat parse_sound_format(const std::string& text);
 
@@ -35,7 +38,7 @@ class SoundFileWriter {
     /// Rewrites the header for what has been written so far (WAV).
     void update_header();
 
-    std::uint64_t clipped_samples() const { return clipped_; }
+    std::uint64_t clipped_samples() const { return clipped_; }  ///< at or beyond full scale
     double peak() const { return peak_; }
     std::uint64_t frames() const { return frames_; }
 

@@ -4,11 +4,15 @@
 // and, when it began mid-performance, state.bin (the model's state at its first sample) and
 // parameters.json (the changes made while recording); take.json ties them together (see
 // take_file.hpp). The real-time side only copies into lock-free rings and a buffer sized in
-// advance; a writer thread does the file work and refreshes the WAV header every second, so
-// a crash leaves a valid WAV up to the last second. `archet render --take DIR` reproduces
-// take.wav exactly.
+// advance; a writer thread does the file work. model.json and take.json ("complete": false)
+// are written at the start; samples go straight into take.wav and probes.csv, the gesture and
+// parameter changes into gesture.jsonl and parameters.jsonl, each line on disk before the
+// samples that follow it, and the WAV header is refreshed every second. So a take killed
+// outright is recovered by `archet render --take DIR` (take_recovery.hpp); a finished one,
+// interrupted or not, is reproduced by it exactly. The folder is locked while it records.
 
 #include <atomic>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <mutex>
@@ -22,6 +26,7 @@
 #include "archet/probe_csv_writer.hpp"
 #include "archet/sound_file_writer.hpp"
 #include "archet/take_file.hpp"
+#include "archet/take_recovery.hpp"
 
 namespace archet {
 
@@ -52,11 +57,18 @@ class TakeRecorder {
     /// A parameter change that starts gliding at `tick`.
     void parameter(std::uint64_t tick, std::uint32_t name, double value, int glide_samples);
 
-    /// Stops, writes what is left, closes the files. Throws if a file could not be written.
-    void finish();
+    /// Stops, writes what is left, closes the files. `interrupted_by`, when not empty, says
+    /// why the take ended before it was meant to ("SIGTERM"): take.json records it. Throws if
+    /// a file could not be written.
+    void finish(const std::string& interrupted_by = {});
     std::uint64_t dropped() const;  ///< samples lost because the writer fell behind
     std::uint64_t frames() const { return frames_.load(); }
     const std::filesystem::path& folder() const { return folder_; }
+    /// After finish(): the samples at or beyond full scale, and the peak.
+    std::uint64_t clipped_samples() const { return clipped_; }
+    double peak() const { return peak_; }
+    /// After finish(): a sentence for the player when the take clipped, else empty.
+    std::string clipping_note() const;
 
   private:
     struct Sample {
@@ -71,14 +83,19 @@ class TakeRecorder {
         double value;
     };
     void write_loop();
+    TakeDescription description() const;
+    std::vector<ParameterChange> named(const std::vector<Change>& changes);
     void write_description(std::vector<GestureKeyframe> keyframes,
                            const std::vector<Change>& changes);
 
     std::filesystem::path folder_;
+    std::unique_ptr<TakeFolderLock> lock_;
     double sample_rate_;
     std::vector<std::string> probe_names_;
     std::unique_ptr<SoundFileWriter> wav_;
     std::unique_ptr<ProbeCsvWriter> csv_;
+    std::FILE* gesture_stream_ = nullptr;    ///< gesture.jsonl, writer thread
+    std::FILE* parameter_stream_ = nullptr;  ///< parameters.jsonl, opened at the first change
     ipc::LocalRing<Sample> samples_;
     ipc::LocalRing<GestureKeyframe> gestures_;
     ipc::LocalRing<Change> changes_;
@@ -91,6 +108,9 @@ class TakeRecorder {
     std::atomic<bool> stopping_{false};
     std::thread writer_;
     std::string error_;
+    std::string interrupted_by_;  ///< set before the writer's last round
+    std::uint64_t clipped_ = 0;   ///< after the writer ends
+    double peak_ = 0;
     bool finished_ = false;
 };
 

@@ -4,6 +4,10 @@
 // played; state.bin, the model's state where the take began (absent when it began at the
 // model's start); and parameters.json, the parameter changes made while it was recorded.
 // `archet render --take DIR` reads them all and reproduces take.wav to the byte.
+//
+// take.json is written when the take starts (`"complete": false`) and again when it ends. A
+// take stopped by a signal is finished and says so (`"interrupted": true`, `"interrupted_by"`);
+// one whose recorder never finished it (killed, crashed) is recovered by take_recovery.hpp.
 
 #include <cstdint>
 #include <filesystem>
@@ -18,6 +22,11 @@ struct TakeDescription {
     std::uint64_t start_tick = 0;  ///< master tick of the take's first sample
     bool has_state = false;        ///< state.bin: the take began mid-performance
     bool has_parameters = false;   ///< parameters.json: parameters changed during the take
+    bool complete = true;          ///< false: being recorded, or its recorder never finished it
+    bool interrupted = false;      ///< it ended before it was meant to
+    std::string interrupted_by;    ///< why: "SIGTERM", "the studio exited", ...
+    std::uint64_t clipped_samples = 0;  ///< samples of take.wav at or beyond full scale
+    double peak = 0;                    ///< the largest |sample| the model played
 };
 
 /// A parameter change made while playing: it starts gliding at master tick `tick`, before
@@ -30,9 +39,14 @@ struct ParameterChange {
 };
 
 std::string format_take(const TakeDescription& take);
+/// Reads take.json's text; `source` names it in errors. Older takes (without "complete",
+/// "interrupted", "clipped_samples", "peak") read as complete and uninterrupted.
+TakeDescription parse_take(const std::string& text, const std::string& source);
 TakeDescription read_take_file(const std::filesystem::path& path);
 
 std::string format_parameter_changes(const std::vector<ParameterChange>& changes);
+std::vector<ParameterChange> parse_parameter_changes(const std::string& text,
+                                                     const std::string& source);
 std::vector<ParameterChange> read_parameter_changes(const std::filesystem::path& path);
 
 }  // namespace archet

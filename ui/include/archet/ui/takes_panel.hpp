@@ -26,6 +26,10 @@ class TakesPanel : public QWidget {
     /// Writes the selected take's audio to `path` (WAV or FLAC by suffix) or its probes (CSV).
     bool export_to(const QString& path);
     SoundPlayer& player() { return player_; }
+    /// Says something about the takes under the list (the engine's news of the last take:
+    /// written, interrupted, clipped), until something else is said there.
+    void show_note(const QString& text);
+    QString note() const;
 
   private:
     QString selected_folder() const;
