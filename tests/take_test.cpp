@@ -18,6 +18,9 @@
 #include <sstream>
 #include <thread>
 
+#include "archet/bowed_string.hpp"
+#include "archet/take_file.hpp"
+#include "archet/take_recorder.hpp"
 #include "take_file_support.hpp"
 #include "test_support.hpp"
 
@@ -302,6 +305,29 @@ TEST(Take, ADamagedTakeIsRefusedByNameAndKept) {
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("replays the take as it was played"), std::string::npos) << r.err;
     EXPECT_GT(test::read_file(dir / "take" / "take.wav").size(), 10000u) << "the take is kept";
+}
+
+// A take never holds non-finite sound (libsndfile writes NaN as full-scale DC): the first
+// non-finite sample ends what it holds, and take.json says the simulation stopped being finite.
+TEST(Take, ANonFiniteSampleEndsTheTakeAndSaysSo) {
+    const auto dir = test::temp_dir("take-non-finite");
+    {
+        TakeRecorder take(dir / "take", build_bowed_string(BowedStringOptions{}), 48000, {"x"});
+        take.begin(0);
+        const double probe = 0.5;
+        for (int i = 0; i < 100; ++i) take.sample((i + 1) / 48000.0, 0.25, &probe, 1);
+        take.sample(101 / 48000.0, std::numeric_limits<double>::quiet_NaN(), &probe, 1);
+        for (int i = 101; i < 200; ++i) take.sample((i + 1) / 48000.0, 0.25, &probe, 1);
+        take.finish();
+    }
+    const std::vector<int> samples = samples_of(dir / "take" / "take.wav");
+    EXPECT_EQ(samples.size(), 100u) << "nothing from the first non-finite sample on";
+    for (int s : samples) EXPECT_GT(s, 0) << "no full-scale DC";
+    const TakeDescription description = read_take_file(dir / "take" / "take.json");
+    EXPECT_TRUE(description.interrupted);
+    EXPECT_NE(description.interrupted_by.find("stopped being finite at t = 0.0021"),
+              std::string::npos)
+        << description.interrupted_by;
 }
 
 }  // namespace

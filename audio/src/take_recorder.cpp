@@ -6,6 +6,7 @@
 
 #include "archet/input_error.hpp"
 #include "archet/model_file.hpp"
+#include "archet/number_text.hpp"
 #include "archet/state_file.hpp"
 
 namespace archet {
@@ -91,6 +92,11 @@ void TakeRecorder::begin(std::uint64_t tick) {
 }
 
 void TakeRecorder::sample(double time, double output, const double* probes, std::size_t count) {
+    if (blown_up_at_.load(std::memory_order_relaxed) >= 0) return;
+    if (!std::isfinite(output)) {
+        blown_up_at_.store(time, std::memory_order_relaxed);
+        return;
+    }
     Sample s;
     s.time = time;
     s.output = output;
@@ -234,7 +240,12 @@ void TakeRecorder::write_description(std::vector<GestureKeyframe> keyframes,
 void TakeRecorder::finish(const std::string& interrupted_by) {
     if (finished_) return;
     finished_ = true;
-    interrupted_by_ = interrupted_by;  // read by the writer after it sees stopping_
+    const double blown_up_at = blown_up_at_.load();
+    interrupted_by_ =
+        !interrupted_by.empty() ? interrupted_by
+        : blown_up_at >= 0
+            ? "the simulation stopped being finite at t = " + format_number(blown_up_at) + " s"
+            : std::string();  // read by the writer after it sees stopping_
     stopping_.store(true);
     if (writer_.joinable()) writer_.join();
     lock_.reset();

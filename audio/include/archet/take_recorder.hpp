@@ -50,7 +50,8 @@ class TakeRecorder {
     double* state_buffer() { return state_.empty() ? nullptr : state_.data(); }
     /// The take's first sample will be master tick `tick` (call once, before sample()).
     void begin(std::uint64_t tick);
-    /// One audio-rate sample: the model's output and its probe values.
+    /// One audio-rate sample: the model's output and its probe values. A non-finite output
+    /// ends what the take holds there; finish() then says the simulation stopped being finite.
     void sample(double time, double output, const double* probes, std::size_t count);
     /// A device position the gesture points took, at the time they took it.
     void gesture(double time, GestureSample position);
@@ -103,6 +104,10 @@ class TakeRecorder {
     std::atomic<std::uint64_t> start_tick_{0};
     std::atomic<bool> begun_{false};
     std::atomic<std::uint64_t> frames_{0};
+    /// The time of the first non-finite output sample, or below 0: from there the take holds
+    /// nothing more (NaN would be written as full-scale DC).
+    std::atomic<double> blown_up_at_{-1.0};
+    static_assert(std::atomic<double>::is_always_lock_free);
     std::mutex names_mutex_;  ///< control and writer threads only
     std::vector<std::string> names_;
     std::atomic<bool> stopping_{false};
