@@ -5,6 +5,7 @@
 #include "archet/realtime_engine.hpp"
 #include "audio_options.hpp"
 #include "commands.hpp"
+#include "option_checks.hpp"
 
 namespace archet::cli {
 
@@ -29,11 +30,11 @@ void add_engine_command(CLI::App& app, Action& action) {
     cmd->add_option("--studio-timeout", o->studio_timeout,
                     "Seconds without the studio's heartbeat before the engine fades out and "
                     "plays nothing (sound comes back when it beats again)")
-        ->check(CLI::Range(0.05, 3600.0))
+        ->check(finite_range(0.05, 3600.0, "s"))
         ->capture_default_str();
     cmd->add_option("--studio-give-up", o->studio_give_up,
                     "Seconds without the studio's heartbeat before the engine exits")
-        ->check(CLI::Range(0.1, 86400.0))
+        ->check(finite_range(0.1, 86400.0, "s"))
         ->capture_default_str();
     cmd->add_option("--shape-every", o->shape_every, "Blocks between string-shape frames")
         ->capture_default_str();

@@ -80,6 +80,15 @@ RenderPlan plan_from_take(const RenderArguments& a) {
                          "--gesture, --duration, --sample-rate and --set");
     const std::filesystem::path folder = a.take;
     TakeDescription take = read_take_file(folder / "take.json");
+    const auto too_long = [&](const TakeDescription& t) {
+        const double seconds = static_cast<double>(t.frames) / t.sample_rate;
+        if (seconds > a.max_duration)
+            throw InputError((folder / "take.json").string(),
+                             "holds " + format_number(seconds) + " s, longer than --max-duration " +
+                                 format_number(a.max_duration) +
+                                 " s; raise --max-duration to render it");
+    };
+    too_long(take);
     if (!take.complete) {
         const RecoveredTake recovered = recover_take(folder);
         take = recovered.take;
@@ -97,6 +106,7 @@ RenderPlan plan_from_take(const RenderArguments& a) {
                   << static_cast<double>(take.frames) / take.sample_rate
                   << " s; rendering what was recorded\n";
     }
+    too_long(take);
     if (take.frames == 0)
         throw InputError((folder / "take.json").string(),
                          "the take holds no sample (it ended before it began); nothing to render");

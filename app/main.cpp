@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
         std::cerr << "archet: " << archet::printable_message(e.what()) << "\n";
         return 2;
     } catch (const archet::Interrupted& e) {  // SIGINT, SIGTERM, SIGHUP: 128 + the signal
-        std::cerr << "archet: " << e.what() << "\n";
+        std::cerr << "archet: " << archet::printable_message(e.what()) << "\n";
         return e.status();
     } catch (const std::exception& e) {
         std::cerr << "archet: internal error: " << archet::printable_message(e.what()) << "\n";

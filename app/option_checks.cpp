@@ -5,6 +5,7 @@
 
 #include "archet/input_limits.hpp"
 #include "archet/number_text.hpp"
+#include "archet/printable_text.hpp"
 
 namespace archet::cli {
 
@@ -16,10 +17,10 @@ CLI::Validator finite_range(double lo, double hi, const std::string& unit, bool 
         [=](std::string& text) -> std::string {
             char* end = nullptr;
             const double x = std::strtod(text.c_str(), &end);
-            if (text.empty() || *end != '\0') return "\"" + text + "\" is not a number";
+            if (text.empty() || *end != '\0') return quoted_text(text) + " is not a number";
             const bool low = lo_open ? !(x > lo) : !(x >= lo);
             if (!std::isfinite(x) || low || !(x <= hi))
-                return "must be " + span + " (is " + text + ")";
+                return "must be " + span + " (is " + quoted_text(text) + ")";
             return {};
         },
         span);
@@ -35,8 +36,10 @@ CLI::Validator duration_range(double most, const std::string& raise_with) {
             [](std::string& text) -> std::string {
                 char* end = nullptr;
                 const double x = std::strtod(text.c_str(), &end);
-                if (text.empty() || *end != '\0') return "\"" + text + "\" is not a number";
-                return std::isfinite(x) && x > 0 ? "" : "must be above 0 s (is " + text + ")";
+                if (text.empty() || *end != '\0') return quoted_text(text) + " is not a number";
+                return std::isfinite(x) && x > 0
+                           ? ""
+                           : "must be above 0 s (is " + quoted_text(text) + ")";
             },
             "above 0 s");
     CLI::Validator range = finite_range(0, most, "s", true);

@@ -3,10 +3,12 @@
 // interrupted render leaves no temporary file.
 
 #include <gtest/gtest.h>
+
 #include <signal.h>
 #include <sndfile.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <csignal>
 
 #include <cmath>
 #include <fstream>
@@ -172,6 +174,47 @@ std::vector<std::string> files_in(const std::filesystem::path& dir) {
     for (const auto& e : std::filesystem::directory_iterator(dir))
         names.push_back(e.path().filename().string());
     return names;
+}
+
+// A signal the caller ignores stays ignored (`nohup archet render ... &`): the render goes on
+// to the end and writes its file.
+TEST(Cli, AnIgnoredHangupDoesNotStopARender) {
+    const auto dir = test::temp_dir("render-nohup");
+    std::vector<std::string> args{ARCHET_BINARY,
+                                  "render",
+                                  test::resource("models/bowed-string-220.json").string(),
+                                  "--duration",
+                                  "600",
+                                  "-o",
+                                  (dir / "long.wav").string()};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    // Ignored here, ignored in the child: as nohup leaves it.
+    const auto previous = std::signal(SIGHUP, SIG_IGN);
+    ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+    std::signal(SIGHUP, previous);
+    const bool rendering = test::wait_for(
+        [&] {
+            std::error_code ec;
+            for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+                if (e.path().filename().string().find(".tmp-") != std::string::npos &&
+                    std::filesystem::file_size(e.path(), ec) > 1'000'000)
+                    return true;
+            return false;
+        },
+        std::chrono::seconds(60));
+    ::kill(pid, SIGHUP);
+    int status = -1;
+    const bool ended = test::wait_for([&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
+                                      std::chrono::seconds(600));
+    if (!ended) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(rendering) << "the render never got under way";
+    ASSERT_TRUE(ended);
+    ASSERT_TRUE(WIFEXITED(status)) << "stopped by a signal it was told to ignore";
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    EXPECT_EQ(files_in(dir), std::vector<std::string>{"long.wav"});
 }
 
 TEST(Cli, ASigtermedRenderLeavesNoTemporaryFile) {

@@ -667,6 +667,45 @@ TEST(EngineProcess, AFrozenStudioSilencesTheEngineUntilItBeatsAgain) {
     EXPECT_EQ(link.liveness(), EngineLink::Liveness::Running);
 }
 
+// Ctrl+Z stops the studio and its engine together (one process group). An engine stopped for
+// longer than the give-up time does not take its own stop for the studio's silence when it
+// wakes before the studio has had its turn to beat.
+TEST(EngineProcess, AnEngineStoppedWithItsStudioPlaysOnWhenBothWake) {
+    EngineLinkOptions o = options();
+    o.studio_timeout = 300ms;
+    o.studio_give_up = 1000ms;
+    EngineLink link(o);
+    link.start();
+    ASSERT_TRUE(wait_for(
+        [&] {
+            link.heartbeat();
+            return link.liveness() == EngineLink::Liveness::Running;
+        },
+        kGenerous));
+    auto rounds = [&] { return link.header().engine_heartbeat.load(); };
+    // The engine has seen the studio's last beat before both stop.
+    const auto seen_from = rounds();
+    ASSERT_TRUE(wait_for([&] { return rounds() > seen_from + 5; }, kGenerous));
+    const pid_t engine = link.engine_pid();
+    ::kill(engine, SIGSTOP);
+    std::this_thread::sleep_for(1500ms);  // the length of the stop, longer than the give-up
+    ::kill(engine, SIGCONT);
+    // The engine runs its rounds first; the studio (this test) has not beaten yet.
+    const auto woke_at = rounds();
+    EXPECT_TRUE(wait_for(
+        [&] { return rounds() > woke_at + 20 || link.liveness() == EngineLink::Liveness::Exited; },
+        kGenerous));
+    // Then the studio beats again, and the engine is still there to hear it.
+    const auto beating_from = rounds();
+    EXPECT_TRUE(wait_for(
+        [&] {
+            link.heartbeat();
+            return rounds() > beating_from + 200;
+        },
+        kGenerous));
+    EXPECT_EQ(link.liveness(), EngineLink::Liveness::Running);
+}
+
 // A studio frozen for good: the engine gives up after the longer timeout and exits.
 TEST(EngineProcess, AStudioFrozenForGoodLetsTheEngineExit) {
     EngineLinkOptions o = options();

@@ -31,8 +31,12 @@ InterruptionGuard::InterruptionGuard() {
     sigemptyset(&action.sa_mask);
     // Interrupted writes resume rather than fail; the second signal has its default effect.
     action.sa_flags = SA_RESTART | SA_RESETHAND;
-    for (std::size_t i = 0; i < std::size(kSignals); ++i)
+    for (std::size_t i = 0; i < std::size(kSignals); ++i) {
         sigaction(kSignals[i], &action, &previous[i]);
+        // A signal the caller ignores stays ignored (`nohup archet render ...`, a background
+        // job's SIGINT): it was not meant to stop us.
+        if (previous[i].sa_handler == SIG_IGN) sigaction(kSignals[i], &previous[i], nullptr);
+    }
 }
 
 InterruptionGuard::~InterruptionGuard() {

@@ -147,14 +147,15 @@ class Engine final : public AudioRenderer {
         publish(StatusKind::Heartbeat, 0, said);
         auto last_status = std::chrono::steady_clock::now();
         studio_beat_ = header.studio_heartbeat.load();
-        studio_beat_at_ = last_status;
+        studio_beat_at_ = last_watch_ = last_status;
         while (!quit_.load()) {
             header.engine_heartbeat.fetch_add(1);
-            // SIGINT, SIGTERM, SIGHUP (InterruptionGuard) end the loop and the takes finish. A
-            // SIGTERM may be the kernel's news that the studio died (PR_SET_PDEATHSIG): it is
-            // caught just below, or within the grace, since the death signal comes when the
-            // studio's thread that started the engine exits, which can be a moment before the
-            // whole process is gone. Still alive after it, the studio did not die: a user's.
+            // SIGINT, SIGTERM, SIGHUP (InterruptionGuard) end the loop and the takes finish. For
+            // the studio's child a signal may be the kernel's news that the studio died
+            // (PR_SET_PDEATHSIG), or the terminal's Ctrl+C to the whole process group: the
+            // studio's end is caught just below, or within the grace, since the death signal
+            // comes when the studio's thread that started the engine exits, which can be a
+            // moment before the whole process is gone. Still alive after it: a user's signal.
             const int signal = interruption_signal();
             if (signal && terminated_at_ == std::chrono::steady_clock::time_point{})
                 terminated_at_ = std::chrono::steady_clock::now();
@@ -164,7 +165,7 @@ class Engine final : public AudioRenderer {
                 take_interruption_ = "the studio exited";
                 break;
             }
-            if (signal && (signal != SIGTERM || !child_of_studio_ ||
+            if (signal && (!child_of_studio_ ||
                            std::chrono::steady_clock::now() - terminated_at_ > kTerminateGrace))
                 break;  // the studio lives: the segment is its to remove
             if (!watch_studio_heartbeat()) break;
@@ -290,6 +291,10 @@ class Engine final : public AudioRenderer {
         auto& header = segment_.header();
         const std::uint64_t beat = header.studio_heartbeat.load();
         const auto now = std::chrono::steady_clock::now();
+        // A round far later than its 2 ms: the engine itself was stopped (Ctrl+Z stops the
+        // studio's whole process group) and the studio, woken with it, has had no turn yet.
+        if (now - last_watch_ > std::chrono::milliseconds(500)) studio_beat_at_ = now;
+        last_watch_ = now;
         if (beat != studio_beat_) {
             studio_beat_ = beat;
             studio_beat_at_ = now;
@@ -505,7 +510,8 @@ class Engine final : public AudioRenderer {
             // The folder came from another process: nothing is made until it is known to lie
             // inside the take directory the studio gave at start.
             if (!take_problem_.empty()) throw InputError(quoted_text(folder), take_problem_);
-            check_take_folder(folder, take_root_);
+            // Recorded where the check resolved it, not where a link swapped in since points.
+            const std::filesystem::path inside = check_take_folder(folder, take_root_);
             if (current_name_.empty()) throw InputError(folder, "no model is loaded to record");
             if (live_take_)
                 throw InputError(folder, "a take is already being recorded into " +
@@ -513,7 +519,7 @@ class Engine final : public AudioRenderer {
             std::vector<std::string> probes;
             for (const auto& p : current_resolver_.probes) probes.push_back(p.id);
             const std::size_t state_size = Simulation(current_resolver_).state_size();
-            auto take = std::make_unique<TakeRecorder>(folder, current_model_, sample_rate_, probes,
+            auto take = std::make_unique<TakeRecorder>(inside, current_model_, sample_rate_, probes,
                                                        state_size);
             RealtimeCommand r{RealtimeCommand::StartTake, {}, 0, 0, 0};
             r.take = take.get();
@@ -533,10 +539,15 @@ class Engine final : public AudioRenderer {
         while (finished_takes_.ring().try_pop(take)) {
             if (take == live_take_) live_take_ = nullptr;
             std::string said = "written " + take->folder().string();
+            // Why the engine ended it early, if it did: take.json says so.
+            std::string why = take_interruption_;
+            if (why.empty() && blown_.load())
+                why = "the model blew up (energy runaway or non-finite output) and was reset";
+            if (why.empty() && silenced_) why = "the studio stopped answering";
             try {
-                take->finish(take_interruption_);
+                take->finish(why);
                 said += " (" + std::to_string(take->frames()) + " samples";
-                if (!take_interruption_.empty()) said += ", interrupted: " + take_interruption_;
+                if (!why.empty()) said += ", interrupted: " + why;
                 said += ")";
                 // The live limiter kept the monitor clean; the take holds the raw output.
                 if (take->clipped_samples() > 0) {
@@ -631,6 +642,9 @@ class Engine final : public AudioRenderer {
             f.reserved = 0;
             for (std::size_t p = 0; p < probes; ++p) f.values[p] = sim.probe(p);
             f.output = sim.output();
+            // A take holds the model's own output, before the cross-fade and the studio's fade:
+            // what `render --take` reproduces (a non-finite one ends the take, see TakeRecorder).
+            if (recording_) recording_->sample(sim.time(), f.output, f.values, f.count);
             if (fading_from_) f.output = cross_fade(f.output);
             if (silent_now_ ? studio_gain_ > 0
                             : studio_gain_ < 1) {  // the studio froze, or is back
@@ -648,7 +662,6 @@ class Engine final : public AudioRenderer {
             const float y = limiter_->process(f.output);
             for (int c = 0; c < channels; ++c) out[i * channels + c] = y;
             probes_.try_push(f);
-            if (recording_) recording_->sample(sim.time(), f.output, f.values, f.count);
         }
         tick_.store(sim.tick(), std::memory_order_relaxed);
         const double energy = sim.stored_energy();
@@ -675,7 +688,8 @@ class Engine final : public AudioRenderer {
     SharedSegment segment_;
     EngineOptions options_;
     const std::int32_t studio_pid_;                        ///< fixed at start
-    std::chrono::steady_clock::time_point terminated_at_;  ///< when SIGTERM was first seen
+    std::chrono::steady_clock::time_point terminated_at_;  ///< when a signal was first seen
+    std::chrono::steady_clock::time_point last_watch_;     ///< the previous heartbeat check
     static constexpr std::chrono::milliseconds kTerminateGrace{500};
     int studio_pidfd_ = -1;          ///< readable once the studio has exited (-1: none)
     bool child_of_studio_ = false;   ///< the kernel sends SIGTERM when the studio dies

@@ -16,8 +16,10 @@ OutputTarget output_target(const std::filesystem::path& path) {
     const fs::file_status status = fs::status(path, ec);  // follows links
     if (ec || !fs::exists(status)) {
         // A dangling link is written through, onto the file it names.
-        if (fs::is_symlink(fs::symlink_status(path, ec)))
-            return {fs::weakly_canonical(path, ec), false};
+        if (fs::is_symlink(fs::symlink_status(path, ec))) {
+            const fs::path named = fs::read_symlink(path, ec);
+            if (!ec) return {named.is_absolute() ? named : path.parent_path() / named, false};
+        }
         return {path, false};
     }
     if (fs::is_directory(status))

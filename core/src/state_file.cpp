@@ -9,6 +9,7 @@
 #include <string>
 
 #include "archet/input_error.hpp"
+#include "archet/input_limits.hpp"
 #include "archet/model_file.hpp"
 #include "archet/number_text.hpp"
 #include "archet/printable_text.hpp"
@@ -42,7 +43,7 @@ std::vector<double> read_state_file(const std::filesystem::path& path) {
     const auto start = in.tellg();
     in.seekg(0, std::ios::end);
     const auto bytes = static_cast<std::size_t>(in.tellg() - start);
-    if (count > (1u << 28) || bytes != count * sizeof(double))
+    if (count > limits::kFileBytes / sizeof(double) || bytes != count * sizeof(double))
         throw InputError(path.string(), "is truncated or damaged: it announces " +
                                             count_of(count, "number", "numbers") + " but holds " +
                                             count_of(bytes, "byte", "bytes"));

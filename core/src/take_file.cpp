@@ -6,6 +6,7 @@
 #include "archet/input_error.hpp"
 #include "archet/json_reader.hpp"
 #include "archet/model_file.hpp"
+#include "archet/printable_text.hpp"
 
 namespace archet {
 
@@ -82,6 +83,8 @@ TakeDescription parse_take(const std::string& text, const std::string& source) {
     t.interrupted_by = r.text("interrupted_by", t.interrupted ? "unknown" : "");
     if (!t.interrupted && !t.interrupted_by.empty())
         throw InputError(source + ".interrupted_by", "is given but \"interrupted\" is false");
+    if (!is_printable_text(t.interrupted_by))
+        throw InputError(source + ".interrupted_by", "may hold only printable characters");
     if (t.interrupted && t.interrupted_by.empty())
         throw InputError(source + ".interrupted_by", "must say why the take was interrupted");
     t.clipped_samples = r.has("clipped_samples") ? count(r, "clipped_samples") : 0;

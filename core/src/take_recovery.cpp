@@ -227,6 +227,14 @@ RecoveredTake recover_take(const std::filesystem::path& folder) {
     r.take = read_take_file(folder / "take.json");
     r.header_frames = r.take.frames;
     if (r.take.complete) return r;
+    // Recovery rewrites and truncates the take's files in place: never through a symbolic link
+    // (a take folder from elsewhere could point gesture.json at a file of the user's).
+    for (const char* name : {"take.wav", "probes.csv", "gesture.json", "gesture.jsonl",
+                             "parameters.json", "parameters.jsonl", "take.json", "state.bin"})
+        if (std::filesystem::is_symlink(folder / name))
+            throw InputError((folder / name).string(),
+                             "is a symbolic link; Archet recovers only the files it recorded "
+                             "itself, so replace the link with the take's own file");
 
     const std::filesystem::path wav = folder / "take.wav";
     std::error_code ec;

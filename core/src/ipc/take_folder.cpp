@@ -60,7 +60,7 @@ fs::path check_take_folder(const std::string& folder, const fs::path& root) {
     if (error || !inside(resolved, root))
         throw InputError(where, "is not inside the take directory " + quoted_text(root.string()) +
                                     " (symbolic links resolved): record under that folder");
-    return path;
+    return resolved;
 }
 
 }  // namespace archet::ipc
