@@ -24,13 +24,13 @@ extern "C" void on_signal(int signal) {
 
 }  // namespace
 
-InterruptionGuard::InterruptionGuard() {
+InterruptionGuard::InterruptionGuard(bool second_ends_at_once) {
     received.store(0);
     struct sigaction action {};
     action.sa_handler = on_signal;
     sigemptyset(&action.sa_mask);
-    // Interrupted writes resume rather than fail; the second signal has its default effect.
-    action.sa_flags = SA_RESTART | SA_RESETHAND;
+    // Interrupted writes resume rather than fail; a second signal may have its default effect.
+    action.sa_flags = SA_RESTART | (second_ends_at_once ? SA_RESETHAND : 0);
     for (std::size_t i = 0; i < std::size(kSignals); ++i) {
         sigaction(kSignals[i], &action, &previous[i]);
         // A signal the caller ignores stays ignored (`nohup archet render ...`, a background

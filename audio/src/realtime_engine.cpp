@@ -754,7 +754,9 @@ class Engine final : public AudioRenderer {
 }  // namespace
 
 int run_engine(const EngineOptions& options) {
-    const InterruptionGuard stop_on_signal;  // SIGINT, SIGTERM, SIGHUP end the loop; takes finish
+    // SIGINT, SIGTERM, SIGHUP end the loop and the takes finish; a second one too (the
+    // studio's death signal and a terminal's may both come) leaves the clean-up to finish.
+    const InterruptionGuard stop_on_signal(/*second_ends_at_once=*/false);
     ipc::SharedSegment segment = ipc::SharedSegment::attach(options.segment);
     // Read once: whatever is written into the header later, this is the studio watched.
     const std::int32_t studio_pid =

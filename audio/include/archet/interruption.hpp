@@ -13,7 +13,11 @@ namespace archet {
 
 class InterruptionGuard {
   public:
-    InterruptionGuard();   ///< installs the handlers; the flag starts clear
+    /// Installs the handlers; the flag starts clear. `second_ends_at_once`: a second signal of
+    /// the same kind has its default effect (a command the user wants gone); the engine keeps
+    /// its handler, since the studio's death signal and a terminal's may both come, and it
+    /// must still remove the segment.
+    explicit InterruptionGuard(bool second_ends_at_once = true);
     ~InterruptionGuard();  ///< puts the previous handlers back
     InterruptionGuard(const InterruptionGuard&) = delete;
     InterruptionGuard& operator=(const InterruptionGuard&) = delete;
