@@ -10,9 +10,12 @@
 namespace archet::cli {
 
 CLI::Validator finite_range(double lo, double hi, const std::string& unit, bool lo_open) {
-    const std::string span = (lo_open ? "above " : "from ") + format_number(lo) +
-                             (lo_open ? " and at most " : " to ") + format_number(hi) +
-                             (unit.empty() ? "" : " " + unit);
+    // No upper bound to name when hi is infinite ("above 0 s").
+    const std::string upper = std::isfinite(hi) ? format_number(hi) : std::string();
+    const std::string span =
+        (lo_open ? "above " : "from ") + format_number(lo) +
+        (upper.empty() ? "" : (lo_open ? " and at most " : " to ") + upper) +
+        (unit.empty() ? "" : " " + unit);
     return CLI::Validator(
         [=](std::string& text) -> std::string {
             char* end = nullptr;
@@ -30,26 +33,8 @@ CLI::Validator sample_rate_range() {
     return finite_range(limits::kMinSampleRate, limits::kMaxSampleRate, "Hz");
 }
 
-CLI::Validator duration_range(double most, const std::string& raise_with) {
-    if (!std::isfinite(most))
-        return CLI::Validator(
-            [](std::string& text) -> std::string {
-                char* end = nullptr;
-                const double x = std::strtod(text.c_str(), &end);
-                if (text.empty() || *end != '\0') return quoted_text(text) + " is not a number";
-                return std::isfinite(x) && x > 0
-                           ? ""
-                           : "must be above 0 s (is " + quoted_text(text) + ")";
-            },
-            "above 0 s");
-    CLI::Validator range = finite_range(0, most, "s", true);
-    if (raise_with.empty()) return range;
-    return CLI::Validator(
-        [range, raise_with](std::string& text) mutable -> std::string {
-            std::string problem = range(text);
-            return problem.empty() ? problem : problem + "; raise " + raise_with + " to go further";
-        },
-        range.get_description());
+CLI::Validator duration_range(double most) {
+    return finite_range(0, most, "s", /*lo_open=*/true);
 }
 
 }  // namespace archet::cli

@@ -7,14 +7,14 @@
 
 namespace archet::cli {
 
-/// A finite number in [lo, hi] (or (lo, hi] when `lo_open`), with its unit in the message.
+/// A finite number in [lo, hi] (or (lo, hi] when `lo_open`; hi may be infinite), with its
+/// unit in the message.
 CLI::Validator finite_range(double lo, double hi, const std::string& unit, bool lo_open = false);
 
 /// A master clock in the range a model accepts (1000 to 1000000 Hz).
 CLI::Validator sample_rate_range();
 
-/// Seconds above 0 and at most `most` (infinity: no bound here; the flag that raises the
-/// bound, if any, is named in the message).
-CLI::Validator duration_range(double most, const std::string& raise_with = "");
+/// Seconds above 0 and at most `most` (infinity: no bound here, the command checks its own).
+CLI::Validator duration_range(double most);
 
 }  // namespace archet::cli

@@ -176,25 +176,27 @@ std::vector<std::string> files_in(const std::filesystem::path& dir) {
     return names;
 }
 
+// `archet ARGUMENTS...` started in the background (-1 when it could not be started).
+pid_t spawn_archet(std::vector<std::string> arguments) {
+    arguments.insert(arguments.begin(), ARCHET_BINARY);
+    std::vector<char*> argv;
+    for (auto& a : arguments) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    return ::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) == 0 ? pid : -1;
+}
+
 // A signal the caller ignores stays ignored (`nohup archet render ... &`): the render goes on
 // to the end and writes its file.
 TEST(Cli, AnIgnoredHangupDoesNotStopARender) {
     const auto dir = test::temp_dir("render-nohup");
-    std::vector<std::string> args{ARCHET_BINARY,
-                                  "render",
-                                  test::resource("models/bowed-string-220.json").string(),
-                                  "--duration",
-                                  "600",
-                                  "-o",
-                                  (dir / "long.wav").string()};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = -1;
     // Ignored here, ignored in the child: as nohup leaves it.
     const auto previous = std::signal(SIGHUP, SIG_IGN);
-    ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+    const pid_t pid =
+        spawn_archet({"render", test::resource("models/bowed-string-220.json").string(),
+                      "--duration", "600", "-o", (dir / "long.wav").string()});
     std::signal(SIGHUP, previous);
+    ASSERT_GT(pid, 0);
     const bool rendering = test::wait_for(
         [&] {
             std::error_code ec;
@@ -219,20 +221,10 @@ TEST(Cli, AnIgnoredHangupDoesNotStopARender) {
 
 TEST(Cli, ASigtermedRenderLeavesNoTemporaryFile) {
     const auto dir = test::temp_dir("render-sigterm");
-    std::vector<std::string> args{ARCHET_BINARY,
-                                  "render",
-                                  test::resource("models/bowed-string-220.json").string(),
-                                  "--duration",
-                                  "3000",
-                                  "-o",
-                                  (dir / "long.wav").string(),
-                                  "--probes",
-                                  (dir / "long.csv").string()};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = -1;
-    ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+    const pid_t pid = spawn_archet(
+        {"render", test::resource("models/bowed-string-220.json").string(), "--duration", "3000",
+         "-o", (dir / "long.wav").string(), "--probes", (dir / "long.csv").string()});
+    ASSERT_GT(pid, 0);
     // Once both temporaries hold samples: the render is under way.
     const bool rendering = test::wait_for(
         [&] {
@@ -260,12 +252,8 @@ TEST(Cli, ASigtermedRenderLeavesNoTemporaryFile) {
 
 TEST(Cli, ASigtermedExamplesRunLeavesNoTemporaryFile) {
     const auto dir = test::temp_dir("examples-sigterm");
-    std::vector<std::string> args{ARCHET_BINARY, "examples", "-o", dir.string()};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = -1;
-    ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+    const pid_t pid = spawn_archet({"examples", "-o", dir.string()});
+    ASSERT_GT(pid, 0);
     auto temporaries = [&] {
         std::vector<std::string> found;
         for (const auto& name : files_in(dir))

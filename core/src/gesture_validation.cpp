@@ -3,19 +3,17 @@
 #include <cmath>
 
 #include "archet/input_limits.hpp"
+#include "archet/model_parameters.hpp"
 #include "archet/number_text.hpp"
 
 namespace archet {
 
 namespace {
 
-// "press must be at most 1 m (is 1e+308)", or "" when |value| <= bound.
-std::string outside(const char* name, double value, double bound) {
-    if (value >= -bound && value <= bound) return {};
-    return std::string(name) + " must be " +
-           (value > 0 ? "at most " + format_number(bound) : "at least " + format_number(-bound)) +
-           " m (is " + format_number(value) + ")";
-}
+// The two axes, checked by the parameter table's own range message ("press must be at most
+// 1 m (is 1e+308)").
+const ParameterInfo kSlide{"slide", "m", -limits::kPosition, false, limits::kPosition};
+const ParameterInfo kPress{"press", "m", -limits::kPress, false, limits::kPress};
 
 }  // namespace
 
@@ -36,8 +34,8 @@ std::optional<InputError> check_gesture(const Gesture& gesture, const std::strin
             return InputError(where, "t = " + format_number(k.time) + " s is beyond " +
                                          format_number(limits::kDurationSeconds) +
                                          " s, the longest gesture Archet plays; split the piece");
-        for (const std::string& problem : {outside("slide", k.slide, limits::kPosition),
-                                           outside("press", k.press, limits::kPress)})
+        for (const std::string& problem :
+             {range_problem(kSlide, k.slide), range_problem(kPress, k.press)})
             if (!problem.empty()) return InputError(where, problem);
     }
     return std::nullopt;
