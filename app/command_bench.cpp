@@ -7,12 +7,12 @@
 #include <memory>
 #include <vector>
 
-#include "archet/bowed_chain.hpp"
-#include "archet/compiled_model.hpp"
-#include "archet/denormal_guard.hpp"
-#include "archet/input_error.hpp"
-#include "archet/model_validation.hpp"
-#include "archet/simulation.hpp"
+#include "archet/builders/bowed_chain.hpp"
+#include "archet/common/denormal_guard.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/model/model_validation.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "archet/physics/simulation.hpp"
 #include "commands.hpp"
 #include "model_loading.hpp"
 #include "option_checks.hpp"

@@ -9,13 +9,13 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
-#include "archet/bowing_analysis.hpp"
-#include "archet/compiled_model.hpp"
-#include "archet/denormal_guard.hpp"
-#include "archet/input_error.hpp"
-#include "archet/modal_analysis.hpp"
-#include "archet/model_file.hpp"
-#include "archet/simulation.hpp"
+#include "archet/analysis/bowing_analysis.hpp"
+#include "archet/analysis/modal_analysis.hpp"
+#include "archet/common/denormal_guard.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/files/model_file.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "archet/physics/simulation.hpp"
 #include "commands.hpp"
 #include "model_loading.hpp"
 

@@ -7,11 +7,11 @@
 #include <map>
 #include <memory>
 
-#include "archet/modal_analysis.hpp"
-#include "archet/model_file.hpp"
-#include "archet/model_parameters.hpp"
-#include "archet/model_validation.hpp"
-#include "archet/stability.hpp"
+#include "archet/analysis/modal_analysis.hpp"
+#include "archet/files/model_file.hpp"
+#include "archet/model/model_parameters.hpp"
+#include "archet/model/model_validation.hpp"
+#include "archet/model/stability.hpp"
 #include "commands.hpp"
 #include "option_checks.hpp"
 

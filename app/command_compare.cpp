@@ -9,12 +9,12 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "archet/comparison.hpp"
-#include "archet/input_error.hpp"
-#include "archet/input_limits.hpp"
+#include "archet/analysis/comparison.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/common/input_limits.hpp"
+#include "archet/files/model_file.hpp"
 #include "archet/interruption.hpp"
-#include "archet/model_file.hpp"
-#include "archet/model_variants.hpp"
+#include "archet/model/model_variants.hpp"
 #include "archet/probe_csv_writer.hpp"
 #include "archet/sound_file_writer.hpp"
 #include "archet/ui/compare_figure.hpp"

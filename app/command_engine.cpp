@@ -2,7 +2,7 @@
 
 #include <memory>
 
-#include "archet/realtime_engine.hpp"
+#include "archet/engine/realtime_engine.hpp"
 #include "audio_options.hpp"
 #include "commands.hpp"
 #include "option_checks.hpp"

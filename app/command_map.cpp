@@ -10,10 +10,10 @@
 #include <map>
 #include <thread>
 
-#include "archet/input_error.hpp"
-#include "archet/input_limits.hpp"
-#include "archet/model_file.hpp"
-#include "archet/playability.hpp"
+#include "archet/analysis/playability.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/common/input_limits.hpp"
+#include "archet/files/model_file.hpp"
 #include "archet/ui/playability_figure.hpp"
 #include "commands.hpp"
 #include "figure_application.hpp"

@@ -7,8 +7,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "archet/input_error.hpp"
-#include "archet/modal_analysis.hpp"
+#include "archet/analysis/modal_analysis.hpp"
+#include "archet/common/input_error.hpp"
 #include "commands.hpp"
 #include "model_loading.hpp"
 

@@ -3,8 +3,8 @@
 #include <iostream>
 #include <memory>
 
-#include "archet/bowed_string.hpp"
-#include "archet/model_file.hpp"
+#include "archet/builders/bowed_string.hpp"
+#include "archet/files/model_file.hpp"
 #include "commands.hpp"
 #include "option_checks.hpp"
 

@@ -3,9 +3,9 @@
 #include <cstdio>
 #include <iostream>
 
-#include "archet/input_error.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/common/printable_text.hpp"
 #include "archet/interruption.hpp"
-#include "archet/printable_text.hpp"
 #include "commands.hpp"
 
 #ifndef ARCHET_VERSION

@@ -1,8 +1,8 @@
 #include "model_loading.hpp"
 
-#include "archet/model_file.hpp"
-#include "archet/model_parameters.hpp"
-#include "archet/model_validation.hpp"
+#include "archet/files/model_file.hpp"
+#include "archet/model/model_parameters.hpp"
+#include "archet/model/model_validation.hpp"
 
 namespace archet::cli {
 

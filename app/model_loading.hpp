@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "archet/model.hpp"
+#include "archet/model/model.hpp"
 
 namespace archet::cli {
 

@@ -3,19 +3,18 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "archet/input_limits.hpp"
-#include "archet/number_text.hpp"
-#include "archet/printable_text.hpp"
+#include "archet/common/input_limits.hpp"
+#include "archet/common/number_text.hpp"
+#include "archet/common/printable_text.hpp"
 
 namespace archet::cli {
 
 CLI::Validator finite_range(double lo, double hi, const std::string& unit, bool lo_open) {
     // No upper bound to name when hi is infinite ("above 0 s").
     const std::string upper = std::isfinite(hi) ? format_number(hi) : std::string();
-    const std::string span =
-        (lo_open ? "above " : "from ") + format_number(lo) +
-        (upper.empty() ? "" : (lo_open ? " and at most " : " to ") + upper) +
-        (unit.empty() ? "" : " " + unit);
+    const std::string span = (lo_open ? "above " : "from ") + format_number(lo) +
+                             (upper.empty() ? "" : (lo_open ? " and at most " : " to ") + upper) +
+                             (unit.empty() ? "" : " " + unit);
     return CLI::Validator(
         [=](std::string& text) -> std::string {
             char* end = nullptr;

@@ -7,7 +7,7 @@
 #include <QDir>
 #include <QFileInfo>
 
-#include "archet/bowed_string.hpp"
+#include "archet/builders/bowed_string.hpp"
 #include "archet/ui/appearance.hpp"
 #include "archet/ui/main_window.hpp"
 #include "archet/ui/studio_settings.hpp"

@@ -7,12 +7,12 @@
 #include <cstdint>
 #include <string>
 
-#include "archet/blow_up.hpp"
-#include "archet/bowed_string.hpp"
-#include "archet/compiled_model.hpp"
-#include "archet/input_error.hpp"
-#include "archet/model_file.hpp"
-#include "archet/simulation.hpp"
+#include "archet/builders/bowed_string.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/files/model_file.hpp"
+#include "archet/physics/blow_up.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "archet/physics/simulation.hpp"
 
 namespace {
 

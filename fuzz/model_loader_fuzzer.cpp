@@ -5,10 +5,10 @@
 #include <cstdint>
 #include <string>
 
-#include "archet/compiled_model.hpp"
-#include "archet/input_error.hpp"
-#include "archet/model_file.hpp"
-#include "archet/model_validation.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/files/model_file.hpp"
+#include "archet/model/model_validation.hpp"
+#include "archet/physics/compiled_model.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

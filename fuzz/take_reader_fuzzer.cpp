@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <string>
 
-#include "archet/input_error.hpp"
-#include "archet/take_file.hpp"
-#include "archet/take_recovery.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/files/take_file.hpp"
+#include "archet/files/take_recovery.hpp"
 
 namespace {
 

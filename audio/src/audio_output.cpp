@@ -11,8 +11,8 @@
 #include <cmath>
 #include <thread>
 
-#include "archet/input_error.hpp"
-#include "archet/monotonic_clock.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/common/monotonic_clock.hpp"
 #include "archet/realtime_allocations.hpp"
 
 namespace archet {

@@ -4,8 +4,8 @@
 
 #include <system_error>
 
-#include "archet/input_error.hpp"
-#include "archet/output_target.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/files/output_target.hpp"
 
 namespace archet {
 

@@ -1,14 +1,14 @@
 #include "archet/sound_examples.hpp"
 
-#include "archet/input_error.hpp"
+#include "archet/common/input_error.hpp"
 
 #include <cmath>
 
-#include "archet/compiled_model.hpp"
+#include "archet/files/model_file.hpp"
 #include "archet/interruption.hpp"
-#include "archet/model_file.hpp"
-#include "archet/model_validation.hpp"
-#include "archet/renderer.hpp"
+#include "archet/model/model_validation.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "archet/physics/renderer.hpp"
 #include "archet/sound_file_writer.hpp"
 
 namespace archet {

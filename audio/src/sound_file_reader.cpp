@@ -2,7 +2,7 @@
 
 #include <sndfile.h>
 
-#include "archet/input_error.hpp"
+#include "archet/common/input_error.hpp"
 
 namespace archet {
 

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <system_error>
 
-#include "archet/input_error.hpp"
-#include "archet/output_target.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/files/output_target.hpp"
 
 namespace archet {
 

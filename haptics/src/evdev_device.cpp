@@ -15,7 +15,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "archet/input_error.hpp"
+#include "archet/common/input_error.hpp"
 
 namespace archet {
 

@@ -1,7 +1,7 @@
 #include "archet/haptic_choice.hpp"
 
+#include "archet/common/input_error.hpp"
 #include "archet/evdev_device.hpp"
-#include "archet/input_error.hpp"
 #include "archet/sdl_device.hpp"
 
 namespace archet {

@@ -1,6 +1,6 @@
 #include "archet/joystick_exchange.hpp"
 
-#include "archet/monotonic_clock.hpp"
+#include "archet/common/monotonic_clock.hpp"
 
 namespace archet {
 

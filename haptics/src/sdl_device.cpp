@@ -7,7 +7,7 @@
 #include <cmath>
 #include <future>
 
-#include "archet/input_error.hpp"
+#include "archet/common/input_error.hpp"
 
 namespace archet {
 

@@ -2,12 +2,12 @@
 
 #include <benchmark/benchmark.h>
 
-#include "archet/bowed_chain.hpp"
-#include "archet/bowed_string.hpp"
-#include "archet/compiled_model.hpp"
-#include "archet/denormal_guard.hpp"
-#include "archet/model_validation.hpp"
-#include "archet/simulation.hpp"
+#include "archet/builders/bowed_chain.hpp"
+#include "archet/builders/bowed_string.hpp"
+#include "archet/common/denormal_guard.hpp"
+#include "archet/model/model_validation.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "archet/physics/simulation.hpp"
 
 namespace {
 

@@ -12,9 +12,9 @@
 #include <QVBoxLayout>
 #include <sstream>
 
-#include "archet/bowed_string.hpp"
-#include "archet/model_parameters.hpp"
-#include "archet/model_variants.hpp"
+#include "archet/builders/bowed_string.hpp"
+#include "archet/model/model_parameters.hpp"
+#include "archet/model/model_variants.hpp"
 #include "archet/ui/compare_figure.hpp"
 
 namespace archet::ui {

@@ -5,8 +5,8 @@
 #include <QTime>
 #include <algorithm>
 
-#include "archet/model_file.hpp"
-#include "archet/model_parameters.hpp"
+#include "archet/files/model_file.hpp"
+#include "archet/model/model_parameters.hpp"
 
 namespace archet::ui {
 

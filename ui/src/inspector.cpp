@@ -7,10 +7,10 @@
 #include <QLineEdit>
 #include <QVBoxLayout>
 
-#include "archet/model_parameters.hpp"
-#include "archet/number_text.hpp"
-#include "archet/stability.hpp"
-#include "archet/stability_limit.hpp"
+#include "archet/common/number_text.hpp"
+#include "archet/model/model_parameters.hpp"
+#include "archet/model/stability.hpp"
+#include "archet/model/stability_limit.hpp"
 #include "archet/ui/model_document.hpp"
 
 namespace archet::ui {

@@ -25,11 +25,11 @@
 #include <QVBoxLayout>
 #include <algorithm>
 
-#include "archet/bowed_string.hpp"
-#include "archet/model_file.hpp"
-#include "archet/model_parameters.hpp"
-#include "archet/model_validation.hpp"
-#include "archet/playability.hpp"
+#include "archet/analysis/playability.hpp"
+#include "archet/builders/bowed_string.hpp"
+#include "archet/files/model_file.hpp"
+#include "archet/model/model_parameters.hpp"
+#include "archet/model/model_validation.hpp"
 #include "archet/ui/appearance.hpp"
 #include "archet/ui/compare_view.hpp"
 #include "archet/ui/elided_label.hpp"

@@ -6,11 +6,11 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "archet/input_error.hpp"
-#include "archet/model_file.hpp"
-#include "archet/model_parameters.hpp"
-#include "archet/model_validation.hpp"
-#include "archet/number_text.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/common/number_text.hpp"
+#include "archet/files/model_file.hpp"
+#include "archet/model/model_parameters.hpp"
+#include "archet/model/model_validation.hpp"
 
 namespace archet::ui {
 

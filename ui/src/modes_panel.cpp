@@ -8,8 +8,8 @@
 #include <QVBoxLayout>
 #include <cmath>
 
-#include "archet/modal_analysis.hpp"
-#include "archet/number_text.hpp"
+#include "archet/analysis/modal_analysis.hpp"
+#include "archet/common/number_text.hpp"
 #include "archet/ui/model_document.hpp"
 #include "archet/ui/plot_palette.hpp"
 #include "archet/ui/scope_axis.hpp"

@@ -11,7 +11,7 @@
 #include <QTimer>
 #include <QVBoxLayout>
 
-#include "archet/number_text.hpp"
+#include "archet/common/number_text.hpp"
 #include "archet/ui/playability_figure.hpp"
 
 namespace archet::ui {

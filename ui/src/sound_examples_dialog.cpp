@@ -10,7 +10,7 @@
 #include <QPushButton>
 #include <QVBoxLayout>
 
-#include "archet/number_text.hpp"
+#include "archet/common/number_text.hpp"
 #include "archet/sound_examples.hpp"
 
 namespace archet::ui {

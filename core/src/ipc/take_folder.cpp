@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <system_error>
 
-#include "archet/input_error.hpp"
-#include "archet/printable_text.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/common/printable_text.hpp"
 
 namespace archet::ipc {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "archet/haptic_device.hpp"
-#include "archet/simulation.hpp"
+#include "archet/physics/simulation.hpp"
 
 namespace archet {
 

@@ -9,8 +9,8 @@
 #include <algorithm>
 #include <array>
 
-#include "archet/gesture.hpp"
 #include "archet/haptic_device.hpp"
+#include "archet/model/gesture.hpp"
 
 namespace archet {
 

@@ -7,7 +7,7 @@
 #include <QWidget>
 #include <vector>
 
-#include "archet/comparison.hpp"
+#include "archet/analysis/comparison.hpp"
 
 class QGridLayout;
 

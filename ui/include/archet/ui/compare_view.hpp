@@ -9,8 +9,8 @@
 #include <thread>
 #include <vector>
 
-#include "archet/comparison.hpp"
-#include "archet/model.hpp"
+#include "archet/analysis/comparison.hpp"
+#include "archet/model/model.hpp"
 #include "archet/ui/sound_player.hpp"
 
 class QComboBox;

@@ -14,8 +14,8 @@
 #include <optional>
 #include <vector>
 
-#include "archet/ipc/engine_link.hpp"
-#include "archet/model.hpp"
+#include "archet/link/engine_link.hpp"
+#include "archet/model/model.hpp"
 #include "archet/ui/probe_history.hpp"
 
 namespace archet::ui {

@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "archet/model.hpp"
+#include "archet/model/model.hpp"
 
 class QGraphicsSimpleTextItem;
 

@@ -10,7 +10,7 @@
 #include <QTimer>
 #include <vector>
 
-#include "archet/model.hpp"
+#include "archet/model/model.hpp"
 #include "archet/ui/engine_client.hpp"
 
 class QAction;

@@ -11,7 +11,7 @@
 #include <QStringList>
 #include <QUndoStack>
 
-#include "archet/model.hpp"
+#include "archet/model/model.hpp"
 
 namespace archet::ui {
 

@@ -4,7 +4,7 @@
 
 #include <QDialog>
 
-#include "archet/bowed_string.hpp"
+#include "archet/builders/bowed_string.hpp"
 
 class QComboBox;
 class QDoubleSpinBox;

@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include "archet/model.hpp"
-#include "archet/playability.hpp"
+#include "archet/analysis/playability.hpp"
+#include "archet/model/model.hpp"
 
 class QCustomPlot;
 

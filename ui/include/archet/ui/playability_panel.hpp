@@ -8,8 +8,8 @@
 #include <optional>
 #include <thread>
 
-#include "archet/model.hpp"
-#include "archet/playability.hpp"
+#include "archet/analysis/playability.hpp"
+#include "archet/model/model.hpp"
 #include "archet/ui/sound_player.hpp"
 
 class QDoubleSpinBox;

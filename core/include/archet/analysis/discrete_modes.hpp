@@ -1,0 +1,28 @@
+#pragma once
+// Modes of a linear system exactly as the explicit scheme runs them: the eigenvalues z of
+// the one-step update x[n+1] = A·x[n] + B·x[n−1] give frequency arg(z)·fs/2π and decay |z|.
+
+#include <Eigen/Dense>
+#include <vector>
+
+#include "archet/model/linear_system.hpp"
+
+namespace archet {
+
+struct DiscreteMode {
+    double frequency = 0.0;  ///< Hz
+    double t60 = 0.0;        ///< s to decay by 60 dB (infinite when undamped)
+    double radius = 0.0;     ///< |z| per step
+};
+
+/// The one-step update [x[n+1]; x[n]] = U·[x[n]; x[n−1]] of the scheme for the system: with
+/// the damper force from x[n] − x[n−1], x[n+1] = (2I − M⁻¹(K·T² + Z·T))·x[n] + (M⁻¹Z·T − I)·x[n−1].
+Eigen::MatrixXd update_matrix(const LinearSystem& system);
+
+/// Oscillating modes sorted by frequency (real, non-oscillating roots are left out).
+std::vector<DiscreteMode> discrete_modes(const LinearSystem& system);
+
+/// Undamped discrete frequencies from the symmetric problem (fast, for tuning).
+std::vector<double> undamped_discrete_frequencies(const LinearSystem& system);
+
+}  // namespace archet

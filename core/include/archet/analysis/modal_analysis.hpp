@@ -1,0 +1,46 @@
+#pragma once
+// Modes of a model's linear part, exact for the explicit scheme at its rate: frequency and
+// decay from the eigenvalues of the one-step update, shapes from its eigenvectors. Each mode
+// is classed as a partial of the string or a mode of its supports (most of its kinetic
+// energy in oscillator MATs, the bridges), and partials are measured against n·f1.
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "archet/model/linear_system.hpp"
+#include "archet/model/model.hpp"
+
+namespace archet {
+
+struct ModeInfo {
+    double frequency = 0;       ///< Hz, exact for the scheme
+    double t60 = 0;             ///< s, decay by 60 dB (infinite when undamped)
+    bool support = false;       ///< a mode of the bridges rather than of the string
+    int partial = 0;            ///< 1, 2, … for string modes; 0 for support modes
+    double cents = 0;           ///< partial against partial·f1, cents
+    std::vector<double> shape;  ///< at each DOF, real, largest magnitude 1
+};
+
+struct ModalAnalysis {
+    std::string rate;
+    double sample_rate = 0;         ///< of the level analysed
+    std::vector<std::string> dofs;  ///< MAT ids
+    std::vector<ModeInfo> modes;    ///< by frequency
+    double fundamental = 0;         ///< f1, Hz (0 when no string mode)
+    /// Modal points: their position as weights on DOFs.
+    std::map<std::string, std::vector<std::pair<int, double>>> points;
+    /// Shape value of a mode at MAT `id`: a DOF, or a modal point reading DOFs (0 otherwise).
+    double shape_at(const ModeInfo& mode, const std::string& id) const;
+    bool has_shape_at(const std::string& id) const;
+};
+
+/// Largest system analysed: the update matrix is dense, 2·DOFs square.
+inline constexpr int kMaxModalDofs = 1500;
+
+/// Analyses the linear part that sounds (around the first output; all of the fastest level
+/// without outputs). Throws InputError when there is no linear part or it is too large.
+ModalAnalysis analyse_modes(const Model& model);
+ModalAnalysis analyse_modes(const LinearSystem& system, const Model& model);
+
+}  // namespace archet

@@ -1,0 +1,91 @@
+#pragma once
+// Playability maps (Schelleng diagrams) for any bowed model: a steady stroke played over a grid
+// of bow force and bow position, each run classified from its slip velocity and its sound, and
+// Schelleng's lines drawn from the model's own string for comparison.
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "archet/model/model.hpp"
+
+namespace archet {
+
+enum class Regime {
+    Helmholtz,     ///< one stick and one slip per period at the string's pitch
+    MultipleSlip,  ///< several slips per period, still periodic at the pitch (too little force)
+    Raucous,       ///< aperiodic (too much force)
+    AnomalousLow,  ///< periodic well below the pitch: a period of two or three string periods
+    Silent,        ///< no sustained oscillation
+};
+const char* to_string(Regime regime);
+/// Throws InputError for an unknown name.
+Regime regime_from_string(const std::string& name);
+
+struct RegimeAnalysis {
+    Regime regime = Regime::Silent;
+    double slips_per_period = 0;
+    double pitch_cents = 0;  ///< the slip period against the string's first mode
+    double slip_share = 0;   ///< fraction of time slipping
+    double centroid = 0;     ///< Hz, spectral centroid of the sound
+};
+
+/// Classifies a steady stretch of bowing: `slip` (bow minus string, m/s) and `sound` at `fs`;
+/// `pitch` is the string's first mode.
+RegimeAnalysis classify_regime(const std::vector<double>& slip, const std::vector<double>& sound,
+                               double fs, double pitch);
+
+struct MapPoint {
+    std::size_t index = 0;  ///< in the grid: force-major
+    double force = 0;       ///< N, the bow's normal force (steady)
+    double position = 0;    ///< β
+    RegimeAnalysis analysis;
+};
+
+struct MapGrid {
+    double force_min = 0.01, force_max = 1, position_min = 0.06, position_max = 0.2;
+    int force_steps = 8, position_steps = 5;  ///< forces log-spaced, positions linear
+    double speed = 0.1;                       ///< m/s, bow speed
+    double duration = 1.0;                    ///< s of steady bowing per run
+    std::size_t size() const;
+    double force(std::size_t index) const;
+    double position(std::size_t index) const;
+    /// "force=MIN:MAX:STEPS position=MIN:MAX:STEPS speed=V duration=S" (the CSV's first line).
+    std::string describe() const;
+    static MapGrid parse(const std::string& description);
+};
+
+/// Plays one grid point on `model` (a bowed string with a hand on each axis). `pitch` is the
+/// string's first mode (0: found by modal analysis). With `sound`, the whole stroke's output.
+MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t index,
+                        double pitch = 0, std::vector<double>* sound = nullptr);
+
+/// Plays the points of `grid` whose index % shards == shard on `jobs` threads, calling
+/// `progress(done, total)` from the caller's thread as they finish. Sorted by index. Setting
+/// `*cancel` stops it (InputError "cancelled").
+std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs, int shard = 0,
+                               int shards = 1,
+                               const std::function<void(std::size_t, std::size_t)>& progress = {},
+                               const std::atomic<bool>* cancel = nullptr);
+
+/// The steady normal force (N) a press of the hand's pressure axis gives, and its bow
+/// position β (the bowed mass's place along the string).
+double force_for_press(const Model& model, double press);
+double bow_position(const Model& model);
+
+/// Schelleng's bounds for the model's string at bow position β and `speed`: below `minimum`
+/// several slips per period, above `maximum` raucous. From the string's impedance Z0 = √(k·m)
+/// at the bow, μs − μd, and the loss resistance R = 2·Z0·f1·τ of its first mode's decay.
+struct SchellengBounds {
+    double minimum = 0, maximum = 0;
+};
+SchellengBounds schelleng_bounds(const Model& model, double position, double speed);
+
+/// The map as CSV (first line: "# archet-map " + grid.describe()); and back.
+std::string format_map(const MapGrid& grid, const std::vector<MapPoint>& points,
+                       const Model& model);
+std::pair<MapGrid, std::vector<MapPoint>> parse_map(const std::string& text,
+                                                    const std::string& source);
+
+}  // namespace archet

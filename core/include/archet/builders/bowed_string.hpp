@@ -1,0 +1,73 @@
+#pragma once
+// Builds the paper's bowed string: a homogeneous chaplet of masses between two heavy damped
+// bridges, tuned so its first mode is exactly the pitch under the discrete scheme; the bow
+// module (two bow masses linked visco-elastically to two gesture points at the haptic rate);
+// the friction module at the bowing point; sound from the bridge.
+
+#include <string>
+
+#include "archet/model/gesture.hpp"
+#include "archet/model/model.hpp"
+
+namespace archet {
+
+/// Homogeneous: equal masses and links (inharmonic, the partials go flat). Harmonic: masses
+/// and links from the inverse eigenvalue problem, first N partials on k·f0.
+enum class Tuning { Homogeneous, Harmonic };
+
+/// Chain: the chaplet of masses and links. Modal: its exact modal equivalent, one damped
+/// oscillator per mode of the free chain, with modal points (equivalent MATs) at its two ends
+/// and the bowing point, so the same bridges and bow attach to it.
+enum class Structure { Chain, Modal };
+
+struct BowedStringOptions {
+    double pitch = 220.0;  ///< Hz, first mode of the string
+    Tuning tuning = Tuning::Homogeneous;
+    Structure structure = Structure::Chain;
+    int masses = 0;                   ///< 25–60; 0 picks the largest stable count
+    double bow_position = 0.12;       ///< β, bow distance from the bridge / string length
+    double string_damping = -1.0;     ///< N·s/m per string link; < 0 picks it from string_t60
+    double string_t60 = 4.0;          ///< s, decay of the first mode from string damping alone
+    double sample_rate = 48000.0;     ///< Hz, audio rate level
+    int haptic_divider = 16;          ///< haptic rate = sample_rate / divider
+    double tension = 57.1;            ///< N (violin A string)
+    double linear_density = 0.72e-3;  ///< kg/m
+    // Bridges: heavy damped oscillators to ground.
+    double bridge_mass_ratio = 20.0;  ///< bridge mass / string mass
+    double bridge_frequency = 20.0;   ///< Hz, bridge resonance
+    double bridge_damping_ratio = 0.5;
+    // Bow.
+    double bow_mass = 0.05;            ///< kg, sliding axis
+    double bow_stiffness = 1000.0;     ///< N/m, link to the device, sliding axis
+    double bow_damping = 10.0;         ///< N·s/m
+    double press_mass = 0.01;          ///< kg, pressure axis
+    double press_stiffness = 100.0;    ///< N/m, link to the device, pressure axis
+    double press_damping = 2.0;        ///< N·s/m
+    double buffer_stiffness = 5000.0;  ///< N/m, bow–string contact
+    double buffer_damping = 5.0;       ///< N·s/m
+    double mu_s = 0.8, mu_d = 0.3, v0 = 0.1;
+    double output_gain = 1.5;
+    bool with_gesture = true;  ///< embed the steady-bow gesture
+};
+
+/// Builds, tunes and validates the model; throws InputError with the reason when no
+/// stable string exists for the options.
+Model build_bowed_string(const BowedStringOptions& options);
+
+/// Adds the bow module to a model that has `string_mass` at the "audio" rate and a "haptic"
+/// rate level: the two bow masses ("bow", "bow_press"), the surface, the two gesture points
+/// ("hand_slide", "hand_press"), their links ("bow_hold", "press_hold") and "friction".
+void add_bow_module(Model& model, const BowedStringOptions& options,
+                    const std::string& string_mass);
+
+/// The largest number of masses a homogeneous chain can have at this pitch and rate
+/// (ω_max·T < 2), ignoring bridges and damping.
+int max_stable_masses(double pitch, double sample_rate);
+
+/// The largest number of masses of a harmonic chain: its N-th partial N·f0 below fs/2.
+int max_harmonic_masses(double pitch, double sample_rate);
+
+/// A clean steady stroke: press lands, the bow accelerates to `speed`, holds, and lifts.
+Gesture steady_bow_gesture(double speed = 0.1, double press = 0.0015, double duration = 3.0);
+
+}  // namespace archet

@@ -1,0 +1,39 @@
+#pragma once
+// Glides parameter changes made while a model plays, so that a new stiffness or friction
+// coefficient arrives over a few milliseconds rather than as a step (a click). Fixed capacity,
+// no allocation: safe on the real-time thread.
+
+#include <array>
+#include <cstddef>
+
+#include "archet/physics/simulation.hpp"
+
+namespace archet {
+
+class ParameterSmoother {
+  public:
+    static constexpr std::size_t kCapacity = 32;
+
+    /// Starts (or retargets) a glide of `slot` to `target` over `samples` steps. With no room
+    /// left, the value is set at once.
+    void glide(Simulation& sim, const ParameterSlot& slot, double target, int samples);
+    /// Moves every glide one step; call once per simulation step.
+    void advance(Simulation& sim);
+    std::size_t active() const { return count_; }
+    /// Forgets every glide (a new model).
+    void clear() { count_ = 0; }
+
+  private:
+    struct Glide {
+        ParameterSlot slot;
+        double from = 0, to = 0;
+        int done = 0, total = 1;
+    };
+    static bool same(const ParameterSlot& a, const ParameterSlot& b) {
+        return a.kind == b.kind && a.level == b.level && a.index == b.index;
+    }
+    std::array<Glide, kCapacity> glides_{};
+    std::size_t count_ = 0;
+};
+
+}  // namespace archet

@@ -1,0 +1,123 @@
+#pragma once
+// Runs a compiled model: one step() per tick of the master clock, the same call for offline
+// rendering, tests, benchmarks and the real-time engine. step() does not allocate.
+
+#include <cstdint>
+#include <vector>
+
+#include "archet/model/gesture.hpp"
+#include "archet/physics/compiled_model.hpp"
+
+namespace archet {
+
+class Simulation {
+  public:
+    explicit Simulation(CompiledModel model);
+    Simulation(const Simulation&) = delete;
+    Simulation& operator=(const Simulation&) = delete;
+
+    /// Plays a gesture track: each gesture point reads it at its own ticks. The gesture
+    /// must outlive the simulation's use of it.
+    void set_gesture_track(const Gesture* gesture);
+    /// Live device positions (used when no track is set).
+    void set_device_position(GestureSample position) { device_ = position; }
+    GestureSample device_position() const { return device_; }
+    /// The force the device should render per axis: the mean force of the model on the gesture
+    /// points of that axis over their last period, times their force_scale (N).
+    GestureSample device_force() const;
+
+    /// Advances one tick of the master clock.
+    void step();
+
+    /// Sets a parameter while running (controls, the studio, --set on a compiled model).
+    void set_parameter(const ParameterSlot& slot, double value);
+    /// The parameter's current value, in the model file's units.
+    double parameter(const ParameterSlot& slot) const;
+
+    /// The whole state of a running model (positions, link and bow states, parameters, the
+    /// clock) as plain numbers: enough to resume it exactly, e.g. to re-render a take started
+    /// mid-performance. save_state() does not allocate (real-time safe); `out` holds
+    /// state_size() values.
+    std::size_t state_size() const;
+    void save_state(double* out) const;
+    /// Resumes from a saved state of the same compiled model (same state_size()). Set the
+    /// gesture track first: setting it moves the gesture points.
+    void load_state(const double* in);
+
+    /// Keeps the per-element dissipation (slower; off by default).
+    void enable_accounting(bool on);
+
+    std::uint64_t tick() const { return tick_; }
+    double time() const { return static_cast<double>(tick_) / model_.sample_rate; }
+    double sample_rate() const { return model_.sample_rate; }
+
+    /// The model's audio output after the last step.
+    double output() const;
+    /// Value of probe i after the last step (SI units).
+    double probe(std::size_t i) const;
+    std::size_t probe_count() const { return model_.probes.size(); }
+
+    double position(MatSlot s) const { return model_.levels[s.level].x()[s.index]; }
+    double velocity(MatSlot s) const;
+
+    /// Stored energy in its discrete-consistent form (J): kinetic ½m((x[n]−x[n−1])/T)², plus
+    /// ½K·d[n]·d[n−1] per spring, which the undamped scheme conserves exactly, minus
+    /// (Z/4T)·(d[n]−d[n−1])² per damper, which makes every step's dissipation non-negative.
+    double stored_energy() const;
+    /// Total work done on the model by the gesture points since the start (J), exact in the
+    /// scheme's energy after every step: stored energy minus hand work never rises.
+    double hand_work() const;
+    /// Power delivered by the hand over the last period of each gesture point (W).
+    double power_in() const;
+    /// Total energy dissipated per element since the start (J), indexed like Model::lias
+    /// then Model::mats (oscillator grounds); needs accounting enabled.
+    const std::vector<double>& dissipated_by_element() const { return dissipated_; }
+
+    const CompiledModel& model() const { return model_; }
+    CompiledModel& model() { return model_; }
+
+  private:
+    /// Calls `field` on every number of the state, in a fixed order (see simulation_state.cpp).
+    template <class Self, class Field>
+    static void for_each_state(Self& self, Field&& field);
+    void apply_controls();
+    void compute_link_forces(CompiledLevel& level);
+    void compute_hand_link_forces();
+    void compute_cross_link_forces();
+    /// Where a cross-rate link sees its end s: at its tick in this step, or at the next step's.
+    double seen_position(MatSlot s, CompiledCrossLink::EndRate rate, bool between_steps) const;
+    void integrate(CompiledLevel& level);
+    void solve_bow(CompiledLevel& level, CompiledBow& bow);
+    void update_gesture_points(CompiledLevel& level);
+    void update_modal_points(CompiledLevel& level);
+    /// Adds the motion a force on a modal point causes over this step, to its modes and so to
+    /// every point of its body.
+    void apply_modal_force(CompiledLevel& level, int point, double force);
+    void account(CompiledLevel& level);
+    double gesture_axis(GestureAxis axis, double t) const;
+
+    CompiledModel model_;
+    const Gesture* track_ = nullptr;
+    GestureSample device_{};
+    std::uint64_t tick_ = 0;
+    double hand_work_ = 0;
+    bool accounting_ = false;
+    std::vector<double> dissipated_;
+    /// Per level: does it tick this step. (int, not char: a char store may alias anything.)
+    std::vector<int> active_;
+    std::vector<int> countdown_;       ///< per level: steps until its next tick
+    std::vector<double> period_done_;  ///< per level: share of its period gone at this step
+    struct HandLinkPlan {              ///< a hand link with its ends' addresses resolved
+        CompiledCrossLink* link;
+        CompiledLevel* hand_level;
+        CompiledLevel* end_level;
+        int hand_level_index, hand_index, end_index;
+        double* end_force;   ///< the end's `external`
+        double* hand_force;  ///< the hand point's `external`
+        CompiledGesturePoint* gesture;
+        double hand_weight;  ///< the link's share of the hand's period
+    };
+    std::vector<HandLinkPlan> hand_plan_;
+};
+
+}  // namespace archet

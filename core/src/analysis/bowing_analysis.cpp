@@ -1,0 +1,95 @@
+#include "archet/analysis/bowing_analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace archet {
+
+bool BowingAnalysis::helmholtz() const {
+    return std::abs(slips_per_period - 1.0) < 0.05 && period_spread < 0.1 &&
+           std::abs(pitch_cents) < 50.0 && slip_share > 0.0 && slip_share < 0.5;
+}
+
+namespace {
+
+// Times (s) where |v| rises through the threshold, interpolated between samples.
+std::vector<double> slip_onsets(const std::vector<double>& v, double fs, std::size_t first,
+                                std::size_t last, double threshold, std::size_t* slipping) {
+    std::vector<double> onsets;
+    std::size_t count = 0;
+    bool was_slipping = std::abs(v[first]) > threshold;
+    for (std::size_t i = first; i < last; ++i) {
+        const bool slip = std::abs(v[i]) > threshold;
+        count += slip;
+        if (slip && !was_slipping && i > first) {
+            const double a0 = std::abs(v[i - 1]), a1 = std::abs(v[i]);
+            const double fraction = a1 > a0 ? (threshold - a0) / (a1 - a0) : 0.0;
+            onsets.push_back((static_cast<double>(i - 1) + std::clamp(fraction, 0.0, 1.0)) / fs);
+        }
+        was_slipping = slip;
+    }
+    if (slipping) *slipping = count;
+    return onsets;
+}
+
+}  // namespace
+
+AttackAnalysis analyse_attack(const std::vector<double>& v, const std::vector<double>& normal,
+                              double fs, double pitch, int settle, double tolerance,
+                              double threshold) {
+    AttackAnalysis a;
+    std::size_t end = std::min(v.size(), normal.size());
+    std::size_t contact = 0;
+    while (contact < end && !(normal[contact] > 0.0)) ++contact;
+    if (contact >= end) return a;
+    a.contact = static_cast<double>(contact) / fs;
+    while (end > contact && !(normal[end - 1] > 0.0)) --end;  // up to the bow's last contact
+    const auto onsets = slip_onsets(v, fs, contact, end, threshold, nullptr);
+    if (onsets.size() < static_cast<std::size_t>(2 * settle) + 1) return a;
+    // The steady period: the median interval over the second half of the contact, which
+    // outvotes the lift at its end.
+    std::vector<double> later;
+    for (std::size_t i = onsets.size() / 2 + 1; i < onsets.size(); ++i)
+        later.push_back(onsets[i] - onsets[i - 1]);
+    std::nth_element(later.begin(), later.begin() + later.size() / 2, later.end());
+    const double period = later[later.size() / 2];
+    if (std::abs(std::log2(period * pitch)) > 0.1) return a;  // not near the pitch: no Helmholtz
+    // Stick and slip change on samples: allow a sample and a half of jitter at high pitches.
+    const double allowed = std::max(tolerance * period, 1.5 / fs);
+    // Steady Helmholtz motion starts after the last irregular period before the bow lifts
+    // (the last 50 ms of contact are the lift and do not count).
+    const double lift = static_cast<double>(end) / fs - 0.05;
+    std::size_t last_good = 0;  // onsets [start, last_good] are one slip a period apart
+    while (last_good + 1 < onsets.size() && onsets[last_good + 1] <= lift) ++last_good;
+    std::size_t start = last_good;
+    while (start > 0 && std::abs(onsets[start] - onsets[start - 1] - period) <= allowed) --start;
+    if (last_good - start < static_cast<std::size_t>(settle)) return a;
+    a.helmholtz = onsets[start];
+    a.period = period;
+    return a;
+}
+
+BowingAnalysis analyse_bowing(const std::vector<double>& v, double fs, double pitch,
+                              std::size_t first, std::size_t last, double threshold) {
+    BowingAnalysis a;
+    last = std::min(last, v.size());
+    if (last <= first + 1) return a;
+    std::size_t slipping = 0;
+    const std::vector<double> onsets = slip_onsets(v, fs, first, last, threshold, &slipping);
+    a.slips = static_cast<int>(onsets.size());
+    a.periods = static_cast<double>(last - first) / fs * pitch;
+    a.slips_per_period = a.slips / a.periods;
+    a.slip_share = static_cast<double>(slipping) / static_cast<double>(last - first);
+    if (onsets.size() >= 3) {
+        std::vector<double> intervals;
+        for (std::size_t i = 1; i < onsets.size(); ++i)
+            intervals.push_back(onsets[i] - onsets[i - 1]);
+        a.period = (onsets.back() - onsets.front()) / static_cast<double>(intervals.size());
+        const auto [lo, hi] = std::minmax_element(intervals.begin(), intervals.end());
+        a.period_spread = (*hi - *lo) / a.period;
+        a.pitch_cents = 1200.0 * std::log2(1.0 / (a.period * pitch));
+    }
+    return a;
+}
+
+}  // namespace archet

@@ -1,0 +1,73 @@
+#include "archet/analysis/comparison.hpp"
+
+#include <sstream>
+
+#include "archet/analysis/modal_analysis.hpp"
+#include "archet/common/denormal_guard.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/model/model_validation.hpp"
+#include "archet/model/model_variants.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "archet/physics/simulation.hpp"
+
+namespace archet {
+
+ComparisonRun compare_variant(const Model& model, const Gesture& gesture,
+                              const std::string& parameter, double value, double seconds) {
+    Model variant = model;
+    set_variant_parameter(variant, parameter, value);
+    validate_model(variant);
+    const Lia* bow = nullptr;
+    for (const auto& l : variant.lias)
+        if (l.kind == LiaKind::BowFriction) bow = &l;
+    if (!bow) throw InputError(variant.name, "has no bow module to compare bowing with");
+
+    ComparisonRun run;
+    std::ostringstream label;
+    label << parameter << "=" << value;
+    run.label = label.str();
+    run.value = value;
+    try {
+        run.fundamental = analyse_modes(variant).fundamental;
+    } catch (const std::exception&) {
+        run.fundamental = 0;  // no linear part to analyse: no per-period figure
+    }
+    Simulation sim(compile(variant));
+    sim.set_gesture_track(&gesture);
+    sim.enable_accounting(true);
+    run.sample_rate = sim.sample_rate();
+    const MatSlot bowed = sim.model().mat_slots.at(bow->to);
+    const auto frames = static_cast<std::size_t>(seconds * sim.sample_rate());
+    std::vector<int> links;
+    for (const auto& id : string_links(variant))
+        links.push_back(static_cast<int>(variant.find_lia(id) - variant.lias.data()));
+    auto string_dissipation = [&] {
+        double total = 0;
+        for (int l : links) total += sim.dissipated_by_element()[static_cast<std::size_t>(l)];
+        return total;
+    };
+    const DenormalGuard no_denormals;
+    std::vector<double> dissipated(frames + 1, 0.0);  // by the string, up to each sample
+    std::size_t last_contact = 0;
+    for (std::size_t i = 0; i < frames; ++i) {
+        sim.step();
+        run.audio.push_back(sim.output());
+        run.bow_force.push_back(sim.model().bows[0].friction);
+        run.displacement.push_back(sim.position(bowed));
+        dissipated[i + 1] = string_dissipation();
+        if (sim.model().bows[0].normal > 0) last_contact = i;
+    }
+    // Steady bowing: from half-way to shortly before the bow leaves (a lift ends most
+    // gestures, and the free decay after it is not what is compared).
+    const auto margin = static_cast<std::size_t>(0.05 * sim.sample_rate());
+    run.steady_end = last_contact > margin ? last_contact - margin : frames;
+    const std::size_t from = frames / 2;
+    if (run.steady_end > from && run.fundamental > 0) {
+        const double periods =
+            static_cast<double>(run.steady_end - from) / sim.sample_rate() * run.fundamental;
+        run.dissipated_per_period = (dissipated[run.steady_end] - dissipated[from]) / periods;
+    }
+    return run;
+}
+
+}  // namespace archet

@@ -1,0 +1,61 @@
+#include "archet/analysis/discrete_modes.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace archet {
+
+Eigen::MatrixXd update_matrix(const LinearSystem& sys) {
+    const int n = sys.size();
+    const double dt = sys.dt;
+    const Eigen::MatrixXd inv_m = sys.mass.cwiseInverse().asDiagonal();
+    const Eigen::MatrixXd k = Eigen::MatrixXd(sys.stiffness) * (dt * dt);
+    const Eigen::MatrixXd z = Eigen::MatrixXd(sys.damping) * dt;
+    Eigen::MatrixXd step = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+    step.topLeftCorner(n, n) = 2.0 * Eigen::MatrixXd::Identity(n, n) - inv_m * (k + z);
+    step.topRightCorner(n, n) = inv_m * z - Eigen::MatrixXd::Identity(n, n);
+    step.bottomLeftCorner(n, n) = Eigen::MatrixXd::Identity(n, n);
+    return step;
+}
+
+std::vector<DiscreteMode> discrete_modes(const LinearSystem& sys) {
+    const int n = sys.size();
+    std::vector<DiscreteMode> modes;
+    if (n == 0) return modes;
+    const double dt = sys.dt;
+    Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), false);
+    const double fs = 1.0 / dt;
+    for (const auto& root : solver.eigenvalues()) {
+        if (root.imag() <= 0.0) continue;  // one of each conjugate pair
+        DiscreteMode mode;
+        mode.frequency = std::arg(root) * fs / (2.0 * std::numbers::pi);
+        mode.radius = std::abs(root);
+        mode.t60 = mode.radius < 1.0 ? std::log(1e-3) / std::log(mode.radius) * dt
+                                     : std::numeric_limits<double>::infinity();
+        modes.push_back(mode);
+    }
+    std::sort(modes.begin(), modes.end(),
+              [](const auto& a, const auto& b) { return a.frequency < b.frequency; });
+    return modes;
+}
+
+std::vector<double> undamped_discrete_frequencies(const LinearSystem& sys) {
+    const int n = sys.size();
+    std::vector<double> result;
+    if (n == 0) return result;
+    const Eigen::VectorXd scale = sys.mass.cwiseSqrt().cwiseInverse();
+    const Eigen::MatrixXd a =
+        scale.asDiagonal() * Eigen::MatrixXd(sys.stiffness) * scale.asDiagonal();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(a, Eigen::EigenvaluesOnly);
+    for (double lambda : solver.eigenvalues()) {
+        // sin(Ω·T/2) = √λ·T/2 under the explicit scheme.
+        const double s = std::sqrt(std::max(lambda, 0.0)) * sys.dt / 2.0;
+        if (s < 1.0) result.push_back(std::asin(s) / (std::numbers::pi * sys.dt));
+    }
+    return result;
+}
+
+}  // namespace archet

@@ -1,0 +1,113 @@
+#include "archet/analysis/modal_analysis.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <numbers>
+#include <set>
+
+#include "archet/analysis/discrete_modes.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/common/number_text.hpp"
+
+namespace archet {
+
+double ModalAnalysis::shape_at(const ModeInfo& mode, const std::string& id) const {
+    const auto it = std::find(dofs.begin(), dofs.end(), id);
+    if (it != dofs.end()) return mode.shape[it - dofs.begin()];
+    const auto point = points.find(id);
+    if (point == points.end()) return 0.0;
+    double x = 0;
+    for (auto [dof, weight] : point->second) x += weight * mode.shape[dof];
+    return x;
+}
+
+bool ModalAnalysis::has_shape_at(const std::string& id) const {
+    return points.count(id) || std::find(dofs.begin(), dofs.end(), id) != dofs.end();
+}
+
+ModalAnalysis analyse_modes(const Model& model) {
+    return analyse_modes(sounding_part(model), model);
+}
+
+ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
+    const int n = sys.size();
+    if (n == 0)
+        throw InputError("model",
+                         "has no linear part to analyse: no mass with inertia at its fastest rate "
+                         "level is joined to springs or dampers");
+    if (n > kMaxModalDofs)
+        throw InputError("model", "its linear part has " + std::to_string(n) +
+                                      " degrees of freedom; modal analysis handles up to " +
+                                      std::to_string(kMaxModalDofs));
+    for (int i = 0; i < n; ++i)
+        if (!(sys.mass[i] > 0.0) || !std::isfinite(sys.mass[i]))
+            throw InputError("mass \"" + sys.dofs[i] + "\"",
+                             "the mass matrix is singular here (mass " +
+                                 format_number(sys.mass[i]) + " kg); give it a positive mass");
+    const double dt = sys.dt;
+    Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), true);
+
+    ModalAnalysis result;
+    result.rate = sys.rate;
+    result.sample_rate = 1.0 / dt;
+    result.dofs = sys.dofs;
+    // Supports are oscillators standing on their own (bridges); the oscillators a modal point
+    // reads are the string's modes.
+    std::set<std::string> string_modes;
+    for (const auto& m : model.mats)
+        if (m.kind == MatKind::ModalPoint) string_modes.insert(m.modes.begin(), m.modes.end());
+    for (const auto& m : model.mats) {
+        if (m.kind != MatKind::ModalPoint) continue;
+        std::vector<std::pair<int, double>> reads;
+        for (std::size_t k = 0; k < m.modes.size() && k < m.weights.size(); ++k) {
+            const auto it = std::find(sys.dofs.begin(), sys.dofs.end(), m.modes[k]);
+            if (it != sys.dofs.end())
+                reads.emplace_back(static_cast<int>(it - sys.dofs.begin()), m.weights[k]);
+        }
+        if (!reads.empty()) result.points[m.id] = std::move(reads);
+    }
+    std::vector<bool> is_oscillator(n, false);
+    for (int i = 0; i < n; ++i) {
+        const Mat* m = model.find_mat(sys.dofs[i]);
+        is_oscillator[i] = m && m->kind == MatKind::Oscillator && !string_modes.count(m->id);
+    }
+    for (int r = 0; r < 2 * n; ++r) {
+        const std::complex<double> root = solver.eigenvalues()[r];
+        if (root.imag() <= 0.0) continue;  // one of each conjugate pair; real roots do not ring
+        ModeInfo mode;
+        mode.frequency = std::arg(root) / (2.0 * std::numbers::pi * dt);
+        const double radius = std::abs(root);
+        mode.t60 = radius < 1.0 ? std::log(1e-3) / std::log(radius) * dt
+                                : std::numeric_limits<double>::infinity();
+        // Shape: the x[n] half of the eigenvector, turned so its largest entry is real.
+        Eigen::VectorXcd v = solver.eigenvectors().col(r).head(n);
+        Eigen::Index top = 0;
+        v.cwiseAbs().maxCoeff(&top);
+        v *= std::abs(v[top]) / v[top];
+        mode.shape.resize(n);
+        double kinetic = 0, in_supports = 0;
+        for (int i = 0; i < n; ++i) {
+            mode.shape[i] = v[i].real() / std::abs(v[top]);
+            const double e = sys.mass[i] * std::norm(v[i]);
+            kinetic += e;
+            if (is_oscillator[i]) in_supports += e;
+        }
+        mode.support = in_supports > 0.5 * kinetic;
+        result.modes.push_back(std::move(mode));
+    }
+    std::sort(result.modes.begin(), result.modes.end(),
+              [](const auto& a, const auto& b) { return a.frequency < b.frequency; });
+    int partial = 0;
+    for (auto& mode : result.modes) {
+        if (mode.support) continue;
+        mode.partial = ++partial;
+        if (partial == 1) result.fundamental = mode.frequency;
+        mode.cents = 1200.0 * std::log2(mode.frequency / (partial * result.fundamental));
+    }
+    return result;
+}
+
+}  // namespace archet

@@ -1,0 +1,359 @@
+#include "archet/analysis/playability.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <numbers>
+#include <sstream>
+#include <thread>
+#include <unsupported/Eigen/FFT>
+
+#include "archet/analysis/bowing_analysis.hpp"
+#include "archet/analysis/modal_analysis.hpp"
+#include "archet/builders/bowed_string.hpp"
+#include "archet/common/denormal_guard.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/model/model_validation.hpp"
+#include "archet/model/model_variants.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "archet/physics/simulation.hpp"
+
+namespace archet {
+
+const char* to_string(Regime r) {
+    switch (r) {
+        case Regime::Helmholtz:
+            return "helmholtz";
+        case Regime::MultipleSlip:
+            return "multiple_slip";
+        case Regime::Raucous:
+            return "raucous";
+        case Regime::AnomalousLow:
+            return "anomalous_low";
+        case Regime::Silent:
+            return "silent";
+    }
+    return "?";
+}
+
+Regime regime_from_string(const std::string& name) {
+    for (Regime r : {Regime::Helmholtz, Regime::MultipleSlip, Regime::Raucous, Regime::AnomalousLow,
+                     Regime::Silent})
+        if (name == to_string(r)) return r;
+    throw InputError(name,
+                     "is not a regime (helmholtz, multiple_slip, raucous, anomalous_low, "
+                     "silent)");
+}
+
+namespace {
+
+// Normalised autocorrelation of the (mean-free) signal at `lag` samples.
+double autocorrelation(const std::vector<double>& x, std::size_t lag) {
+    if (lag == 0 || lag >= x.size() / 2) return 0;
+    double mean = 0;
+    for (double v : x) mean += v;
+    mean /= static_cast<double>(x.size());
+    double xy = 0, xx = 0, yy = 0;
+    for (std::size_t i = 0; i + lag < x.size(); ++i) {
+        const double a = x[i] - mean, b = x[i + lag] - mean;
+        xy += a * b, xx += a * a, yy += b * b;
+    }
+    return xx > 0 && yy > 0 ? xy / std::sqrt(xx * yy) : 0;
+}
+
+double spectral_centroid(const std::vector<double>& x, double fs) {
+    std::size_t n = 1;
+    while (2 * n <= x.size() && n < (1u << 16)) n *= 2;
+    if (n < 64) return 0;
+    std::vector<double> windowed(n);
+    const std::size_t start = x.size() - n;
+    for (std::size_t i = 0; i < n; ++i)
+        windowed[i] = x[start + i] * 0.5 * (1 - std::cos(2 * std::numbers::pi * i / n));
+    Eigen::FFT<double> fft;
+    std::vector<std::complex<double>> bins;
+    fft.fwd(bins, windowed);
+    double weighted = 0, total = 0;
+    for (std::size_t k = 1; k < n / 2; ++k) {
+        const double magnitude = std::abs(bins[k]);
+        weighted += magnitude * static_cast<double>(k) * fs / n, total += magnitude;
+    }
+    return total > 0 ? weighted / total : 0;
+}
+
+const Lia& bow_module(const Model& model) {
+    for (const auto& l : model.lias)
+        if (l.kind == LiaKind::BowFriction) return l;
+    throw InputError(model.name, "has no bow module (bow_friction) to map");
+}
+
+// Newtons of steady normal force per metre of the hand's pressure axis: the hand's link and
+// the bow's buffer in series.
+double press_stiffness(const Model& model) {
+    const Lia& bow = bow_module(model);
+    for (const auto& l : model.lias) {
+        if (l.kind == LiaKind::BowFriction) continue;
+        const std::string other = l.from == bow.press ? l.to : l.to == bow.press ? l.from : "";
+        const Mat* hand = model.find_mat(other);
+        if (!hand || hand->kind != MatKind::Gesture || hand->axis != GestureAxis::Press) continue;
+        const double series = l.stiffness * bow.stiffness / (l.stiffness + bow.stiffness);
+        return series * hand->position_scale;
+    }
+    throw InputError(model.name,
+                     "has no hand on the bow's pressure axis (a gesture point with "
+                     "axis press linked to \"" +
+                         bow.press + "\")");
+}
+
+double first_mode(const Model& model) {
+    const double f1 = analyse_modes(model).fundamental;
+    if (!(f1 > 0)) throw InputError(model.name, "has no string mode to measure pitch against");
+    return f1;
+}
+
+}  // namespace
+
+RegimeAnalysis classify_regime(const std::vector<double>& slip, const std::vector<double>& sound,
+                               double fs, double pitch) {
+    RegimeAnalysis r;
+    if (slip.size() < 16 || sound.size() < 16) return r;
+    const BowingAnalysis a = analyse_bowing(slip, fs, pitch, 0, slip.size());
+    r.slips_per_period = a.slips_per_period;
+    r.pitch_cents = a.pitch_cents;
+    r.slip_share = a.slip_share;
+    r.centroid = spectral_centroid(sound, fs);
+    if (a.slips_per_period < 0.2) return r;  // sticking, or off the string: silent
+    const auto lag = static_cast<std::size_t>(std::lround(fs / pitch));
+    const double r1 = autocorrelation(sound, lag);
+    const double r_low = std::max(autocorrelation(sound, 2 * lag), autocorrelation(sound, 3 * lag));
+    const bool periodic = r1 > 0.8;
+    if (a.helmholtz() ||
+        (periodic && std::abs(a.slips_per_period - 1) < 0.1 && std::abs(a.pitch_cents) < 50))
+        r.regime = Regime::Helmholtz;
+    else if (periodic && a.slips_per_period >= 1.4)
+        r.regime = Regime::MultipleSlip;
+    else if (!periodic && r_low > 0.8)
+        r.regime = Regime::AnomalousLow;
+    else
+        r.regime = Regime::Raucous;
+    return r;
+}
+
+std::size_t MapGrid::size() const {
+    return static_cast<std::size_t>(force_steps) * static_cast<std::size_t>(position_steps);
+}
+
+double MapGrid::force(std::size_t index) const {
+    const auto i = static_cast<int>(index) / position_steps;
+    if (force_steps == 1) return force_min;
+    return force_min * std::pow(force_max / force_min, static_cast<double>(i) / (force_steps - 1));
+}
+
+double MapGrid::position(std::size_t index) const {
+    const auto j = static_cast<int>(index) % position_steps;
+    if (position_steps == 1) return position_min;
+    return position_min + (position_max - position_min) * j / (position_steps - 1);
+}
+
+std::string MapGrid::describe() const {
+    std::ostringstream s;
+    s.precision(17);
+    s << "force=" << force_min << ":" << force_max << ":" << force_steps
+      << " position=" << position_min << ":" << position_max << ":" << position_steps
+      << " speed=" << speed << " duration=" << duration;
+    return s.str();
+}
+
+MapGrid MapGrid::parse(const std::string& text) {
+    MapGrid g;
+    std::istringstream words(text);
+    std::string word;
+    auto range = [&](const std::string& value, double& lo, double& hi, int& steps) {
+        char c1 = 0, c2 = 0;
+        std::istringstream v(value);
+        if (!(v >> lo >> c1 >> hi >> c2 >> steps) || c1 != ':' || c2 != ':')
+            throw InputError(value, "expected MIN:MAX:STEPS");
+    };
+    while (words >> word) {
+        const auto eq = word.find('=');
+        const std::string key = word.substr(0, eq),
+                          value = eq == std::string::npos ? "" : word.substr(eq + 1);
+        if (key == "force")
+            range(value, g.force_min, g.force_max, g.force_steps);
+        else if (key == "position")
+            range(value, g.position_min, g.position_max, g.position_steps);
+        else if (key == "speed")
+            g.speed = std::stod(value);
+        else if (key == "duration")
+            g.duration = std::stod(value);
+    }
+    return g;
+}
+
+MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t index, double pitch,
+                        std::vector<double>* whole) {
+    MapPoint p;
+    p.index = index;
+    p.force = grid.force(index);
+    p.position = grid.position(index);
+    Model variant = model;
+    set_variant_parameter(variant, "bow.position", p.position);
+    validate_model(variant);
+    if (!(pitch > 0)) pitch = first_mode(variant);
+    const Gesture stroke = steady_bow_gesture(grid.speed, p.force / press_stiffness(variant),
+                                              grid.duration + 0.4);  // lifts after `duration`
+    Simulation sim(compile(variant));
+    sim.set_gesture_track(&stroke);
+    const DenormalGuard no_denormals;
+    const auto total = static_cast<std::size_t>(grid.duration * sim.sample_rate());
+    const std::size_t from = total / 2;  // the attack is over by half-way
+    std::vector<double> slip, sound;
+    slip.reserve(total - from), sound.reserve(total - from);
+    if (whole) whole->clear();
+    for (std::size_t i = 0; i < total; ++i) {
+        sim.step();
+        if (whole) whole->push_back(sim.output());
+        if (i < from) continue;
+        slip.push_back(sim.model().bows[0].slip_velocity);
+        sound.push_back(sim.output());
+    }
+    p.analysis = classify_regime(slip, sound, sim.sample_rate(), pitch);
+    return p;
+}
+
+std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs, int shard,
+                               int shards,
+                               const std::function<void(std::size_t, std::size_t)>& progress,
+                               const std::atomic<bool>* cancel) {
+    if (shards < 1 || shard < 0 || shard >= shards)
+        throw InputError("--shard", "expected I/N with 0 ≤ I < N");
+    std::vector<std::size_t> mine;
+    for (std::size_t i = 0; i < grid.size(); ++i)
+        if (static_cast<int>(i % static_cast<std::size_t>(shards)) == shard) mine.push_back(i);
+    const double pitch = first_mode(model);  // the bow's position does not move the modes
+    // Every variant is checked before the threads start.
+    for (double beta : {grid.position_min, grid.position_max}) {
+        Model check = model;
+        set_variant_parameter(check, "bow.position", beta);
+        press_stiffness(check);
+    }
+    std::vector<MapPoint> points(mine.size());
+    std::atomic<std::size_t> next{0}, done{0};
+    std::string error;
+    std::atomic<bool> failed{false};
+    auto cancelled = [&] { return cancel && cancel->load(); };
+    auto work = [&] {
+        for (std::size_t k;
+             !failed.load() && !cancelled() && (k = next.fetch_add(1)) < mine.size();) {
+            try {
+                points[k] = play_map_point(model, grid, mine[k], pitch);
+            } catch (const std::exception& e) {
+                if (!failed.exchange(true)) error = e.what();
+            }
+            done.fetch_add(1);
+        }
+    };
+    std::vector<std::thread> threads;
+    for (int t = 0; t < std::max(1, jobs); ++t) threads.emplace_back(work);
+    while (done.load() < mine.size() && !failed.load() && !cancelled()) {
+        if (progress) progress(done.load(), mine.size());
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    for (auto& t : threads) t.join();
+    if (failed.load()) throw InputError(model.name, error);
+    if (cancelled()) throw InputError(model.name, "cancelled");
+    if (progress) progress(mine.size(), mine.size());
+    return points;
+}
+
+double force_for_press(const Model& model, double press) {
+    return press * press_stiffness(model);
+}
+
+double bow_position(const Model& model) {
+    const Lia& bow = bow_module(model);
+    int n = 0, bowed = 0;
+    for (int i = 1; model.find_mat("s" + std::to_string(i)); ++i) {
+        n = i;
+        if (bow.to == "s" + std::to_string(i)) bowed = i;
+    }
+    return n > 0 && bowed > 0 ? static_cast<double>(bowed) / (n + 1) : 0.0;
+}
+
+SchellengBounds schelleng_bounds(const Model& model, double position, double speed) {
+    const Lia& bow = bow_module(model);
+    const Mat* bowed = model.find_mat(bow.to);
+    double k = 0;
+    for (const auto& id : string_links(model)) {
+        const Lia* l = model.find_lia(id);
+        if (l->from == bow.to || l->to == bow.to) k = std::max(k, l->stiffness);
+    }
+    const ModalAnalysis modes = analyse_modes(model);
+    double t60 = 0;
+    for (const auto& m : modes.modes)
+        if (m.partial == 1) t60 = m.t60;
+    SchellengBounds b;
+    if (!bowed || !(k > 0) || !(t60 > 0) || !std::isfinite(t60)) return b;
+    const double z0 = std::sqrt(k * bowed->mass);
+    const double r = 2 * z0 * modes.fundamental * t60 / std::log(1000.0);
+    const double dmu = bow.mu_static - bow.mu_dynamic;
+    b.maximum = 2 * z0 * speed / (position * dmu);
+    b.minimum = z0 * z0 * speed / (2 * r * position * position * dmu);
+    return b;
+}
+
+std::string format_map(const MapGrid& grid, const std::vector<MapPoint>& points,
+                       const Model& model) {
+    std::ostringstream s;
+    s.precision(10);
+    s << "# archet-map " << grid.describe() << "\n";
+    s << "index,force_n,position,regime,slips_per_period,pitch_cents,slip_share,centroid_hz,"
+         "schelleng_min_n,schelleng_max_n\n";
+    for (const auto& p : points) {
+        const SchellengBounds b = schelleng_bounds(model, p.position, grid.speed);
+        s << p.index << "," << p.force << "," << p.position << "," << to_string(p.analysis.regime)
+          << "," << p.analysis.slips_per_period << "," << p.analysis.pitch_cents << ","
+          << p.analysis.slip_share << "," << p.analysis.centroid << "," << b.minimum << ","
+          << b.maximum << "\n";
+    }
+    return s.str();
+}
+
+std::pair<MapGrid, std::vector<MapPoint>> parse_map(const std::string& text,
+                                                    const std::string& source) {
+    std::istringstream lines(text);
+    std::string line;
+    if (!std::getline(lines, line) || line.rfind("# archet-map ", 0) != 0)
+        throw InputError(source, "is not an archet map (it must start with \"# archet-map\")");
+    const MapGrid grid = MapGrid::parse(line.substr(13));
+    std::getline(lines, line);  // the column names
+    std::vector<MapPoint> points;
+    int row = 2;
+    while (std::getline(lines, line)) {
+        ++row;
+        if (line.empty()) continue;
+        std::istringstream cells(line);
+        std::string cell;
+        std::vector<std::string> c;
+        while (std::getline(cells, cell, ',')) c.push_back(cell);
+        if (c.size() < 8) throw InputError(source, "row " + std::to_string(row) + " is short");
+        MapPoint p;
+        try {
+            p.index = std::stoul(c[0]);
+            p.force = std::stod(c[1]), p.position = std::stod(c[2]);
+            p.analysis.regime = regime_from_string(c[3]);
+            p.analysis.slips_per_period = std::stod(c[4]), p.analysis.pitch_cents = std::stod(c[5]);
+            p.analysis.slip_share = std::stod(c[6]), p.analysis.centroid = std::stod(c[7]);
+        } catch (const std::logic_error&) {
+            throw InputError(source,
+                             "row " + std::to_string(row) + " has a value that is not a number");
+        }
+        if (p.index >= grid.size())
+            throw InputError(source, "row " + std::to_string(row) + " is outside the grid");
+        points.push_back(p);
+    }
+    return {grid, points};
+}
+
+}  // namespace archet

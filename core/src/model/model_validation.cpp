@@ -1,0 +1,425 @@
+#include "archet/model/model_validation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include "archet/common/input_error.hpp"
+#include "archet/common/input_limits.hpp"
+#include "archet/common/number_text.hpp"
+#include "archet/common/printable_text.hpp"
+#include "archet/model/gesture_validation.hpp"
+#include "archet/model/model_parameters.hpp"
+#include "archet/model/stability.hpp"
+
+namespace archet {
+
+namespace {
+
+std::string quoted(const std::string& kind, const std::string& id) {
+    return kind + " " + quoted_text(id);
+}
+
+class Checker {
+  public:
+    explicit Checker(const Model& m) : model_(m) {
+        for (const auto& mat : m.mats) mats_.emplace(mat.id, &mat);  // the first of duplicates
+    }
+
+    std::vector<ModelProblem> run() {
+        check_header();
+        check_ids();
+        for (const auto& m : model_.mats) check_mat(m);
+        for (const auto& l : model_.lias) check_lia(l);
+        check_bow_sharing();
+        for (const auto& c : model_.controls) check_control(c);
+        check_probes();
+        check_outputs();
+        if (problems_.empty()) check_stability(model_, "");
+        if (problems_.empty())
+            for (const auto& c : model_.controls) check_control_extremes(c);
+        return problems_;
+    }
+
+  private:
+    void add(std::string where, std::string message) {
+        problems_.push_back({std::move(where), std::move(message)});
+    }
+    void problems_from(const std::optional<InputError>& error) {
+        if (error) add(error->where(), error->message());
+    }
+
+    void check_header() {
+        if (!(model_.sample_rate >= limits::kMinSampleRate &&
+              model_.sample_rate <= limits::kMaxSampleRate))
+            add("model", "sample_rate " + format_number(model_.sample_rate) +
+                             " Hz is out of range; use 1000 to 1000000 Hz");
+        if (!(model_.output_gain > 0.0 && model_.output_gain <= limits::kOutputGain))
+            add("model", "output_gain must be above 0 and at most " +
+                             format_number(limits::kOutputGain) + " (is " +
+                             format_number(model_.output_gain) +
+                             "); it scales the output to full scale, e.g. 1.5 for a bowed string");
+        const std::size_t elements =
+            model_.mats.size() + model_.lias.size() + model_.controls.size();
+        if (elements > limits::kElements)
+            add("model", "holds " + std::to_string(elements) +
+                             " elements; a model may have at most " +
+                             std::to_string(limits::kElements));
+        if (model_.probes.size() > limits::kProbes)
+            add("model", "has " + std::to_string(model_.probes.size()) +
+                             " probes; a model may have at most " +
+                             std::to_string(limits::kProbes));
+        if (model_.gesture) problems_from(check_gesture(*model_.gesture, "gesture"));
+        if (model_.rates.empty())
+            add("model", "needs at least one rate level, e.g. {\"id\": \"audio\", \"divider\": 1}");
+        std::set<std::string> seen;
+        for (const auto& r : model_.rates) {
+            if (r.id.empty()) add("rate level", "needs a non-empty id");
+            if (!is_printable_text(r.id))
+                add(quoted("rate level", r.id),
+                    "an id may hold only printable characters; rename it");
+            if (!seen.insert(r.id).second)
+                add(quoted("rate level", r.id), "duplicate id; rename one");
+            if (r.divider < 1 || r.divider > 4096)
+                add(quoted("rate level", r.id),
+                    "divider " + std::to_string(r.divider) + " is out of range; use 1 to 4096");
+        }
+    }
+
+    void check_ids() {
+        std::map<std::string, std::string> seen;
+        auto claim = [&](const std::string& kind, const std::string& id) {
+            if (id.empty()) {
+                add(kind, "needs a non-empty id");
+                return;
+            }
+            if (!is_printable_text(id)) {
+                add(quoted(kind, id),
+                    "an id may hold only printable characters (no control characters such as "
+                    "ESC or NUL); rename it");
+                return;
+            }
+            auto [it, added] = seen.emplace(id, kind);
+            if (!added)
+                add(quoted(kind, id), "duplicate id (also used by a " + it->second +
+                                          "); every element needs its own id");
+        };
+        for (const auto& m : model_.mats) claim("mass", m.id);
+        for (const auto& l : model_.lias) claim("link", l.id);
+        for (const auto& c : model_.controls) claim("control", c.id);
+    }
+
+    void check_rate(const std::string& where, const std::string& rate) {
+        if (!model_.find_rate(rate))
+            add(where, "rate level \"" + rate +
+                           "\" does not exist; declare it in \"rates\" or use one that does");
+    }
+
+    void positive(const std::string& where, const char* name, double value, const char* unit) {
+        if (!(value > 0.0))
+            add(where, std::string(name) + " must be above 0 " + unit + " (is " +
+                           format_number(value) + ")");
+    }
+    void non_negative(const std::string& where, const char* name, double value, const char* unit) {
+        if (!(value >= 0.0))
+            add(where, std::string(name) + " must be at least 0 " + unit + " (is " +
+                           format_number(value) + ")");
+    }
+
+    // Every parameter within its physical range (model_parameters.cpp), so that no state
+    // or energy of a model that passes can overflow.
+    bool in_ranges(const std::string& where, const std::vector<ParameterValue>& values) {
+        for (const auto& [info, value] : values) {
+            std::string problem = range_problem(info, value);
+            if (!problem.empty()) return add(where, std::move(problem)), false;
+        }
+        return true;
+    }
+
+    void check_mat(const Mat& m) {
+        const std::string where = quoted("mass", m.id);
+        check_rate(where, m.rate);
+        for (double v : {m.mass, m.position, m.velocity, m.stiffness, m.damping, m.position_scale,
+                         m.force_scale})
+            if (!std::isfinite(v)) {
+                add(where, "has a non-finite parameter (NaN or infinity)");
+                return;
+            }
+        if (!in_ranges(where, parameter_values(m))) return;
+        if (m.kind == MatKind::Mass || m.kind == MatKind::Oscillator)
+            positive(where, "mass", m.mass, "kg");
+        if (m.kind == MatKind::Oscillator) {
+            non_negative(where, "stiffness", m.stiffness, "N/m");
+            non_negative(where, "damping", m.damping, "N·s/m");
+        }
+        if (m.kind == MatKind::ModalPoint) check_modal_point(where, m);
+        if (m.kind == MatKind::Gesture && m.position_scale == 0.0)
+            add(where, "position_scale must not be 0 (the device could not move it)");
+    }
+
+    // A modal point reads modal oscillators (masses with inertia) of its own rate level.
+    void check_modal_point(const std::string& where, const Mat& m) {
+        if (m.modes.empty()) add(where, "a modal point needs at least one mode in \"modes\"");
+        if (m.modes.size() != m.weights.size())
+            add(where, "has " + count_of(m.modes.size(), "mode", "modes") + " but " +
+                           count_of(m.weights.size(), "weight", "weights") +
+                           "; give one weight (mode shape value) per mode");
+        for (double w : m.weights)
+            if (!std::isfinite(w)) add(where, "has a non-finite weight");
+        for (const auto& id : m.modes) {
+            const Mat* mode = mat_ref(where, "mode", id);
+            if (!mode) continue;
+            if (mode->kind != MatKind::Mass && mode->kind != MatKind::Oscillator)
+                add(where, "mode " + quoted_text(id) + " is a " + to_string(mode->kind) +
+                               "; modes must be masses or oscillators (with inertia)");
+            else if (mode->rate != m.rate)
+                add(where, "mode " + quoted_text(id) + " runs at rate \"" + mode->rate +
+                               "\", the point at \"" + m.rate +
+                               "\"; a modal point and its modes share one rate level");
+        }
+    }
+
+    const Mat* mat_ref(const std::string& where, const std::string& role, const std::string& id) {
+        const auto found = mats_.find(id);
+        const Mat* m = found == mats_.end() ? nullptr : found->second;
+        if (!m)
+            add(where, role + " \"" + id +
+                           "\" is not a mass of this model; link it to an existing mass id");
+        return m;
+    }
+
+    void check_lia(const Lia& l) {
+        const std::string where = quoted("link", l.id);
+        check_rate(where, l.rate);
+        for (double v : {l.stiffness, l.damping, l.length, l.mu_static, l.mu_dynamic, l.v0})
+            if (!std::isfinite(v)) {
+                add(where, "has a non-finite parameter (NaN or infinity)");
+                return;
+            }
+        if (!in_ranges(where, parameter_values(l))) return;
+        non_negative(where, "stiffness", l.stiffness, "N/m");
+        non_negative(where, "damping", l.damping, "N·s/m");
+        if (l.kind != LiaKind::BowFriction) {
+            const Mat* a = mat_ref(where, "\"from\"", l.from);
+            const Mat* b = mat_ref(where, "\"to\"", l.to);
+            if (a && b && a == b)
+                add(where,
+                    "joins mass " + quoted_text(l.from) + " to itself; pick two different masses");
+            if (a && b) check_rate_crossing(where, l, *a, *b);
+            if (l.kind == LiaKind::Spring) positive(where, "stiffness", l.stiffness, "N/m");
+            if (l.kind == LiaKind::Damper) positive(where, "damping", l.damping, "N·s/m");
+            if (l.kind == LiaKind::Buffer) positive(where, "stiffness", l.stiffness, "N/m");
+            return;
+        }
+        positive(where, "buffer_stiffness", l.stiffness, "N/m");
+        if (!(l.mu_static > 0.0 && l.mu_static <= 10.0))
+            add(where, "mu_s must be in (0, 10] (is " + format_number(l.mu_static) +
+                           "; rosin is about 0.8)");
+        if (!(l.mu_dynamic >= 0.0 && l.mu_dynamic <= l.mu_static))
+            add(where, "mu_d must be in [0, mu_s] (is " + format_number(l.mu_dynamic) + ", mu_s " +
+                           format_number(l.mu_static) + ")");
+        if (!(l.v0 > 0.0 && l.v0 <= 100.0))
+            add(where, "v0 must be in (0, 100] m/s (is " + format_number(l.v0) +
+                           "; about 0.1 m/s for rosin)");
+        const std::pair<const char*, const std::string*> roles[] = {{"\"bow\"", &l.from},
+                                                                    {"\"string\"", &l.to},
+                                                                    {"\"press\"", &l.press},
+                                                                    {"\"surface\"", &l.surface}};
+        std::set<std::string> distinct;
+        const Mat* ends[4] = {};
+        for (int i = 0; i < 4; ++i) {
+            ends[i] = mat_ref(where, roles[i].first, *roles[i].second);
+            distinct.insert(*roles[i].second);
+            if (ends[i] && ends[i]->rate != l.rate)
+                add(where,
+                    std::string(roles[i].first) + " mass " + quoted_text(ends[i]->id) +
+                        " runs at rate \"" + ends[i]->rate + "\" but the bow module at \"" +
+                        l.rate +
+                        "\"; the friction and the masses it joins must share one rate level");
+        }
+        if (distinct.size() != 4)
+            add(where, "bow, string, press and surface must be four different masses");
+        auto movable = [](const Mat* m) {
+            return m && (m->kind == MatKind::Mass || m->kind == MatKind::Oscillator ||
+                         m->kind == MatKind::ModalPoint);
+        };
+        if (ends[0] && ends[1] && !movable(ends[0]) && !movable(ends[1]))
+            add(where, "the bow and the string cannot both be immovable; make one of them a mass");
+    }
+
+    // A link whose MATs tick at another rate acts through a held force or a held position: a
+    // zero-order hold, which delays it by half the slow period and so feeds energy into a
+    // spring unless enough damping takes it out: Z >= K·T/2 (Colgate's passivity bound).
+    // Except when the only slower ends are gesture points: the hand's steps are then booked
+    // exactly as the hand's work, and the link is as passive as at one rate.
+    void check_rate_crossing(const std::string& where, const Lia& l, const Mat& a, const Mat& b) {
+        const RateLevel* rl = model_.find_rate(l.rate);
+        const RateLevel* ra = model_.find_rate(a.rate);
+        const RateLevel* rb = model_.find_rate(b.rate);
+        if (!rl || !ra || !rb) return;
+        auto in_step = [&](const Mat& m, const RateLevel* r) {
+            return r->divider == rl->divider ||
+                   (r->divider > rl->divider && m.kind == MatKind::Gesture);
+        };
+        if (in_step(a, ra) && in_step(b, rb)) return;
+        const int slowest = std::max({rl->divider, ra->divider, rb->divider});
+        const double period = slowest / model_.sample_rate;
+        const double needed = l.stiffness * period / 2.0;
+        if (l.damping < needed)
+            add(where,
+                "crosses rate levels (" + quoted_text(a.rate) + ", " + quoted_text(l.rate) +
+                    ", \"" + b.rate +
+                    "\"): its held force adds energy unless its damping is at least K·T/2 = " +
+                    format_number(needed) + " N·s/m for T = " + format_number(period) + " s (is " +
+                    format_number(l.damping) +
+                    "); raise its damping or run the link and its masses at one rate");
+    }
+
+    void check_bow_sharing() {
+        std::map<std::string, std::string> owner;
+        for (const auto& l : model_.lias) {
+            if (l.kind != LiaKind::BowFriction) continue;
+            for (const auto* id : {&l.from, &l.to}) {
+                auto [it, added] = owner.emplace(*id, l.id);
+                if (!added)
+                    add(quoted("link", l.id),
+                        "shares mass " + quoted_text(*id) + " with bow module \"" + it->second +
+                            "\"; each mass can be rubbed by one bow module only");
+            }
+        }
+    }
+
+    void check_control(const Control& c) {
+        const std::string where = quoted("control", c.id);
+        check_rate(where, c.rate);
+        if (!model_.find_mat(c.target_element) && !model_.find_lia(c.target_element)) {
+            add(where, "target element " + quoted_text(c.target_element) + " does not exist");
+            return;
+        }
+        bool known = false;
+        ParameterInfo info{};
+        for (const auto& p : element_parameters(model_, c.target_element))
+            if (p.name == c.target_parameter) known = true, info = p;
+        if (!known) {
+            add(where, quoted_text(c.target_element) + " has no parameter " +
+                           quoted_text(c.target_parameter));
+            return;
+        }
+        for (double v : {c.gain, c.offset, c.minimum, c.maximum})
+            if (!std::isfinite(v)) {
+                add(where, "has a non-finite number");
+                return;
+            }
+        if (!(c.minimum <= c.maximum)) add(where, "range minimum must not exceed its maximum");
+        if (c.minimum < info.minimum || (info.strictly_positive && c.minimum <= info.minimum))
+            add(where, "range minimum " + format_number(c.minimum) + " is outside what " +
+                           c.target_parameter + " accepts");
+        if (c.source == Control::Source::Envelope) {
+            if (c.envelope.empty()) add(where, "an envelope needs at least one point");
+            for (std::size_t i = 1; i < c.envelope.size(); ++i)
+                if (!(c.envelope[i].first > c.envelope[i - 1].first))
+                    add(where, "envelope times must increase strictly");
+        }
+        if (c.source == Control::Source::Position) mat_ref(where, "source element", c.element);
+    }
+
+    // A control may take its parameter anywhere in its range: check both ends.
+    void check_control_extremes(const Control& c) {
+        for (double value : {c.minimum, c.maximum}) {
+            Model copy = model_;
+            set_parameter(copy, c.target_element, c.target_parameter, value);
+            const auto before = problems_.size();
+            check_stability(copy, "when control " + quoted_text(c.id) + " sets " +
+                                      c.target_element + "." + c.target_parameter + " to " +
+                                      format_number(value) + ", ");
+            if (problems_.size() != before) return;
+        }
+    }
+
+    void check_probes() {
+        std::set<std::string> seen;
+        for (const auto& p : model_.probes) {
+            const std::string where = quoted("probe", p.id);
+            if (p.id.empty() || p.id == "time")
+                add(where, "needs an id other than \"time\" (it names a CSV column)");
+            if (!seen.insert(p.id).second) add(where, "duplicate probe id");
+            switch (p.kind) {
+                case ProbeKind::Energy:
+                case ProbeKind::PowerIn:
+                    break;
+                case ProbeKind::Position:
+                case ProbeKind::Velocity:
+                case ProbeKind::Force:
+                    if (!model_.find_mat(p.element))
+                        add(where, "element " + quoted_text(p.element) + " is not a mass");
+                    break;
+                default: {
+                    const Lia* l = model_.find_lia(p.element);
+                    if (!l || l->kind != LiaKind::BowFriction)
+                        add(where,
+                            "element " + quoted_text(p.element) + " is not a bow_friction link");
+                }
+            }
+        }
+    }
+
+    void check_outputs() {
+        for (std::size_t i = 0; i < model_.outputs.size(); ++i) {
+            const auto& o = model_.outputs[i];
+            const std::string where = "output #" + std::to_string(i + 1);
+            if (!model_.find_mat(o.element))
+                add(where, "element " + quoted_text(o.element) + " is not a mass");
+            if (!(std::abs(o.gain) <= limits::kOutputGain))
+                add(where, "gain must be a finite number within ±" +
+                               format_number(limits::kOutputGain) + " (is " +
+                               format_number(o.gain) + ")");
+        }
+    }
+
+    void check_stability(const Model& model, const std::string& context) {
+        for (const auto& r : analyse_stability(model, /*exact=*/false)) {
+            if (r.stable()) continue;
+            const double fs = 1.0 / r.dt;
+            add(quoted("mass", r.stiffest_dof),
+                context + "the model is unstable at rate level " + quoted_text(r.rate) + " (" +
+                    format_number(fs) +
+                    " Hz): the largest eigenvalue of the normalised stiffness M^-1/2 (K T^2 + 2 Z "
+                    "T) M^-1/2 is " +
+                    format_number(r.largest_eigenvalue) +
+                    ", it must stay below 4. The stiffest point is this mass; "
+                    "lower the stiffness or damping of its links, raise its mass, or run the level "
+                    "faster");
+        }
+    }
+
+    const Model& model_;
+    std::unordered_map<std::string, const Mat*> mats_;  // lookups by id, for large models
+    std::vector<ModelProblem> problems_;
+};
+
+}  // namespace
+
+std::vector<ModelProblem> find_model_problems(const Model& model) {
+    return Checker(model).run();
+}
+
+void validate_model(const Model& model) {
+    const auto problems = find_model_problems(model);
+    if (!problems.empty()) throw InputError(problems.front().where, problems.front().message);
+}
+
+void set_parameter_validated(Model& model, const std::string& element, const std::string& parameter,
+                             double value) {
+    const double before = get_parameter(model, element, parameter);  // throws for a bad name
+    set_parameter(model, element, parameter, value);                 // throws out of range
+    try {
+        validate_model(model);
+    } catch (const std::exception&) {
+        set_parameter(model, element, parameter, before);
+        throw;
+    }
+}
+
+}  // namespace archet

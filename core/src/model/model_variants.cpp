@@ -1,0 +1,105 @@
+#include "archet/model/model_variants.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "archet/common/input_error.hpp"
+#include "archet/model/model_parameters.hpp"
+
+namespace archet {
+
+namespace {
+
+std::set<std::string> bow_parts(const Model& model) {
+    std::set<std::string> parts;
+    for (const auto& l : model.lias)
+        if (l.kind == LiaKind::BowFriction) parts.insert({l.from, l.press, l.surface});
+    return parts;
+}
+
+// The chain's masses s1…sN, in order, as the bowed-string builder names them.
+std::vector<std::string> string_masses(const Model& model) {
+    std::vector<std::string> masses;
+    for (int i = 1; model.find_mat("s" + std::to_string(i)); ++i)
+        masses.push_back("s" + std::to_string(i));
+    return masses;
+}
+
+}  // namespace
+
+std::vector<std::string> string_links(const Model& model) {
+    const std::set<std::string> bow = bow_parts(model);
+    std::vector<std::string> links;
+    for (const auto& l : model.lias) {
+        if (l.kind == LiaKind::BowFriction || l.kind == LiaKind::Buffer) continue;
+        const Mat* a = model.find_mat(l.from);
+        const Mat* b = model.find_mat(l.to);
+        auto string_side = [&](const Mat* m) {
+            return m && !bow.count(m->id) &&
+                   (m->kind == MatKind::Mass || m->kind == MatKind::Oscillator);
+        };
+        if (string_side(a) && string_side(b)) links.push_back(l.id);
+    }
+    return links;
+}
+
+void set_variant_parameter(Model& model, const std::string& name, double value) {
+    if (name == "string.damping") {
+        if (!(std::isfinite(value) && value >= 0))
+            throw InputError(name, "must be a damping of 0 N·s/m or more");
+        const auto links = string_links(model);
+        if (links.empty())
+            throw InputError(name,
+                             "this model's string has no links (a modal string?); vary "
+                             "ELEMENT.damping of its modes instead");
+        for (const auto& id : links) model.find_lia(id)->damping = value;
+        return;
+    }
+    if (name == "bow.position") {
+        if (!(value > 0 && value < 0.5)) throw InputError(name, "β must be in (0, 0.5)");
+        const auto masses = string_masses(model);
+        Lia* bow = nullptr;
+        for (auto& l : model.lias)
+            if (l.kind == LiaKind::BowFriction) bow = &l;
+        if (!bow || masses.size() < 3)
+            throw InputError(name, "needs a bowed chain of masses s1…sN (a built bowed string)");
+        const int n = static_cast<int>(masses.size());
+        const int index = std::clamp(static_cast<int>(std::lround(value * (n + 1))), 1, n);
+        const std::string old = bow->to, bowed = masses[index - 1];
+        bow->to = bowed;
+        for (auto& p : model.probes)
+            if (p.element == old) p.element = bowed;
+        return;
+    }
+    const auto dot = name.rfind('.');
+    if (dot == std::string::npos || dot == 0 || dot + 1 == name.size())
+        throw InputError(name, "expected ELEMENT.PARAM, string.damping or bow.position");
+    set_parameter(model, name.substr(0, dot), name.substr(dot + 1), value);
+}
+
+std::pair<std::string, std::vector<double>> parse_variation(const std::string& text) {
+    const auto eq = text.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw InputError("--vary", "\"" + text + "\": expected PARAM=V1,V2[,...]");
+    std::vector<double> values;
+    std::stringstream list(text.substr(eq + 1));
+    std::string item;
+    while (std::getline(list, item, ',')) {
+        std::size_t used = 0;
+        double v = 0;
+        try {
+            v = std::stod(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used == 0 || used != item.size() || !std::isfinite(v))
+            throw InputError("--vary", "\"" + item + "\" is not a number");
+        values.push_back(v);
+    }
+    if (values.size() < 2) throw InputError("--vary", "give at least two values to compare");
+    return {text.substr(0, eq), values};
+}
+
+}  // namespace archet

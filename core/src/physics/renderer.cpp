@@ -1,0 +1,38 @@
+#include "archet/physics/renderer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "archet/common/denormal_guard.hpp"
+#include "archet/physics/blow_up.hpp"
+
+namespace archet {
+
+void render(Simulation& sim, const RenderOptions& options,
+            const std::function<void(const RenderBlock&)>& sink) {
+    const DenormalGuard no_denormals;
+    const std::size_t probe_count = options.with_probes ? sim.probe_count() : 0;
+    std::vector<double> audio(options.block_frames);
+    std::vector<double> probes(options.block_frames * probe_count);
+    std::uint64_t done = 0;
+    while (done < options.frames) {
+        const std::size_t frames = static_cast<std::size_t>(
+            std::min<std::uint64_t>(options.block_frames, options.frames - done));
+        for (std::size_t i = 0; i < frames; ++i) {
+            if (options.before_step) options.before_step(sim);
+            sim.step();
+            audio[i] = sim.output();
+            if (!std::isfinite(audio[i])) throw_blow_up(sim);
+            for (std::size_t p = 0; p < probe_count; ++p) {
+                probes[i * probe_count + p] = sim.probe(p);
+                if (!std::isfinite(probes[i * probe_count + p])) throw_blow_up(sim);
+            }
+        }
+        // Masses that feed neither output nor probe: once per block, before it is handed on.
+        if (find_blown_up_element(sim)) throw_blow_up(sim);
+        sink({done, frames, audio.data(), probe_count ? probes.data() : nullptr, probe_count});
+        done += frames;
+    }
+}
+
+}  // namespace archet

@@ -1,0 +1,683 @@
+#include "archet/physics/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace archet {
+
+namespace {
+
+double envelope_at(const std::vector<std::pair<double, double>>& e, double t) {
+    if (t <= e.front().first) return e.front().second;
+    if (t >= e.back().first) return e.back().second;
+    auto it = std::upper_bound(e.begin(), e.end(), t,
+                               [](double v, const auto& p) { return v < p.first; });
+    const auto& b = *it;
+    const auto& a = *(it - 1);
+    return a.second + (t - a.first) / (b.first - a.first) * (b.second - a.second);
+}
+}  // namespace
+
+Simulation::Simulation(CompiledModel model) : model_(std::move(model)) {
+    active_.assign(model_.levels.size(), 0);
+    countdown_.assign(model_.levels.size(), 0);
+    period_done_.assign(model_.levels.size(), 1.0);
+    // The hand links' addresses, resolved once: model_ never changes shape from here on.
+    for (int i = 0; i < model_.hand_links; ++i) {
+        CompiledCrossLink& l = model_.cross_links[i];
+        CompiledLevel& hand = model_.levels[l.hand_slot.level];
+        CompiledLevel& end = model_.levels[l.end_slot.level];
+        hand_plan_.push_back({&l, &hand, &end, l.hand_slot.level, l.hand_slot.index,
+                              l.end_slot.index, &end.external[l.end_slot.index],
+                              &hand.external[l.hand_slot.index], &hand.gestures[l.hand],
+                              l.hand_is_a ? l.a_weight : l.b_weight});
+    }
+    dissipated_.assign(model_.source.lias.size() + model_.source.mats.size(), 0.0);
+    set_gesture_track(model_.source.gesture ? &*model_.source.gesture : nullptr);
+}
+
+void Simulation::set_gesture_track(const Gesture* gesture) {
+    track_ = gesture;
+    // Gesture points start at rest where the gesture starts.
+    for (auto& level : model_.levels)
+        for (auto& g : level.gestures) {
+            const double x = g.position_scale * gesture_axis(g.axis, time());
+            level.x()[g.index] = x;
+            level.x_prev()[g.index] = x;
+        }
+    for (auto& link : model_.cross_links) {
+        const double a = seen_position(link.a, link.a_rate, true);
+        const double b = seen_position(link.b, link.b_rate, true);
+        link.d_prev = link.d_before = a - b;
+        link.hand_seen = link.hand_is_a ? a : b;
+        link.hand_force_sum = link.hand_work_sum = 0.0;
+    }
+}
+
+double Simulation::gesture_axis(GestureAxis axis, double t) const {
+    const GestureSample s = track_ ? track_->at(t) : device_;
+    return axis == GestureAxis::Slide ? s.slide : s.press;
+}
+
+void Simulation::enable_accounting(bool on) {
+    accounting_ = on;
+}
+
+double Simulation::velocity(MatSlot s) const {
+    const auto& lv = model_.levels[s.level];
+    return (lv.x()[s.index] - lv.x_prev()[s.index]) / lv.dt;
+}
+
+void Simulation::step() {
+    // Countdowns rather than tick % divider: a 64-bit division per level costs more than
+    // the whole step of a small model.
+    for (std::size_t l = 0; l < model_.levels.size(); ++l) {
+        const CompiledLevel& lv = model_.levels[l];
+        active_[l] = countdown_[l] == 0;
+        countdown_[l] = active_[l] ? lv.divider - 1 : countdown_[l] - 1;
+        // How far into its period a faster link sees this level (see seen_position()).
+        period_done_[l] = active_[l] ? 1.0 : (lv.divider - 1 - countdown_[l]) * lv.inverse_divider;
+    }
+    if (!model_.controls.empty()) apply_controls();
+    // Phase 1: every active LIA computes its force from x[n] (and x[n−1]).
+    for (std::size_t l = 0; l < model_.levels.size(); ++l)
+        if (active_[l]) compute_link_forces(model_.levels[l]);
+    compute_hand_link_forces();
+    compute_cross_link_forces();
+    // Phase 2: every active MAT integrates; the bow modules solve on the prediction.
+    for (std::size_t l = 0; l < model_.levels.size(); ++l)
+        if (active_[l]) integrate(model_.levels[l]);
+    // Phase 3: x[n+1] becomes x[n].
+    for (std::size_t l = 0; l < model_.levels.size(); ++l)
+        if (active_[l]) model_.levels[l].current = CompiledLevel::after(model_.levels[l].current);
+    ++tick_;
+}
+
+void Simulation::apply_controls() {
+    for (const auto& c : model_.controls) {
+        if (!active_[c.level]) continue;
+        double signal = 0;
+        switch (c.source) {
+            case Control::Source::Envelope:
+                signal = envelope_at(c.envelope, time());
+                break;
+            case Control::Source::Gesture:
+                signal = gesture_axis(c.axis, time());
+                break;
+            case Control::Source::Position:
+                signal = position(c.position_of);
+                break;
+        }
+        set_parameter(c.target, std::clamp(c.offset + c.gain * signal, c.minimum, c.maximum));
+    }
+}
+
+void Simulation::compute_link_forces(CompiledLevel& lv) {
+    const double* x = lv.x();
+    const double* xp = lv.x_prev();
+    double* ext = lv.external.data();
+    for (const auto& l : lv.links) {
+        const double d = x[l.a] - x[l.b];
+        const double dp = xp[l.a] - xp[l.b];
+        double f = l.k * (d - l.length) + l.zdt * (d - dp);
+        if (l.contact) f = (d - l.length > 0.0) ? std::max(f, 0.0) : 0.0;
+        ext[l.a] -= f;
+        ext[l.b] += f;
+    }
+    // The bow's pressure buffer: its force is the normal force of the friction.
+    for (int b : lv.bows) {
+        CompiledBow& bow = model_.bows[b];
+        const double p = x[bow.press] - x[bow.surface];
+        const double pp = xp[bow.press] - xp[bow.surface];
+        bow.normal = p > 0.0 ? std::max(0.0, bow.kb * p + bow.zbdt * (p - pp)) : 0.0;
+        ext[bow.press] -= bow.normal;
+        ext[bow.surface] += bow.normal;
+    }
+}
+
+// A faster link sees a slower MAT move along a straight line over the MAT's period, from
+// its previous position to its newest (a first-order hold): a gesture point then moves
+// smoothly at the link's rate instead of in steps its damper would feel as spikes. The
+// newest position is the one for the end of the period (the MAT computed it a period
+// ahead), so a gesture track or a simulated slower mass are followed without delay.
+inline double Simulation::seen_position(MatSlot s, CompiledCrossLink::EndRate rate,
+                                        bool between_steps) const {
+    if (rate != CompiledCrossLink::EndRate::Slower) return position(s);
+    const CompiledLevel& lv = model_.levels[s.level];
+    double done = period_done_[s.level];
+    if (between_steps) {  // the next step's view
+        const int period = lv.divider, countdown = countdown_[s.level];
+        done = countdown == 0 ? 1.0 : static_cast<double>(period - countdown) / period;
+    }
+    const double from = lv.x_prev()[s.index], to = lv.x()[s.index];
+    return from + (to - from) * done;
+}
+
+// Hand links: a spring-damper from a slower gesture point to a MAT at the link's rate, the
+// usual way to hold a bow. The link sees the hand move along its line and books the hand's
+// work itself: F[n]·(x[n+1] − x[n−1])/2 in the scheme's energy, so the move seen now is
+// worth the mean of the last two forces (the newest half is pending, see hand_work()).
+// Exact at every step, and short: they tick at every step of their level.
+void Simulation::compute_hand_link_forces() {
+    double hand_work = 0;
+    for (HandLinkPlan& p : hand_plan_) {
+        if (!active_[p.link->level]) continue;
+        CompiledCrossLink& l = *p.link;
+        const double* hx = p.hand_level->x();
+        const double* hxp = p.hand_level->x_prev();
+        const double from = hxp[p.hand_index], to = hx[p.hand_index];
+        const double h = from + (to - from) * period_done_[p.hand_level_index];
+        const double d = l.hand_sign * (h - p.end_level->x()[p.end_index]);  // x(a) − x(b)
+        const double d_prev = l.d_prev, d_before = l.d_before, force = l.force;
+        const double f = l.k * (d - l.length) + l.zdt * (d - d_prev);
+        const double work = l.hand_sign * 0.5 * (force + f) * (h - l.hand_seen);
+        if (accounting_) dissipated_[l.element] += 0.25 * l.zdt * (d - d_before) * (d - d_before);
+        l.d_before = d_prev, l.d_prev = d, l.force = f, l.hand_seen = h;
+        *p.end_force += l.hand_sign * f;
+        // The hand's point takes the mean force over its period when it ticks.
+        l.hand_force_sum -= l.hand_sign * f;
+        hand_work += work;
+        l.hand_work_sum += work;
+        if (active_[p.hand_level_index]) {
+            const double mean = l.hand_force_sum * p.hand_weight;
+            *p.hand_force += mean;
+            p.gesture->faster_links_force += mean;
+            p.gesture->faster_links_work += l.hand_work_sum;
+            l.hand_force_sum = l.hand_work_sum = 0.0;
+        }
+    }
+    hand_work_ += hand_work;
+}
+
+// Links across rate levels: a link samples its ends at its own ticks (a slower end along its
+// line). Its force is held over its period on faster MATs (same impulse) and averaged over
+// slower MATs' periods.
+void Simulation::compute_cross_link_forces() {
+    using R = CompiledCrossLink::EndRate;
+    bool faster_ends_ticked = false;
+    for (std::size_t i = model_.hand_links; i < model_.cross_links.size(); ++i) {
+        CompiledCrossLink& l = model_.cross_links[i];
+        if (!active_[l.level]) continue;
+        const double d = seen_position(l.a, l.a_rate, false) - seen_position(l.b, l.b_rate, false);
+        // The damper of the previous tick has now seen its whole centred motion.
+        if (accounting_ && l.acting)
+            dissipated_[l.element] += 0.25 * l.zdt * (d - l.d_before) * (d - l.d_before);
+        const double f = l.k * (d - l.length) + l.zdt * (d - l.d_prev);
+        l.acting = !l.contact || (d - l.length > 0.0 && f > 0.0);
+        l.force = l.acting ? f : 0.0;
+        l.d_before = l.d_prev;
+        l.d_prev = d;
+        // An end at the link's rate takes the force now; a slower end takes it weighted by
+        // the link's share of its period; faster ends are served below.
+        if (l.a_rate != R::Faster)
+            model_.levels[l.a.level].external[l.a.index] -= l.a_weight * l.force;
+        if (l.b_rate != R::Faster)
+            model_.levels[l.b.level].external[l.b.index] += l.b_weight * l.force;
+        faster_ends_ticked |= l.a_rate == R::Faster || l.b_rate == R::Faster;
+    }
+    if (!faster_ends_ticked) return;
+    // Faster ends get the force held at each of their ticks until the link's next tick:
+    // rebuild those sums now, so that the steps in between cost nothing.
+    for (const auto& l : model_.cross_links) {
+        if (l.a_rate == R::Faster) model_.levels[l.a.level].held[l.a.index] = 0.0;
+        if (l.b_rate == R::Faster) model_.levels[l.b.level].held[l.b.index] = 0.0;
+    }
+    for (const auto& l : model_.cross_links) {
+        if (l.a_rate == R::Faster) model_.levels[l.a.level].held[l.a.index] -= l.force;
+        if (l.b_rate == R::Faster) model_.levels[l.b.level].held[l.b.index] += l.force;
+    }
+}
+
+// The AVX2 and plain builds of the chain loops, chosen at load time by an ifunc resolver.
+// ThreadSanitizer instruments the resolver, which runs before it is set up: there, one build.
+#if defined(__SANITIZE_THREAD__)
+#define ARCHET_AVX2_CLONES
+#else
+#define ARCHET_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
+#endif
+
+namespace {
+// The chain links and the integration of every MAT of a level: the bulk of the work, in two
+// loops the compiler vectorises. Built for AVX2 and plain x86-64 and chosen at load time;
+// without FMA contraction both give the same bits. Transverse strings have no rest lengths,
+// so a variant skips them.
+template <bool kWithLength>
+inline void chain_loops(int n, const double* __restrict x, const double* __restrict xp,
+                        double* __restrict xn, const double* __restrict k,
+                        const double* __restrict z, const double* __restrict len,
+                        const double* __restrict c, double* __restrict f) {
+    // Chain links j = 0..n (0 and n are padding with zero coefficients).
+    for (int j = 0; j <= n; ++j) {
+        const double d = x[j] - x[j + 1];
+        const double dp = xp[j] - xp[j + 1];
+        f[j] = kWithLength ? k[j] * (d - len[j]) + z[j] * (d - dp) : k[j] * d + z[j] * (d - dp);
+    }
+    for (int s = 1; s <= n; ++s) xn[s] = 2.0 * x[s] - xp[s] + c[s] * (f[s - 1] - f[s]);
+}
+
+ARCHET_AVX2_CLONES void integrate_chain(CompiledLevel& lv, double* xn) {
+    const int current = lv.current;
+    const double* x = lv.buffer[current].data();
+    const double* xp = lv.buffer[CompiledLevel::before(current)].data();
+    if (lv.has_chain_lengths)
+        chain_loops<true>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(),
+                          lv.chain_length.data(), lv.coeff.data(), lv.chain_force.data());
+    else
+        chain_loops<false>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(), nullptr,
+                           lv.coeff.data(), lv.chain_force.data());
+}
+}  // namespace
+
+void Simulation::integrate(CompiledLevel& lv) {
+    const double* x = lv.x();
+    const double* xp = lv.x_prev();
+    double* xn = lv.x_next();
+    const double* c = lv.coeff.data();
+    const double* f = lv.chain_force.data();
+    integrate_chain(lv, xn);
+    // The update is linear in force, so the other forces add their share afterwards, only
+    // where there are any: the other links' (`external`), held forces of slower links, and
+    // oscillator grounds'.
+    const double* ext = lv.external.data();
+    const double* held = lv.held.data();
+    for (int s : lv.touched) xn[s] += c[s] * (ext[s] + held[s]);
+    for (const auto& g : lv.grounds)
+        xn[g.index] -=
+            c[g.index] * (g.k * (x[g.index] - g.rest) + g.zdt * (x[g.index] - xp[g.index]));
+    if (!lv.modal_points.empty()) {
+        for (const auto& p : lv.modal_points) {
+            const double force = ext[p.index] + held[p.index];
+            if (force == 0.0) continue;
+            for (std::size_t k = 0; k < p.modes.size(); ++k)
+                xn[p.modes[k]] += c[p.modes[k]] * p.weights[k] * force;
+        }
+        update_modal_points(lv);
+    }
+    for (int b : lv.bows) solve_bow(lv, model_.bows[b]);
+    for (std::size_t w = 0; w < lv.watched.size(); ++w) {
+        const int s = lv.watched[w];
+        lv.watched_force[w] = ext[s] + held[s] + f[s - 1] - f[s];
+    }
+    if (!lv.gestures.empty()) update_gesture_points(lv);
+    if (accounting_) account(lv);
+    for (int s : lv.touched) lv.external[s] = 0.0;
+}
+
+// The bow–string friction, solved on the predicted motion so that it is stable for any
+// sharpness of the curve, and strictly passive in the scheme's own energy. Units below are
+// displacement per step (u = v·T); c = T²/m.
+//   u−     relative motion bow − string over the last step
+//   ufree  relative motion over the next step without friction
+//   F      friction on the string (−F on the bow): u+ = ufree − F·csum
+// The energy the friction takes over a step is F·(u+ + u−)/2; it must never be negative.
+// Stick: F closest to ufree/csum (u+ = 0) within [0, (ufree + u−)/csum], the passive range,
+//        when |F| ≤ μs·N.
+// Slip:  F = N·μ(|w|)·sign(w) at the mid-step velocity w = (u+ + u−)/(2T); with the
+//        hyperbolic curve μ(q) = μd + (μs − μd)·v0/(v0 + q) this is a quadratic in |w| with
+//        exactly one positive root.
+void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
+    const double* x = lv.x();
+    const double* xp = lv.x_prev();
+    double* xn = lv.x_next();
+    // How far each side moves per newton over the step: T²/m, or its modes' for a modal point.
+    const double cb = bow.bow_point < 0 ? lv.coeff[bow.bow] : lv.modal_points[bow.bow_point].coeff;
+    const double cs =
+        bow.string_point < 0 ? lv.coeff[bow.string] : lv.modal_points[bow.string_point].coeff;
+    const double csum = cb + cs;
+    const double u_prev = (x[bow.bow] - xp[bow.bow]) - (x[bow.string] - xp[bow.string]);
+    const double u_free = (xn[bow.bow] - x[bow.bow]) - (xn[bow.string] - x[bow.string]);
+    const double n = bow.normal;
+    double f = 0.0;
+    bow.sticking = false;
+    bow.dissipated = 0.0;
+    if (n > 0.0) {
+        const double f_target = u_free / csum;
+        const double f_passive = (u_free + u_prev) / csum;
+        const double f_stick =
+            std::clamp(f_target, std::min(0.0, f_passive), std::max(0.0, f_passive));
+        if (std::abs(f_stick) <= bow.mu_s * n) {
+            f = f_stick;
+            bow.sticking = true;
+            // F·(u+ + u−)/2 with u+ = ufree − F·csum, written so that rounding cannot flip
+            // its sign: F and (F_passive − F) share the sign of F_passive.
+            bow.dissipated = 0.5 * f * csum * (f_passive - f);
+        } else {
+            const double w_free = 0.5 * (u_free + u_prev);
+            const double q_free = std::abs(w_free) / lv.dt;
+            const double alpha = n * csum / (2.0 * lv.dt);
+            const double b = bow.v0 + alpha * bow.mu_d - q_free;
+            const double cq = bow.v0 * (alpha * bow.mu_s - q_free);  // < 0 when slipping
+            const double root = std::sqrt(b * b - 4.0 * cq);
+            const double q = b > 0.0 ? -2.0 * cq / (b + root) : 0.5 * (root - b);
+            const double mu = bow.mu_d + (bow.mu_s - bow.mu_d) * bow.v0 / (bow.v0 + q);
+            f = std::copysign(n * mu, w_free);
+            bow.dissipated = n * mu * q * lv.dt;  // |F|·|w|·T, w the mid-step velocity
+        }
+    }
+    if (bow.string_point < 0)
+        xn[bow.string] += f * cs;
+    else
+        apply_modal_force(lv, bow.string_point, f);
+    if (bow.bow_point < 0)
+        xn[bow.bow] -= f * cb;
+    else
+        apply_modal_force(lv, bow.bow_point, -f);
+    lv.external[bow.string] += f;
+    lv.external[bow.bow] -= f;
+    const double u_next = u_free - f * csum;
+    bow.friction = f;
+    bow.slip_velocity = u_next / lv.dt;
+}
+
+void Simulation::update_modal_points(CompiledLevel& lv) {
+    double* xn = lv.x_next();
+    for (const auto& p : lv.modal_points) {
+        double x = 0;
+        for (std::size_t k = 0; k < p.modes.size(); ++k) x += p.weights[k] * xn[p.modes[k]];
+        xn[p.index] = x;
+    }
+}
+
+void Simulation::apply_modal_force(CompiledLevel& lv, int point, double force) {
+    double* xn = lv.x_next();
+    const auto& p = lv.modal_points[point];
+    for (std::size_t k = 0; k < p.modes.size(); ++k)
+        xn[p.modes[k]] += lv.coeff[p.modes[k]] * p.weights[k] * force;
+    update_modal_points(lv);  // every point of the body moves with its modes
+}
+
+void Simulation::update_gesture_points(CompiledLevel& lv) {
+    double* xn = lv.x_next();
+    const double* xp = lv.x_prev();
+    const double t_next = time() + lv.dt;
+    for (auto& g : lv.gestures) {
+        xn[g.index] = g.position_scale * gesture_axis(g.axis, t_next);
+        // The model's force on the point, and the hand's work over this step in the
+        // scheme's energy, −F·(x[n+1] − x[n−1])/2, through the links not faster than the
+        // point (faster links book theirs at their own ticks).
+        g.force = lv.watched_force[g.watched];
+        const double work = -0.5 * (g.force - g.faster_links_force) * (xn[g.index] - xp[g.index]);
+        hand_work_ += work;
+        g.work += work + g.faster_links_work;
+        g.power = (work + g.faster_links_work) / lv.dt;
+        g.faster_links_force = g.faster_links_work = 0.0;
+    }
+}
+
+void Simulation::account(CompiledLevel& lv) {
+    const double* x = lv.x();
+    const double* xp = lv.x_prev();
+    const double* xn = lv.x_next();
+    // A damper Z takes Z·T·v² over a step, v the centred velocity (x[n+1] − x[n−1])/2T: with
+    // the damper's in-flight term in stored_energy() this closes the books exactly.
+    auto taken = [&](double zdt, int a, int b) {
+        const double centred = (xn[a] - xn[b]) - (xp[a] - xp[b]);
+        return 0.25 * zdt * centred * centred;
+    };
+    const std::size_t lias = model_.source.lias.size();
+    for (int j = 1; j < lv.size; ++j)
+        if (lv.chain_element[j] >= 0)
+            dissipated_[lv.chain_element[j]] += taken(lv.chain_zdt[j], j, j + 1);
+    for (const auto& l : lv.links) {
+        if (l.contact && x[l.a] - x[l.b] - l.length <= 0.0) continue;
+        dissipated_[l.element] += taken(l.zdt, l.a, l.b);
+    }
+    for (const auto& g : lv.grounds)
+        dissipated_[lias + g.element] +=
+            0.25 * g.zdt * (xn[g.index] - xp[g.index]) * (xn[g.index] - xp[g.index]);
+    for (int b : lv.bows) {
+        const CompiledBow& bow = model_.bows[b];
+        const double p = x[bow.press] - x[bow.surface];
+        double buffer = 0;
+        if (p > 0.0 && bow.normal > 0.0) buffer = taken(bow.zbdt, bow.press, bow.surface);
+        dissipated_[bow.element] += bow.dissipated + buffer;
+    }
+}
+
+void Simulation::set_parameter(const ParameterSlot& s, double v) {
+    using K = ParameterSlot::Kind;
+    CompiledLevel& lv = model_.levels[s.level];
+    switch (s.kind) {
+        case K::Mass:
+            lv.mass[s.index] = v, lv.coeff[s.index] = lv.dt * lv.dt / v;
+            for (auto& point : lv.modal_points) {  // a point's response follows its modes'
+                point.coeff = 0;
+                for (std::size_t k = 0; k < point.modes.size(); ++k)
+                    point.coeff += point.weights[k] * point.weights[k] * lv.coeff[point.modes[k]];
+            }
+            break;
+        case K::ChainK:
+            lv.chain_k[s.index] = v;
+            break;
+        case K::ChainZ:
+            lv.chain_zdt[s.index] = v / lv.dt;
+            break;
+        case K::ChainLength: {
+            const Lia& l = model_.source.lias[lv.chain_element[s.index]];
+            const bool forward = model_.source.mats[lv.element_of[s.index]].id == l.from;
+            lv.chain_length[s.index] = forward ? v : -v;
+            lv.has_chain_lengths = lv.has_chain_lengths || v != 0.0;
+            break;
+        }
+        case K::LinkK:
+            lv.links[s.index].k = v;
+            break;
+        case K::LinkZ:
+            lv.links[s.index].zdt = v / lv.dt;
+            break;
+        case K::LinkLength:
+            lv.links[s.index].length = lv.links[s.index].contact ? -v : v;
+            break;
+        case K::GroundK:
+            lv.grounds[s.index].k = v;
+            break;
+        case K::GroundZ:
+            lv.grounds[s.index].zdt = v / lv.dt;
+            break;
+        case K::CrossK:
+            model_.cross_links[s.index].k = v;
+            break;
+        case K::CrossZ:
+            model_.cross_links[s.index].zdt = v / lv.dt;
+            break;
+        case K::CrossLength:
+            model_.cross_links[s.index].length = model_.cross_links[s.index].contact ? -v : v;
+            break;
+        case K::BowKb:
+            model_.bows[s.index].kb = v;
+            break;
+        case K::BowZb:
+            model_.bows[s.index].zbdt = v / lv.dt;
+            break;
+        case K::BowMuS:
+            model_.bows[s.index].mu_s = v;
+            break;
+        case K::BowMuD:
+            model_.bows[s.index].mu_d = v;
+            break;
+        case K::BowV0:
+            model_.bows[s.index].v0 = v;
+            break;
+        case K::GesturePositionScale:
+            lv.gestures[s.index].position_scale = v;
+            break;
+        case K::GestureForceScale:
+            lv.gestures[s.index].force_scale = v;
+            break;
+        case K::FixedPosition:
+            for (auto& b : lv.buffer) b[s.index] = v;
+            break;
+    }
+}
+
+double Simulation::parameter(const ParameterSlot& s) const {
+    using K = ParameterSlot::Kind;
+    const CompiledLevel& lv = model_.levels[s.level];
+    switch (s.kind) {
+        case K::Mass:
+            return lv.mass[s.index];
+        case K::ChainK:
+            return lv.chain_k[s.index];
+        case K::ChainZ:
+            return lv.chain_zdt[s.index] * lv.dt;
+        case K::ChainLength: {
+            const Lia& l = model_.source.lias[lv.chain_element[s.index]];
+            const bool forward = model_.source.mats[lv.element_of[s.index]].id == l.from;
+            return forward ? lv.chain_length[s.index] : -lv.chain_length[s.index];
+        }
+        case K::LinkK:
+            return lv.links[s.index].k;
+        case K::LinkZ:
+            return lv.links[s.index].zdt * lv.dt;
+        case K::LinkLength:
+            return lv.links[s.index].contact ? -lv.links[s.index].length : lv.links[s.index].length;
+        case K::GroundK:
+            return lv.grounds[s.index].k;
+        case K::GroundZ:
+            return lv.grounds[s.index].zdt * lv.dt;
+        case K::CrossK:
+            return model_.cross_links[s.index].k;
+        case K::CrossZ:
+            return model_.cross_links[s.index].zdt * lv.dt;
+        case K::CrossLength: {
+            const auto& l = model_.cross_links[s.index];
+            return l.contact ? -l.length : l.length;
+        }
+        case K::BowKb:
+            return model_.bows[s.index].kb;
+        case K::BowZb:
+            return model_.bows[s.index].zbdt * lv.dt;
+        case K::BowMuS:
+            return model_.bows[s.index].mu_s;
+        case K::BowMuD:
+            return model_.bows[s.index].mu_d;
+        case K::BowV0:
+            return model_.bows[s.index].v0;
+        case K::GesturePositionScale:
+            return lv.gestures[s.index].position_scale;
+        case K::GestureForceScale:
+            return lv.gestures[s.index].force_scale;
+        case K::FixedPosition:
+            return lv.x()[s.index];
+    }
+    return 0;
+}
+
+double Simulation::hand_work() const {
+    // The newest force's half of the move the hand links will see at their next tick.
+    double pending = 0;
+    for (int i = 0; i < model_.hand_links; ++i) {
+        const CompiledCrossLink& l = model_.cross_links[i];
+        pending +=
+            l.hand_sign * 0.5 * l.force *
+            (seen_position(l.hand_slot, CompiledCrossLink::EndRate::Slower, true) - l.hand_seen);
+    }
+    return hand_work_ + pending;
+}
+
+double Simulation::stored_energy() const {
+    // Kinetic ½m((x[n]−x[n−1])/T)², ½K·d[n]·d[n−1] per spring, and −(Z/4T)·(d[n]−d[n−1])² per
+    // damper: the energy a backward-difference damper has taken in but not yet lost. With it,
+    // a step's dissipation is Z·T·v² of the centred velocity, never negative, so the books
+    // close at every step whatever the hand does.
+    double e = 0;
+    for (const auto& lv : model_.levels) {
+        const double* x = lv.x();
+        const double* xp = lv.x_prev();
+        auto in_flight = [&](double zdt, int a, int b) {
+            const double u = (x[a] - x[b]) - (xp[a] - xp[b]);
+            return 0.25 * zdt * u * u;
+        };
+        for (int s = 1; s <= lv.size; ++s) {
+            const double v = (x[s] - xp[s]) / lv.dt;
+            e += 0.5 * lv.mass[s] * v * v;
+        }
+        for (int j = 1; j < lv.size; ++j)
+            e += 0.5 * lv.chain_k[j] * (x[j] - x[j + 1] - lv.chain_length[j]) *
+                     (xp[j] - xp[j + 1] - lv.chain_length[j]) -
+                 in_flight(lv.chain_zdt[j], j, j + 1);
+        for (const auto& l : lv.links) {
+            const double d = x[l.a] - x[l.b] - l.length, dp = xp[l.a] - xp[l.b] - l.length;
+            if (!l.contact || (d > 0 && dp > 0)) e += 0.5 * l.k * d * dp;
+            if (!l.contact || d > 0) e -= in_flight(l.zdt, l.a, l.b);
+        }
+        for (const auto& g : lv.grounds) {
+            const double u = x[g.index] - xp[g.index];
+            e += 0.5 * g.k * (x[g.index] - g.rest) * (xp[g.index] - g.rest) - 0.25 * g.zdt * u * u;
+        }
+        for (int b : lv.bows) {
+            const auto& bow = model_.bows[b];
+            const double p = x[bow.press] - x[bow.surface], pp = xp[bow.press] - xp[bow.surface];
+            if (p > 0 && pp > 0) e += 0.5 * bow.kb * p * pp;
+            if (p > 0) e -= in_flight(bow.zbdt, bow.press, bow.surface);
+        }
+    }
+    for (const auto& l : model_.cross_links) {
+        const double d =
+            seen_position(l.a, l.a_rate, true) - seen_position(l.b, l.b_rate, true) - l.length;
+        const double dp = l.d_prev - l.length;
+        if (!l.contact || (d > 0 && dp > 0)) e += 0.5 * l.k * d * dp;
+        if (!l.contact || d > 0) e -= 0.25 * l.zdt * (d - dp) * (d - dp);
+    }
+    return e;
+}
+
+GestureSample Simulation::device_force() const {
+    GestureSample f{};
+    for (const auto& lv : model_.levels)
+        for (const auto& g : lv.gestures)
+            (g.axis == GestureAxis::Slide ? f.slide : f.press) += g.force_scale * g.force;
+    return f;
+}
+
+double Simulation::power_in() const {
+    double p = 0;
+    for (const auto& lv : model_.levels)
+        for (const auto& g : lv.gestures) p += g.power;
+    return p;
+}
+
+double Simulation::probe(std::size_t i) const {
+    const CompiledProbe& p = model_.probes[i];
+    switch (p.kind) {
+        case ProbeKind::Position:
+            return position(p.mat);
+        case ProbeKind::Velocity:
+            return velocity(p.mat);
+        case ProbeKind::Force:
+            return model_.levels[p.mat.level].watched_force[p.watched];
+        case ProbeKind::NormalForce:
+            return model_.bows[p.bow].normal;
+        case ProbeKind::FrictionForce:
+            return model_.bows[p.bow].friction;
+        case ProbeKind::SlipVelocity:
+            return model_.bows[p.bow].slip_velocity;
+        case ProbeKind::Energy:
+            return stored_energy();
+        case ProbeKind::PowerIn:
+            return power_in();
+    }
+    return 0;
+}
+
+double Simulation::output() const {
+    double sum = 0;
+    for (const auto& o : model_.outputs) {
+        double v = 0;
+        switch (o.signal) {
+            case Output::Signal::Position:
+                v = position(o.mat);
+                break;
+            case Output::Signal::Velocity:
+                v = velocity(o.mat);
+                break;
+            case Output::Signal::Force:
+                v = model_.levels[o.mat.level].watched_force[o.watched];
+                break;
+        }
+        sum += o.gain * v;
+    }
+    return model_.output_gain * sum;
+}
+
+}  // namespace archet

@@ -1,0 +1,60 @@
+// The state of a running simulation as a flat list of numbers, in one fixed order, so that a
+// take started mid-performance can be re-rendered from exactly where it began.
+
+#include <type_traits>
+
+#include "archet/physics/simulation.hpp"
+
+namespace archet {
+
+template <class Self, class Field>
+void Simulation::for_each_state(Self& self, Field&& field) {
+    auto all = [&](auto& values) {
+        for (auto& v : values) field(v);
+    };
+    field(self.tick_), field(self.hand_work_);
+    field(self.device_.slide), field(self.device_.press);
+    all(self.active_), all(self.countdown_), all(self.period_done_), all(self.dissipated_);
+    for (auto& lv : self.model_.levels) {
+        field(lv.current);
+        for (auto& buffer : lv.buffer) all(buffer);
+        // Parameters may have changed while playing; forces carry over between steps.
+        all(lv.coeff), all(lv.mass), all(lv.external), all(lv.held);
+        all(lv.chain_k), all(lv.chain_zdt), all(lv.chain_length), all(lv.chain_force);
+        all(lv.watched_force);
+        for (auto& l : lv.links) field(l.k), field(l.zdt), field(l.length);
+        for (auto& g : lv.grounds) field(g.k), field(g.zdt), field(g.rest);
+        for (auto& g : lv.gestures) {
+            field(g.position_scale), field(g.force_scale), field(g.force), field(g.work);
+            field(g.power), field(g.faster_links_force), field(g.faster_links_work);
+        }
+        for (auto& p : lv.modal_points) field(p.coeff);
+    }
+    for (auto& b : self.model_.bows) {
+        field(b.kb), field(b.zbdt), field(b.mu_s), field(b.mu_d), field(b.v0);
+        field(b.normal), field(b.friction), field(b.slip_velocity), field(b.dissipated);
+        field(b.sticking);
+    }
+    for (auto& l : self.model_.cross_links) {
+        field(l.k), field(l.zdt), field(l.length), field(l.d_prev), field(l.force);
+        field(l.d_before), field(l.acting), field(l.hand_seen), field(l.hand_force_sum);
+        field(l.hand_work_sum);
+    }
+}
+
+std::size_t Simulation::state_size() const {
+    std::size_t n = 0;
+    for_each_state(*this, [&](const auto&) { ++n; });
+    return n;
+}
+
+void Simulation::save_state(double* out) const {
+    for_each_state(*this, [&](const auto& v) { *out++ = static_cast<double>(v); });
+}
+
+void Simulation::load_state(const double* in) {
+    for_each_state(*this,
+                   [&](auto& v) { v = static_cast<std::remove_reference_t<decltype(v)>>(*in++); });
+}
+
+}  // namespace archet

@@ -1,0 +1,141 @@
+// Playability maps: the regime classifier on constructed signals of each regime, and the map
+// of the shipped 220 Hz string, which shows Schelleng's picture: a Helmholtz band between
+// multiple slipping at low force and raucous motion at high force, whose lower edge falls as
+// the bow moves away from the bridge. Shards merge into the same map. (At β 0.08, 0.14, 0.2
+// and ten forces from 2 mN to 2 N it reads, from the least force up, s s s m m m m h r a /
+// s s m m h h h h r r / s r m m h h h r r r: s silent, m multiple slip, h Helmholtz,
+// r raucous, a anomalous low.)
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "archet/analysis/playability.hpp"
+#include "archet/files/model_file.hpp"
+#include "test_support.hpp"
+
+namespace archet {
+namespace {
+
+constexpr double kFs = 48000, kPitch = 220;
+constexpr std::size_t kSamples = 24000;
+
+// Slip velocity with pulses of `width` (fraction of the period) at the given phases of each
+// `periods`-long cycle; a sound that repeats with the same cycle.
+struct Signals {
+    std::vector<double> slip, sound;
+};
+Signals periodic(const std::vector<double>& phases, double width, double periods) {
+    Signals s;
+    const double cycle = periods * kFs / kPitch;
+    for (std::size_t n = 0; n < kSamples; ++n) {
+        const double u = std::fmod(static_cast<double>(n), cycle) / cycle;  // 0…1 in the cycle
+        bool slipping = false;
+        for (double p : phases) slipping = slipping || (u >= p && u < p + width / periods);
+        s.slip.push_back(slipping ? -0.8 : 0.0);
+        s.sound.push_back(u - 0.5 + 0.3 * std::sin(2 * std::numbers::pi * 3 * u));
+    }
+    return s;
+}
+
+TEST(Classifier, NamesEachRegimeOfConstructedSignals) {
+    const Signals helmholtz = periodic({0.0}, 0.12, 1);
+    EXPECT_EQ(classify_regime(helmholtz.slip, helmholtz.sound, kFs, kPitch).regime,
+              Regime::Helmholtz);
+    const Signals multiple = periodic({0.0, 0.45}, 0.06, 1);
+    const auto m = classify_regime(multiple.slip, multiple.sound, kFs, kPitch);
+    EXPECT_EQ(m.regime, Regime::MultipleSlip);
+    EXPECT_NEAR(m.slips_per_period, 2.0, 0.05);
+    const Signals low = periodic({0.0}, 0.12, 2);  // a period of two string periods
+    const auto l = classify_regime(low.slip, low.sound, kFs, kPitch);
+    EXPECT_EQ(l.regime, Regime::AnomalousLow);
+    EXPECT_NEAR(l.pitch_cents, -1200, 10);
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> u(0, 1);
+    Signals raucous;
+    for (std::size_t n = 0; n < kSamples; ++n) {
+        raucous.slip.push_back(u(random) < 0.1 ? 0.5 : 0.0);
+        raucous.sound.push_back(u(random) - 0.5);
+    }
+    EXPECT_EQ(classify_regime(raucous.slip, raucous.sound, kFs, kPitch).regime, Regime::Raucous);
+    const std::vector<double> still(kSamples, 0.0);
+    EXPECT_EQ(classify_regime(still, still, kFs, kPitch).regime, Regime::Silent);
+    // The spectral centroid of a 220 Hz sawtooth-like sound lies above its fundamental.
+    EXPECT_GT(classify_regime(helmholtz.slip, helmholtz.sound, kFs, kPitch).centroid, kPitch);
+}
+
+TEST(PlayabilityMap, TheShippedStringShowsSchellengsPicture) {
+    const Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    MapGrid grid;
+    grid.force_min = 0.002, grid.force_max = 2.0, grid.force_steps = 10;
+    grid.position_min = 0.08, grid.position_max = 0.2, grid.position_steps = 3;
+    grid.duration = 1.0;
+    const auto points = play_map(model, grid, 2);
+    ASSERT_EQ(points.size(), grid.size());
+    std::string picture;
+    std::vector<double> lowest_helmholtz;
+    for (int j = 0; j < grid.position_steps; ++j) {
+        // Along the force axis at this position: multiple slips, then Helmholtz, then raucous.
+        std::vector<Regime> column;
+        for (int i = 0; i < grid.force_steps; ++i)
+            column.push_back(points[i * grid.position_steps + j].analysis.regime);
+        for (Regime r : column) picture += std::string(to_string(r)).substr(0, 1);
+        picture += " ";
+        const auto first_h = std::find(column.begin(), column.end(), Regime::Helmholtz);
+        ASSERT_NE(first_h, column.end())
+            << "a Helmholtz band at β " << grid.position(j) << ": " << picture;
+        // Below the band: multiple slipping (and, at the very least force, no sustained motion).
+        EXPECT_NE(std::find(column.begin(), first_h, Regime::MultipleSlip), first_h)
+            << "too little force slips several times a period: " << picture;
+        EXPECT_TRUE(column.back() == Regime::Raucous || column.back() == Regime::AnomalousLow)
+            << "too much force: " << picture;
+        lowest_helmholtz.push_back(
+            grid.force(static_cast<std::size_t>(first_h - column.begin()) * grid.position_steps));
+    }
+    EXPECT_GE(lowest_helmholtz.front(), lowest_helmholtz.back())
+        << "the lower edge falls as the bow moves away from the bridge: " << picture;
+    EXPECT_GT(lowest_helmholtz.front(), lowest_helmholtz.back() * 1.5) << picture;
+    // Schelleng's own lines, from the string's parameters, bracket a band in the same place.
+    const SchellengBounds b = schelleng_bounds(model, 0.12, grid.speed);
+    EXPECT_GT(b.maximum, 10 * b.minimum);
+    EXPECT_GT(b.maximum, 0.3);
+    EXPECT_LT(b.maximum, 1.5) << "about 0.7 N for a violin-like string bowed at 0.1 m/s";
+}
+
+TEST(PlayabilityMap, ShardsMergeIntoTheWholeMap) {
+    const Model model = load_model_file(test::resource("models/bowed-string-440.json"));
+    const auto dir = test::temp_dir("map-shards");
+    const std::string path = test::resource("models/bowed-string-440.json").string();
+    const std::vector<std::string> grid{"--force",    "0.01:1:3", "--position", "0.1:0.15:2",
+                                        "--duration", "0.4",      "--jobs",     "1"};
+    auto run = [&](std::vector<std::string> extra) {
+        std::vector<std::string> args{"map", path};
+        args.insert(args.end(), grid.begin(), grid.end());
+        args.insert(args.end(), extra.begin(), extra.end());
+        return test::run_archet(args);
+    };
+    auto whole = run({"-o", (dir / "whole.csv").string()});
+    ASSERT_EQ(whole.status, 0) << whole.err;
+    for (int s = 0; s < 3; ++s) {
+        const auto r = run({"--shard", std::to_string(s) + "/3", "-o",
+                            (dir / ("part" + std::to_string(s) + ".csv")).string()});
+        ASSERT_EQ(r.status, 0) << r.err;
+    }
+    const auto merged = test::run_archet(
+        {"map", "merge", (dir / "part0.csv").string(), (dir / "part1.csv").string(),
+         (dir / "part2.csv").string(), "--model", path, "-o", (dir / "merged.csv").string(),
+         "--png", (dir / "map.png").string()});
+    ASSERT_EQ(merged.status, 0) << merged.err;
+    EXPECT_EQ(test::read_file(dir / "merged.csv"), test::read_file(dir / "whole.csv"))
+        << "a sharded sweep is the same map, to the byte";
+    EXPECT_GT(test::read_file(dir / "map.png").size(), 5000u);
+    const auto missing = test::run_archet({"map", "merge", (dir / "part0.csv").string(), "--model",
+                                           path, "-o", (dir / "bad.csv").string()});
+    EXPECT_EQ(missing.status, 2);
+    EXPECT_NE(missing.err.find("do not cover the grid"), std::string::npos) << missing.err;
+}
+
+}  // namespace
+}  // namespace archet

@@ -1,0 +1,265 @@
+// Takes recorded through the shared-memory protocol: the studio starts one in the middle of
+// a performance, changes a parameter while it records and stops it; `archet render --take`
+// then reproduces the take's audio to the byte from the state where it began. A take refuses
+// a folder that holds files and ends when a new model is loaded; an engine told to stop
+// finishes its take, one killed outright leaves a take `render --take` recovers, and a take
+// that clips says so.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sndfile.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "archet/files/take_file.hpp"
+#include "archet/link/engine_link.hpp"
+#include "take_file_support.hpp"
+#include "test_support.hpp"
+
+namespace archet::ipc {
+namespace {
+
+using test::read_json;
+using test::samples_of;
+using test::size_of;
+
+using namespace std::chrono_literals;
+
+using test::wait_for;
+
+// The engine, playing a shipped model, with the status frames it has sent so far.
+/// Waits for what the machine's speed decides (TSan on two shared cores is slow).
+constexpr std::chrono::milliseconds kGenerous{60000};
+
+class EngineSession {
+  public:
+    EngineSession() : link_(options()) {}
+
+    static EngineLinkOptions options() {
+        EngineLinkOptions o;
+        o.archet_binary = ARCHET_BINARY;
+        o.takes = std::filesystem::temp_directory_path().string();  // test::temp_dir's folders
+        return o;
+    }
+
+    bool start(const std::string& model) {
+        link_.start();
+        if (!wait_for([&] { return link_.liveness() == EngineLink::Liveness::Running; }, kGenerous))
+            return false;
+        const auto loaded = link_.load_model(test::resource(model).string());
+        if (!await(StatusKind::ModelLoaded,
+                   [&](const StatusFrame& f) { return f.sequence == loaded; }))
+            return false;
+        link_.play();
+        return true;
+    }
+
+    // Plays `seconds` of sound (counted in the samples played, not in wall-clock time, which a
+    // slow machine stretches), the pad bowing at 0.1 m/s with a slow swell of pressure (or at
+    // `press`).
+    void bow(double seconds, double press = 0) {
+        const auto until = played_ + static_cast<std::uint64_t>(seconds * 48000);
+        bow_until([&] { return played_ >= until; }, press);
+    }
+    // Bows on until `done` (or a generous timeout): true if it holds.
+    bool bow_until(const std::function<bool()>& done, double press = 0) {
+        return wait_for(
+            [&] {
+                link_.gesture(0.1 * elapsed_,
+                              press > 0 ? press : 0.0015 + 0.0005 * std::sin(3 * elapsed_));
+                link_.heartbeat();
+                drain();
+                elapsed_ += 0.002;
+                return done();
+            },
+            kGenerous);
+    }
+
+    // Waits for a status frame of `kind` that `accept`s; remembers errors on the way.
+    bool await(StatusKind kind, const std::function<bool(const StatusFrame&)>& accept) {
+        return wait_for(
+            [&] {
+                link_.heartbeat();
+                StatusFrame f;
+                while (status_.try_pop(f)) {
+                    realtime_allocations_ = f.realtime_allocations;
+                    if (f.kind == static_cast<std::uint32_t>(StatusKind::Error))
+                        errors_.push_back(f.text);
+                    if (f.kind == static_cast<std::uint32_t>(kind) && accept(f)) return true;
+                }
+                drain();
+                return false;
+            },
+            kGenerous);
+    }
+
+    bool await_take_written(std::string* text = nullptr) {
+        return await(StatusKind::Take, [&](const StatusFrame& f) {
+            const std::string said = f.text;
+            if (text) *text = said;
+            return said.rfind("written ", 0) == 0 || said.rfind("take failed", 0) == 0;
+        });
+    }
+
+    EngineLink& link() { return link_; }
+    const std::vector<std::string>& errors() const { return errors_; }
+    std::uint64_t realtime_allocations() const { return realtime_allocations_; }
+
+  private:
+    void drain() {  // the studio reads its scopes, so the engine never waits on them
+        ProbeFrame p;
+        while (probes_.try_pop(p)) ++played_;
+        ShapeFrame s;
+        while (shapes_.try_pop(s)) {
+        }
+    }
+
+    EngineLink link_;
+    SpscRing<StatusFrame> status_ = link_.status();
+    SpscRing<ProbeFrame> probes_ = link_.probes();
+    SpscRing<ShapeFrame> shapes_ = link_.shapes();
+    std::vector<std::string> errors_;
+    std::uint64_t realtime_allocations_ = 0;  ///< as the newest status frame counts them
+    std::uint64_t played_ = 0;                ///< probe frames received: samples played
+    double elapsed_ = 0;
+};
+
+// Re-renders the take in `dir`/take and expects take.wav to the byte.
+void expect_replayed(const std::filesystem::path& dir, const char* why) {
+    const auto r = test::run_archet(
+        {"render", "--take", (dir / "take").string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(dir / "take" / "take.wav"))
+        << why;
+}
+
+TEST(EngineTake, StartedMidPerformanceReRendersToTheByte) {
+    const auto dir = test::temp_dir("engine-take");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.bow(0.5);  // the string is sounding when the take starts
+
+    const auto started = engine.link().start_take((dir / "take").string());
+    ASSERT_TRUE(engine.await(StatusKind::Take, [&](const StatusFrame& f) {
+        return f.sequence == started && std::string(f.text).rfind("recording ", 0) == 0;
+    })) << (engine.errors().empty() ? "" : engine.errors()[0]);
+    engine.bow(0.4);
+    engine.link().set_parameter("friction.mu_s", 0.7);  // recorded, and replayed
+    engine.bow(0.4);
+    engine.link().stop_take();
+    std::string said;
+    ASSERT_TRUE(engine.await_take_written(&said)) << said;
+    EXPECT_TRUE(engine.errors().empty()) << engine.errors()[0];
+    EXPECT_EQ(engine.realtime_allocations(), 0u)
+        << "saving the state and feeding the take allocate nothing on the real-time thread";
+
+    const TakeDescription take = read_take_file(dir / "take" / "take.json");
+    EXPECT_TRUE(take.has_state) << "it began mid-performance";
+    EXPECT_TRUE(take.has_parameters);
+    EXPECT_GT(take.start_tick, 10000u);
+    EXPECT_GT(take.frames, 20000u);
+    expect_replayed(dir, "the re-rendered take differs");
+}
+
+TEST(EngineTake, RefusesAFolderThatHoldsFiles) {
+    const auto dir = test::temp_dir("engine-take-busy");
+    std::ofstream(dir / "keep.txt") << "mine";
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    const auto started = engine.link().start_take(dir.string());
+    ASSERT_TRUE(engine.await(StatusKind::Error,
+                             [&](const StatusFrame& f) { return f.sequence == started; }));
+    EXPECT_NE(engine.errors().back().find("already holds files"), std::string::npos)
+        << engine.errors().back();
+    EXPECT_EQ(test::read_file(dir / "keep.txt"), "mine");
+}
+
+TEST(EngineTake, ANewModelEndsTheTake) {
+    const auto dir = test::temp_dir("engine-take-swap");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.link().start_take((dir / "take").string());
+    engine.bow(0.3);
+    engine.link().load_model(test::resource("models/bowed-string-440.json").string());
+    std::string said;
+    ASSERT_TRUE(engine.await_take_written(&said)) << said;
+    expect_replayed(dir, "what was recorded before the swap still replays exactly");
+}
+
+// Killed outright, the engine finishes nothing: `render --take` recovers what it recorded.
+TEST(EngineTake, AKilledEnginesTakeIsRecoveredByRender) {
+    const auto dir = test::temp_dir("engine-take-kill");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.bow(0.3);
+    engine.link().start_take((dir / "take").string());
+    ASSERT_TRUE(engine.bow_until([&] {
+        return size_of(dir / "take" / "take.wav") > 48000 * 3 / 2;
+    })) << "the take never grew";
+    // A change made while it records: streamed, and replayed by the recovered take.
+    engine.link().set_parameter("friction.mu_s", 0.7);
+    const std::uintmax_t before = size_of(dir / "take" / "take.wav");
+    ASSERT_TRUE(engine.bow_until(
+        [&] { return size_of(dir / "take" / "take.wav") > before + 48000 * 3 / 2; }));
+    ::kill(engine.link().engine_pid(), SIGKILL);
+    ASSERT_TRUE(wait_for([&] { return engine.link().liveness() == EngineLink::Liveness::Exited; },
+                         kGenerous));
+    const std::uintmax_t recorded = (size_of(dir / "take" / "take.wav") - 44) / 3;
+    const auto r = test::run_archet(
+        {"render", "--take", (dir / "take").string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("interrupted"), std::string::npos) << r.err;
+    const std::vector<int> original = samples_of(dir / "take" / "take.wav");
+    EXPECT_EQ(original.size(), recorded) << "take.wav's header now counts all its samples";
+    EXPECT_TRUE(samples_of(dir / "again.wav") == original)
+        << "the recovered take reproduces what was recorded, from the state where it began";
+    const TakeDescription take = read_take_file(dir / "take" / "take.json");
+    EXPECT_TRUE(take.has_state && take.has_parameters && take.interrupted);
+    EXPECT_FALSE(std::filesystem::exists(dir / "take" / "gesture.jsonl")) << "now gesture.json";
+}
+
+// SIGTERM (a logout, a service manager) ends the engine, but its take is finished first.
+TEST(EngineTake, ASigtermedEngineFinishesItsTake) {
+    const auto dir = test::temp_dir("engine-take-term");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.bow(0.3);
+    engine.link().start_take((dir / "take").string());
+    ASSERT_TRUE(engine.bow_until([&] { return size_of(dir / "take" / "take.wav") > 48000; }));
+    ::kill(engine.link().engine_pid(), SIGTERM);
+    ASSERT_TRUE(wait_for([&] { return engine.link().liveness() == EngineLink::Liveness::Exited; },
+                         kGenerous));
+    const nlohmann::json description = read_json(dir / "take" / "take.json");
+    ASSERT_TRUE(description.is_object()) << "take.json is missing or damaged";
+    EXPECT_EQ(description.value("complete", false), true);
+    EXPECT_EQ(description.value("interrupted", false), true);
+    EXPECT_EQ(description.value("interrupted_by", ""), "SIGTERM");
+    expect_replayed(dir, "the interrupted take re-renders to the byte");
+}
+
+// A take that clips says so in take.json and in the message the studio shows, though the
+// live limiter kept what was heard clean.
+TEST(EngineTake, TheFinishedMessageSaysTheTakeClipped) {
+    const auto dir = test::temp_dir("engine-take-clip");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.link().start_take((dir / "take").string());
+    engine.bow(0.6, 0.1);
+    engine.link().stop_take();
+    std::string said;
+    ASSERT_TRUE(engine.await_take_written(&said)) << said;
+    EXPECT_NE(said.find("clipped"), std::string::npos) << said;
+    EXPECT_NE(said.find("output_gain"), std::string::npos) << said;
+    const nlohmann::json description = read_json(dir / "take" / "take.json");
+    ASSERT_TRUE(description.is_object());
+    EXPECT_GT(description.value("clipped_samples", 0.0), 100.0) << description.dump();
+    EXPECT_GE(description.value("peak", 0.0), 1.0);
+}
+
+}  // namespace
+}  // namespace archet::ipc

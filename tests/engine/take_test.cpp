@@ -1,0 +1,334 @@
+// Live takes: re-rendering a take's gesture reproduces its audio to the byte; SIGINT, SIGTERM
+// and SIGHUP finish the take cleanly; a take killed outright is recovered by `render --take`;
+// a take that clips says so; a take never writes into a folder that holds files.
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sndfile.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <fcntl.h>
+
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "archet/builders/bowed_string.hpp"
+#include "archet/engine/take_recorder.hpp"
+#include "archet/files/take_file.hpp"
+#include "take_file_support.hpp"
+#include "test_support.hpp"
+
+extern char** environ;
+
+namespace archet {
+namespace {
+
+using test::read_json;
+using test::samples_of;
+using test::size_of;
+
+sf_count_t frames_of(const std::filesystem::path& wav) {
+    SF_INFO info{};
+    SNDFILE* f = sf_open(wav.c_str(), SFM_READ, &info);
+    if (!f) return -1;
+    sf_close(f);
+    return info.frames;
+}
+
+void expect_reproduced(const std::vector<std::string>& play_extra, const std::string& name) {
+    const auto dir = test::temp_dir(name);
+    const std::string model = test::resource("models/bowed-string-220.json").string();
+    std::vector<std::string> play{"play", model,    "--duration",
+                                  "1",    "--take", (dir / "take").string()};
+    play.insert(play.end(), play_extra.begin(), play_extra.end());
+    auto r = test::run_archet(play);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const sf_count_t frames = frames_of(dir / "take" / "take.wav");
+    // Sound: how much of the wall-clock second was played is the machine's speed (a machine
+    // that stalls, or runs under a sanitizer, loses whole blocks, which the take never had).
+    ASSERT_GT(frames, 0);
+    std::ostringstream duration;
+    duration << std::setprecision(17) << static_cast<double>(frames) / 48000.0;
+    r = test::run_archet({"render", model, "--gesture", (dir / "take" / "gesture.json").string(),
+                          "--duration", duration.str(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(dir / "take" / "take.wav"))
+        << "the re-rendered take differs";
+    // And in one command, from the take's own description.
+    r = test::run_archet(
+        {"render", "--take", (dir / "take").string(), "-o", (dir / "replayed.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "replayed.wav"), test::read_file(dir / "take" / "take.wav"))
+        << "render --take differs";
+    // And it was a real take: bowed, with probes for every sample.
+    const std::string csv = test::read_file(dir / "take" / "probes.csv");
+    EXPECT_EQ(static_cast<sf_count_t>(std::count(csv.begin(), csv.end(), '\n')), frames + 1);
+}
+
+TEST(Take, WithTheSimulatedHandReRendersToTheByte) {
+    expect_reproduced({"--haptic", "sim"}, "take-hand");
+}
+
+TEST(Take, FromAGestureFileReRendersToTheByte) {
+    expect_reproduced({"--gesture", test::resource("gestures/detache.json").string()}, "take-file");
+}
+
+// `archet play --take`, started in the background.
+pid_t spawn_play(const std::filesystem::path& take, const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args{
+        ARCHET_BINARY, "play", test::resource("models/bowed-string-220.json").string(),
+        "--duration",  "600",  "--take",
+        take.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    // What it says goes to play.log beside the take.
+    const std::string log = (take.parent_path() / "play.log").string();
+    posix_spawn_file_actions_t files;
+    ::posix_spawn_file_actions_init(&files);
+    ::posix_spawn_file_actions_addopen(&files, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::posix_spawn_file_actions_adddup2(&files, 1, 2);
+    pid_t pid = -1;
+    const int failed = ::posix_spawn(&pid, argv[0], &files, nullptr, argv.data(), environ);
+    ::posix_spawn_file_actions_destroy(&files);
+    return failed ? -1 : pid;
+}
+
+// Waits for the process to end (generously: CI runs under ThreadSanitizer on two cores) and
+// returns its wait status, or -1 if it never ended (then it is killed).
+int wait_status(pid_t pid) {
+    int status = -1;
+    const bool ended = test::wait_for([&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
+                                      std::chrono::seconds(60));
+    if (!ended) {
+        ::kill(pid, SIGKILL);
+        ::waitpid(pid, &status, 0);
+        return -1;
+    }
+    return status;
+}
+
+// Files a finished command must not leave behind: temporaries, and a take's streams.
+std::vector<std::string> leftovers(const std::filesystem::path& dir) {
+    std::vector<std::string> found;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) {
+        const std::string name = e.path().filename().string();
+        if (name.find(".tmp-") != std::string::npos || e.path().extension() == ".jsonl")
+            found.push_back(name);
+    }
+    return found;
+}
+
+constexpr std::uintmax_t kOneSecondOfWav = 48000 * 3;  // 24-bit mono at 48 kHz
+
+class TakeSignal : public ::testing::TestWithParam<int> {};
+
+// SIGINT, SIGTERM and SIGHUP finish the take: every file is written, take.json says it was
+// interrupted and by what, the player exits 128 + the signal, and the take re-renders exactly.
+TEST_P(TakeSignal, FinishesTheTakeCleanly) {
+    const int signal = GetParam();
+    const auto dir = test::temp_dir("take-signal-" + std::to_string(signal));
+    const auto take = dir / "take";
+    const pid_t pid = spawn_play(take);
+    ASSERT_GT(pid, 0);
+    // Once it has recorded a while: the take is under way.
+    const bool recording = test::wait_for(
+        [&] { return size_of(take / "take.wav") > kOneSecondOfWav / 2; }, std::chrono::seconds(60));
+    ::kill(pid, signal);
+    const int status = wait_status(pid);
+    ASSERT_TRUE(recording) << "take.wav never grew";
+    ASSERT_TRUE(WIFEXITED(status))
+        << "ended by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0)
+        << " without finishing the take";
+    EXPECT_EQ(WEXITSTATUS(status), 128 + signal);
+    const std::string said = test::read_file(dir / "play.log");
+    EXPECT_NE(said.find("take written to " + take.string()), std::string::npos) << said;
+    EXPECT_NE(said.find(std::string("interrupted by SIG") + ::sigabbrev_np(signal)),
+              std::string::npos)
+        << said;
+
+    const nlohmann::json description = read_json(take / "take.json");
+    ASSERT_TRUE(description.is_object()) << "take.json is missing or damaged";
+    EXPECT_EQ(description.value("complete", false), true);
+    EXPECT_EQ(description.value("interrupted", false), true);
+    EXPECT_EQ(description.value("interrupted_by", ""), std::string("SIG") + ::sigabbrev_np(signal));
+    EXPECT_TRUE(std::filesystem::exists(take / "gesture.json"));
+    EXPECT_EQ(leftovers(dir), std::vector<std::string>{});
+    const sf_count_t frames = frames_of(take / "take.wav");
+    EXPECT_EQ(description.value("frames", 0), frames);
+    EXPECT_EQ(static_cast<std::uintmax_t>(frames) * 3 + 44, size_of(take / "take.wav"))
+        << "the header counts every sample written";
+    const std::string csv = test::read_file(take / "probes.csv");
+    EXPECT_EQ(static_cast<sf_count_t>(std::count(csv.begin(), csv.end(), '\n')), frames + 1);
+
+    const auto r =
+        test::run_archet({"render", "--take", take.string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("interrupted"), std::string::npos) << "render says so: " << r.err;
+    EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(take / "take.wav"))
+        << "the interrupted take re-renders to the byte";
+}
+
+INSTANTIATE_TEST_SUITE_P(Take, TakeSignal, ::testing::Values(SIGINT, SIGTERM, SIGHUP),
+                         [](const auto& info) { return std::string(::sigabbrev_np(info.param)); });
+
+// After SIGKILL nothing could finish the take: `render --take` recovers what was recorded,
+// repairs take.wav's header, says the take was interrupted, and reproduces every sample.
+TEST(Take, AKilledTakeIsRecoveredByRender) {
+    const auto dir = test::temp_dir("take-kill");
+    const auto take = dir / "take";
+    const pid_t pid =
+        spawn_play(take, {"--gesture", test::resource("gestures/detache.json").string()});
+    ASSERT_GT(pid, 0);
+    const bool recording =
+        test::wait_for([&] { return size_of(take / "take.wav") > kOneSecondOfWav * 3 / 4; },
+                       std::chrono::seconds(60));
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+    ASSERT_TRUE(recording) << "take.wav never grew";
+    const std::uintmax_t recorded = (size_of(take / "take.wav") - 44) / 3;
+
+    const auto r =
+        test::run_archet({"render", "--take", take.string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("interrupted"), std::string::npos) << "render says so: " << r.err;
+    const std::vector<int> original = samples_of(take / "take.wav");
+    EXPECT_EQ(original.size(), recorded) << "take.wav's header now counts all its samples";
+    const std::vector<int> again = samples_of(dir / "again.wav");
+    ASSERT_EQ(again.size(), original.size()) << "renders exactly the samples recorded";
+    EXPECT_TRUE(again == original) << "the recovered take reproduces what was recorded";
+    EXPECT_GT(*std::max_element(original.begin(), original.end()), 1 << 12) << "it was bowed";
+    const nlohmann::json description = read_json(take / "take.json");
+    EXPECT_EQ(description.value("interrupted", false), true);
+    // And again, now that it is repaired: the same sound.
+    const auto twice =
+        test::run_archet({"render", "--take", take.string(), "-o", (dir / "twice.wav").string()});
+    ASSERT_EQ(twice.status, 0) << twice.err;
+    EXPECT_EQ(test::read_file(dir / "twice.wav"), test::read_file(dir / "again.wav"));
+}
+
+// A take being recorded is not "recovered" under its recorder's feet: render refuses it.
+TEST(Take, RenderRefusesATakeStillBeingRecorded) {
+    const auto dir = test::temp_dir("take-busy-render");
+    const auto take = dir / "take";
+    const pid_t pid = spawn_play(take);
+    ASSERT_GT(pid, 0);
+    const bool recording = test::wait_for(
+        [&] { return size_of(take / "take.wav") > kOneSecondOfWav / 4; }, std::chrono::seconds(60));
+    const auto r =
+        test::run_archet({"render", "--take", take.string(), "-o", (dir / "again.wav").string()});
+    ::kill(pid, SIGTERM);
+    const int status = wait_status(pid);
+    ASSERT_TRUE(recording) << "take.wav never grew";
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("is being recorded right now"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "again.wav"));
+    ASSERT_TRUE(WIFEXITED(status));
+    const nlohmann::json description = read_json(take / "take.json");
+    EXPECT_EQ(description.value("interrupted_by", ""), "SIGTERM") << "the player finished it";
+}
+
+// A take that clips says so, in take.json and on the terminal: the live limiter kept what
+// was heard clean, but take.wav holds the model's own output.
+TEST(Take, ClippingIsRecordedAndWarned) {
+    const auto dir = test::temp_dir("take-clip");
+    {
+        std::ofstream(dir / "hard.json")
+            << R"({"format": "archet-gesture", "version": 1, "name": "hard",
+                  "keyframes": [{"t": 0, "slide": 0, "press": 0.1},
+                                {"t": 1.2, "slide": 0.12, "press": 0.1}]})";
+    }
+    const auto r = test::run_archet(
+        {"play", test::resource("models/bowed-string-220.json").string(), "--duration", "1",
+         "--gesture", (dir / "hard.json").string(), "--take", (dir / "take").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const nlohmann::json description = read_json(dir / "take" / "take.json");
+    ASSERT_TRUE(description.is_object());
+    const double clipped = description.value("clipped_samples", 0.0);
+    EXPECT_GT(clipped, 1000) << description.dump();
+    EXPECT_GE(description.value("peak", 0.0), 1.0);
+    std::int64_t at_full_scale = 0;
+    for (int s : samples_of(dir / "take" / "take.wav"))
+        at_full_scale += s == 0x7FFFFF00 || s == std::numeric_limits<int>::min();
+    EXPECT_EQ(clipped, static_cast<double>(at_full_scale)) << "counts the samples at full scale";
+    EXPECT_NE(r.err.find("clipped"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("output_gain"), std::string::npos) << "says what to change: " << r.err;
+}
+
+TEST(Take, NeverWritesIntoAFolderThatHoldsFiles) {
+    const auto dir = test::temp_dir("take-busy");
+    { std::ofstream(dir / "mine.txt") << "the user's notes"; }
+    const auto r =
+        test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
+                          "--duration", "0.2", "--take", dir.string()});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("already holds files"), std::string::npos) << r.err;
+    EXPECT_EQ(test::read_file(dir / "mine.txt"), "the user's notes");
+}
+
+TEST(Take, ADamagedTakeIsRefusedByNameAndKept) {
+    const auto dir = test::temp_dir("take-damaged");
+    auto r = test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
+                               "--duration", "0.3", "--take", (dir / "take").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string take = (dir / "take").string();
+    const std::string description = test::read_file(dir / "take" / "take.json");
+    auto expect_refused = [&](const std::string& expected) {
+        const auto bad = test::run_archet({"render", "--take", take, "-o", take + "/x.wav"});
+        EXPECT_EQ(bad.status, 2) << bad.err;
+        EXPECT_NE(bad.err.find(expected), std::string::npos) << bad.err;
+        EXPECT_FALSE(std::filesystem::exists(dir / "take" / "x.wav"));
+    };
+    // It says it began mid-performance, but its state is missing, foreign or cut short.
+    std::string with_state = description;
+    with_state.replace(with_state.find("\"state\": false"), 14, "\"state\": true");
+    std::ofstream(dir / "take" / "take.json") << with_state;
+    expect_refused("state.bin: cannot open the state file");
+    std::ofstream(dir / "take" / "state.bin") << "RIFF....WAVE";
+    expect_refused("is not an Archet state file");
+    std::ofstream(dir / "take" / "state.bin") << "archet-state 1 3\n" << std::string(24, '\0');
+    expect_refused("holds 3 numbers but model.json needs");
+    std::ofstream(dir / "take" / "state.bin") << "archet-state 1 3\n" << std::string(10, '\0');
+    expect_refused("is truncated or damaged");
+    std::ofstream(dir / "take" / "take.json") << "{\"format\": \"archet-take\", \"version\": 1}";
+    expect_refused("sample_rate");
+    r = test::run_archet({"render", "--take", take,
+                          test::resource("models/bowed-string-220.json").string(), "-o",
+                          take + "/x.wav"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("replays the take as it was played"), std::string::npos) << r.err;
+    EXPECT_GT(test::read_file(dir / "take" / "take.wav").size(), 10000u) << "the take is kept";
+}
+
+// A take never holds non-finite sound (libsndfile writes NaN as full-scale DC): the first
+// non-finite sample ends what it holds, and take.json says the simulation stopped being finite.
+TEST(Take, ANonFiniteSampleEndsTheTakeAndSaysSo) {
+    const auto dir = test::temp_dir("take-non-finite");
+    {
+        TakeRecorder take(dir / "take", build_bowed_string(BowedStringOptions{}), 48000, {"x"});
+        take.begin(0);
+        const double probe = 0.5;
+        for (int i = 0; i < 100; ++i) take.sample((i + 1) / 48000.0, 0.25, &probe, 1);
+        take.sample(101 / 48000.0, std::numeric_limits<double>::quiet_NaN(), &probe, 1);
+        for (int i = 101; i < 200; ++i) take.sample((i + 1) / 48000.0, 0.25, &probe, 1);
+        take.finish();
+    }
+    const std::vector<int> samples = samples_of(dir / "take" / "take.wav");
+    EXPECT_EQ(samples.size(), 100u) << "nothing from the first non-finite sample on";
+    for (int s : samples) EXPECT_GT(s, 0) << "no full-scale DC";
+    const TakeDescription description = read_take_file(dir / "take" / "take.json");
+    EXPECT_TRUE(description.interrupted);
+    EXPECT_NE(description.interrupted_by.find("stopped being finite at t = 0.0021"),
+              std::string::npos)
+        << description.interrupted_by;
+}
+
+}  // namespace
+}  // namespace archet

@@ -1,0 +1,239 @@
+// The gesture link with a simulated hand on the device: whatever the hand does (sine, chirp,
+// random, impact), over every window, down to one step, the model gains no more energy than
+// the hand put in; forces stay within what the device renders; stale data and a stalled simulation
+// give zero force within one period.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <random>
+#include <thread>
+
+#include "archet/evdev_device.hpp"
+#include "archet/files/model_file.hpp"
+#include "archet/haptic_link.hpp"
+#include "archet/haptic_loop.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "archet/simulated_hand.hpp"
+#include "test_support.hpp"
+
+namespace archet {
+namespace {
+
+using Target = std::function<GestureSample(double)>;
+
+struct Outcome {
+    /// max over every window [i, j] of ΔE − W_hand (J): the rise of E − W above its lowest
+    /// value so far, checked after every step.
+    double worst_gain = -1;
+    double energy_scale = 0;
+    double max_force = 0;
+    std::uint64_t ticks = 0, stale = 0;
+    double max_friction = 0;
+};
+
+// The engine's loop in lockstep: hand and model advance on one clock.
+Outcome play(const Target& target, double seconds, SimulatedHandOptions hand_options = {}) {
+    Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    model.gesture.reset();
+    Simulation sim(compile(model));
+    SimulatedHand hand(hand_options);
+    HapticLink link(hand);
+    const double fs = sim.sample_rate(), dt = 1 / fs;
+    const int divider = 16;
+    Outcome run;
+    // E − W never rising over any window is the same as it never rising above its value at
+    // any earlier step: keep the lowest value seen and compare every step with it.
+    double lowest = sim.stored_energy() - sim.hand_work();
+    for (std::uint64_t n = 0; n < static_cast<std::uint64_t>(seconds * fs); ++n) {
+        const double t = static_cast<double>(n) * dt;
+        hand.set_target(target(t));
+        hand.advance(t, dt);
+        if (n % divider == 0) {
+            link.tick(sim, t, divider * dt);
+            run.max_force = std::max({run.max_force, std::abs(link.last_force().slide),
+                                      std::abs(link.last_force().press)});
+        }
+        sim.step();
+        const double stored = sim.stored_energy(), balance = stored - sim.hand_work();
+        run.worst_gain = std::max(run.worst_gain, balance - lowest);
+        lowest = std::min(lowest, balance);
+        run.energy_scale = std::max(run.energy_scale, stored);
+        run.max_friction = std::max(run.max_friction, std::abs(sim.model().bows[0].friction));
+    }
+    run.ticks = link.ticks(), run.stale = link.stale_ticks();
+    return run;
+}
+
+void expect_passive(const Outcome& r, const char* what) {
+    EXPECT_GT(r.max_friction, 0.01) << what << ": the hand bowed the string";
+    // Over every window, down to a single step, the model holds no more energy than the
+    // hand put in.
+    EXPECT_LE(r.worst_gain, 1e-12 * r.energy_scale) << what << ": the coupling created energy";
+    EXPECT_LE(r.stale, 4u) << what << ": only before the device's first reading";
+}
+
+GestureSample pressing(double slide) {
+    return {slide, 0.0015};
+}
+
+TEST(Haptics, PassiveUnderSine) {
+    expect_passive(
+        play([](double t) { return pressing(0.03 * std::sin(2 * std::numbers::pi * 1.5 * t)); },
+             2.0),
+        "sine");
+}
+
+TEST(Haptics, PassiveUnderChirp) {
+    expect_passive(play(
+                       [](double t) {
+                           return pressing(0.02 * std::sin(2 * std::numbers::pi * (1 + 4 * t) * t));
+                       },
+                       2.0),
+                   "chirp");
+}
+
+TEST(Haptics, PassiveUnderRandomMotion) {
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> u(-0.04, 0.04), p(0.0, 0.004);
+    std::vector<GestureSample> points;
+    for (int i = 0; i < 60; ++i) points.push_back({u(random), p(random)});
+    expect_passive(
+        play([&](double t) { return points[static_cast<std::size_t>(t * 25) % points.size()]; },
+             2.0),
+        "random");
+}
+
+TEST(Haptics, PassiveUnderAnImpact) {
+    // A steady stroke, then the hand slams the bow down.
+    expect_passive(play(
+                       [](double t) {
+                           return GestureSample{0.05 * t, t < 0.7 ? 0.001 : 0.02};
+                       },
+                       1.5),
+                   "impact");
+}
+
+TEST(Haptics, ForcesStayWithinWhatTheDeviceRenders) {
+    SimulatedHandOptions weak;
+    weak.capabilities.max_force = 0.05;  // a small device: the bow force exceeds it
+    const Outcome r = play([](double t) { return GestureSample{0.05 * t, 0.004}; }, 1.0, weak);
+    EXPECT_LE(r.max_force, 0.05);
+    EXPECT_GT(r.max_force, 0.049);
+}
+
+TEST(Haptics, StaleDeviceDataGivesZeroForce) {
+    // A device whose readings stopped: the link holds position and renders nothing.
+    class FrozenDevice final : public HapticDevice {
+      public:
+        HapticCapabilities capabilities() const override { return {}; }
+        HapticReading read() const override {
+            return {0.01, 0.003, 0.0};
+        }  // measured at t = 0, never again
+        void write(double s, double p, double) override { last = {s, p}; }
+        GestureSample last{1, 1};
+    } device;
+    Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    model.gesture.reset();
+    Simulation sim(compile(model));
+    HapticLink link(device);
+    link.tick(sim, 0.0, 1.0 / 3000);
+    EXPECT_EQ(link.stale_ticks(), 0u);
+    link.tick(sim, 0.02, 1.0 / 3000);  // 20 ms later, no new reading
+    EXPECT_EQ(link.stale_ticks(), 1u);
+    EXPECT_EQ(device.last.slide, 0.0);
+    EXPECT_EQ(device.last.press, 0.0);
+}
+
+TEST(Haptics, DeviceLetsGoWhenTheSimulationStalls) {
+    SimulatedHand hand;
+    hand.write(2.0, 1.0, 0.0);
+    for (double t = 0; t < 0.0025; t += 1.0 / 48000) hand.advance(t, 1.0 / 48000);
+    // The force arrived after the latency and was rendered...
+    SimulatedHand fresh;
+    fresh.write(2.0, 1.0, 0.0);
+    double rendered = 0;
+    for (double t = 0; t < 0.0019; t += 1.0 / 48000) {
+        fresh.advance(t, 1.0 / 48000);
+        rendered = std::max(rendered, fresh.applied_force().slide);
+        fresh.write(2.0, 1.0, t);  // the simulation keeps sending
+    }
+    EXPECT_EQ(rendered, 2.0);
+    // ...and with no new force for one device period, it is gone.
+    EXPECT_EQ(hand.applied_force().slide, 0.0);
+    EXPECT_EQ(hand.applied_force().press, 0.0);
+}
+
+TEST(Haptics, HandReadingsRespectRateLatencyAndResolution) {
+    SimulatedHandOptions o;
+    o.capabilities.position_rate = 500;
+    o.latency = 0.004;
+    o.resolution = 1e-3;
+    SimulatedHand hand(o);
+    hand.set_target({0.02, 0.0});
+    double previous_time = -1;
+    int updates = 0;
+    for (int n = 0; n < 48000; ++n) {
+        const double t = n / 48000.0;
+        hand.advance(t, 1 / 48000.0);
+        const HapticReading r = hand.read();
+        if (r.time != previous_time && r.time >= 0) {
+            ++updates;
+            EXPECT_NEAR(std::remainder(r.slide, 1e-3), 0.0, 1e-12) << "quantised to the resolution";
+            EXPECT_GE(t - r.time, 0.004 - 1e-9) << "reported after the latency";
+            previous_time = r.time;
+        }
+    }
+    EXPECT_NEAR(updates, 500, 3) << "at the device's own rate";
+    EXPECT_NEAR(hand.position().slide, 0.02, 1e-3) << "the hand reached its target";
+}
+
+TEST(Haptics, AForceFeedbackJoystickAnswersThroughEvdev) {
+    const auto devices = list_haptic_devices();
+    if (devices.empty())
+        GTEST_SKIP() << "no force-feedback joystick in /dev/input (needs hardware)";
+    const std::string path = devices.front().substr(6, devices.front().find(':') - 6);
+    EvdevDevice device(path);
+    EXPECT_FALSE(device.capabilities().name.empty());
+    device.write(0.1, 0.0, 0.0);  // a gentle push, then let go
+    bool answered = false;        // waited for, up to a generous minute: not assumed after 50 ms
+    for (int i = 0; i < 12000 && !(answered = !device.stale(0.0, 0.02)); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    EXPECT_TRUE(answered) << "its I/O thread answers";
+    const HapticReading r = device.read();
+    EXPECT_LE(std::abs(r.slide), device.capabilities().range);
+}
+
+// The engine swaps models under a device that goes on: the hand's clock is the device's, not
+// the model's (a new model's time starts again at 0). Judged on model time, the simulated hand
+// would not report a new position until the new model's time caught up with the old one's.
+TEST(Haptics, TheSimulatedHandGoesOnReportingAcrossAModelSwap) {
+    Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    model.gesture.reset();
+    SimulatedHand hand;
+    const auto moving = [](double t) { return GestureSample{-0.05 + 0.1 * t, 0.0015}; };
+    double device_time = 0;
+    auto play = [&](Simulation& sim, HapticLoop& loop, double seconds) {
+        for (int n = 0; n < static_cast<int>(seconds * sim.sample_rate()); ++n) {
+            loop.before_step(sim, moving(device_time), device_time);
+            sim.step();
+            device_time += 1.0 / sim.sample_rate();
+        }
+    };
+    Simulation first(compile(model));
+    HapticLoop first_loop(hand, &hand, first);
+    play(first, first_loop, 1.0);
+    Simulation second(compile(model));  // the swap: a new model, at rest, at its time 0
+    HapticLoop second_loop(hand, &hand, second);
+    const double before = hand.read().slide;
+    play(second, second_loop, 0.1);
+    EXPECT_NEAR(hand.read().slide - before, 0.1 * 0.1, 0.002) << "the hand goes on moving";
+    EXPECT_NEAR(second.device_position().slide, hand.read().slide, 1e-9)
+        << "and the new model's gesture points follow it";
+    EXPECT_GT(std::abs(second.model().bows[0].friction), 0.01) << "the new model is bowed";
+}
+
+}  // namespace
+}  // namespace archet

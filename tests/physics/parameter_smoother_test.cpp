@@ -1,0 +1,83 @@
+// Live parameter changes glide instead of stepping; every parameter reads back what was set.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "archet/builders/bowed_string.hpp"
+#include "archet/model/model_parameters.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "archet/physics/parameter_smoother.hpp"
+
+namespace archet {
+namespace {
+
+TEST(ParameterSmoother, GlidesLinearlyToTheTarget) {
+    Simulation sim(compile(build_bowed_string({})));
+    const auto slot = sim.model().resolve_parameter("friction", "mu_s");
+    ParameterSmoother smoother;
+    smoother.glide(sim, slot, 0.9, 480);
+    double previous = sim.parameter(slot);
+    EXPECT_EQ(previous, 0.8);
+    for (int i = 0; i < 480; ++i) {
+        smoother.advance(sim);
+        const double now = sim.parameter(slot);
+        EXPECT_NEAR(now - previous, 0.1 / 480, 1e-12) << "step " << i;
+        previous = now;
+        sim.step();
+    }
+    EXPECT_EQ(sim.parameter(slot), 0.9);
+    EXPECT_EQ(smoother.active(), 0u);
+}
+
+TEST(ParameterSmoother, RetargetsFromWhereItIsAndSetsAtOnceWhenFull) {
+    Simulation sim(compile(build_bowed_string({})));
+    const auto slot = sim.model().resolve_parameter("k3", "stiffness");
+    const double start = sim.parameter(slot);
+    ParameterSmoother smoother;
+    smoother.glide(sim, slot, 2 * start, 100);
+    for (int i = 0; i < 50; ++i) smoother.advance(sim);
+    EXPECT_NEAR(sim.parameter(slot), 1.5 * start, 1e-9 * start);
+    smoother.glide(sim, slot, start, 10);  // back, from halfway
+    EXPECT_EQ(smoother.active(), 1u);
+    for (int i = 0; i < 10; ++i) smoother.advance(sim);
+    EXPECT_NEAR(sim.parameter(slot), start, 1e-9 * start);
+    for (int i = 0; i < static_cast<int>(ParameterSmoother::kCapacity); ++i)
+        smoother.glide(sim, sim.model().resolve_parameter("k" + std::to_string(i + 1), "damping"),
+                       1e-4, 100);
+    const auto extra = sim.model().resolve_parameter("k40", "damping");
+    smoother.glide(sim, extra, 2e-4, 100);
+    EXPECT_EQ(sim.parameter(extra), 2e-4) << "no room: set at once";
+}
+
+TEST(SimulationParameters, EveryKindReadsBackWhatWasSet) {
+    const Model model = build_bowed_string({});
+    Simulation sim(compile(model));
+    for (const auto& [element, name] :
+         std::vector<std::pair<std::string, std::string>>{{"s5", "mass"},
+                                                          {"k3", "stiffness"},
+                                                          {"k3", "damping"},
+                                                          {"bridge", "stiffness"},
+                                                          {"bridge", "damping"},
+                                                          {"bow_hold", "stiffness"},
+                                                          {"bow_hold", "damping"},
+                                                          {"friction", "buffer_stiffness"},
+                                                          {"friction", "buffer_damping"},
+                                                          {"friction", "mu_s"},
+                                                          {"friction", "mu_d"},
+                                                          {"friction", "v0"},
+                                                          {"hand_slide", "position_scale"},
+                                                          {"hand_press", "force_scale"},
+                                                          {"surface", "position"}}) {
+        const auto slot = sim.model().resolve_parameter(element, name);
+        EXPECT_NEAR(sim.parameter(slot), get_parameter(model, element, name),
+                    1e-12 * std::abs(get_parameter(model, element, name)))
+            << element << "." << name;
+        const double value = 0.37 * (get_parameter(model, element, name) + 1.0);
+        sim.set_parameter(slot, value);
+        EXPECT_NEAR(sim.parameter(slot), value, 1e-12 * std::abs(value)) << element << "." << name;
+    }
+}
+
+}  // namespace
+}  // namespace archet

@@ -1,0 +1,590 @@
+// The studio's model editor under Qt's offscreen platform: placing, connecting, moving,
+// deleting, copying and pasting elements on the canvas, each undone and redone exactly; a
+// model edited in the editor saves and reloads identically; the inspector refuses a value
+// that would make the scheme unstable and says why; the modes panel finds the string's. What
+// the studio shows stays readable: scope axes that do not magnify round-off, a spectrum that
+// resolves the lowest string's partials and says how finely, frequencies in plain hertz,
+// regimes and messages in words, pastes beside their originals, labels at a readable size.
+
+#include <gtest/gtest.h>
+
+#include <qcustomplot.h>
+#include <QApplication>
+#include <QDir>
+#include <QGraphicsView>
+#include <QLabel>
+#include <QStandardPaths>
+#include <QTableWidget>
+#include <QTest>
+#include <QWheelEvent>
+#include <cmath>
+#include <numbers>
+#include <set>
+
+#include "archet/builders/bowed_string.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/files/model_file.hpp"
+#include "archet/model/model_parameters.hpp"
+#include "archet/ui/compare_figure.hpp"
+#include "archet/ui/compare_view.hpp"
+#include "archet/ui/graph_view.hpp"
+#include "archet/ui/inspector.hpp"
+#include "archet/ui/main_window.hpp"
+#include "archet/ui/model_document.hpp"
+#include "archet/ui/modes_panel.hpp"
+#include "archet/ui/new_string_dialog.hpp"
+#include "archet/ui/playability_figure.hpp"
+#include "archet/ui/playability_panel.hpp"
+#include "archet/ui/probe_history.hpp"
+#include "archet/ui/scope_panel.hpp"
+#include "studio_test_support.hpp"
+#include "test_support.hpp"
+
+namespace archet::ui {
+namespace {
+
+std::string text_of(const Model& m) {
+    return format_model(m);
+}
+
+// A small editable model: two masses on a spring between fixed ends.
+Model little_model() {
+    Model m;
+    m.name = "little";
+    m.mats = {test::fixed("left"), test::mass("a", 0.01), test::mass("b", 0.01),
+              test::fixed("right")};
+    for (std::size_t i = 0; i < m.mats.size(); ++i)
+        m.mats[i].display = std::make_pair(100.0 * static_cast<double>(i), 0.0);
+    m.lias = {test::spring_damper("k1", "left", "a", 100, 0.01),
+              test::spring_damper("k2", "a", "b", 100, 0.01),
+              test::spring_damper("k3", "b", "right", 100, 0.01)};
+    m.outputs = {{"a", Output::Signal::Position, 1.0}};
+    return m;
+}
+
+class Editor : public ::testing::Test {
+  protected:
+    void SetUp() override {
+        document.reset(little_model());
+        view.resize(800, 400);
+        view.show();
+        view.fit();
+    }
+    QPoint screen_of(const QString& id) { return view.mapFromScene(view.node_position(id)); }
+    QPoint screen_at(QPointF scene) { return view.mapFromScene(scene); }
+
+    ModelDocument document;
+    GraphView view{document};
+};
+
+TEST_F(Editor, PlacingConnectingMovingAndDeletingAreEachUndoable) {
+    const std::string original = text_of(document.model());
+    std::vector<std::string> after_each;
+
+    view.set_tool(GraphView::Tool::AddMat, MatKind::Mass);
+    QTest::mouseClick(view.viewport(), Qt::LeftButton, {}, screen_at({150, 120}));
+    ASSERT_EQ(document.model().mats.size(), 5u) << "a mass placed where clicked";
+    const Mat& added = document.model().mats.back();
+    EXPECT_NEAR(added.display->first, 150, 2);
+    EXPECT_NEAR(added.display->second, 120, 2);
+    const QString m1 = QString::fromStdString(added.id);
+    after_each.push_back(text_of(document.model()));
+
+    view.set_tool(GraphView::Tool::Connect, MatKind::Mass, LiaKind::Spring);
+    QTest::mousePress(view.viewport(), Qt::LeftButton, {}, screen_of("b"));
+    QTest::mouseMove(view.viewport(), screen_of(m1));
+    QTest::mouseRelease(view.viewport(), Qt::LeftButton, {}, screen_of(m1));
+    ASSERT_EQ(document.model().lias.size(), 4u) << "dragging from b to the new mass joins them";
+    EXPECT_EQ(document.model().lias.back().from, "b");
+    EXPECT_EQ(QString::fromStdString(document.model().lias.back().to), m1);
+    after_each.push_back(text_of(document.model()));
+
+    view.set_tool(GraphView::Tool::Select);
+    document.move({m1}, {30, -10}, false);
+    EXPECT_NEAR(document.model().find_mat(m1.toStdString())->display->first, 180, 2);
+    after_each.push_back(text_of(document.model()));
+
+    view.select({m1});
+    QTest::keyClick(view.viewport(), Qt::Key_Delete);
+    EXPECT_EQ(document.model().mats.size(), 4u);
+    EXPECT_EQ(document.model().lias.size(), 3u) << "its link goes with it";
+    after_each.push_back(text_of(document.model()));
+
+    // Back to the start one step at a time, then forward again.
+    for (int i = static_cast<int>(after_each.size()) - 2; i >= -1; --i) {
+        document.undo_stack().undo();
+        EXPECT_EQ(text_of(document.model()), i >= 0 ? after_each[i] : original) << "undo " << i;
+    }
+    for (const std::string& expected : after_each) {
+        document.undo_stack().redo();
+        EXPECT_EQ(text_of(document.model()), expected);
+    }
+}
+
+TEST_F(Editor, DraggingANodeMovesItInOneStep) {
+    const QPoint from = screen_of("a");
+    const QPoint to = from + QPoint(40, 30);
+    QTest::mousePress(view.viewport(), Qt::LeftButton, {}, from);
+    for (int i = 1; i <= 4; ++i) QTest::mouseMove(view.viewport(), from + (to - from) * i / 4);
+    QTest::mouseRelease(view.viewport(), Qt::LeftButton, {}, to);
+    const QPointF moved = view.mapToScene(to) - view.mapToScene(from);
+    EXPECT_NEAR(document.model().find_mat("a")->display->first, 100 + moved.x(), 1.0);
+    EXPECT_NEAR(document.model().find_mat("a")->display->second, moved.y(), 1.0);
+    EXPECT_EQ(document.undo_stack().count(), 1);
+    document.undo_stack().undo();
+    EXPECT_NEAR(document.model().find_mat("a")->display->first, 100, 1e-9);
+}
+
+TEST_F(Editor, ADragsMovesMergeIntoOneStep) {
+    document.move({"a"}, {5, 0}, true);
+    document.move({"a"}, {5, 0}, true);
+    document.move({"a"}, {5, 0}, true);
+    EXPECT_EQ(document.undo_stack().count(), 1);
+    EXPECT_NEAR(document.model().find_mat("a")->display->first, 115, 1e-9);
+    document.undo_stack().undo();
+    EXPECT_NEAR(document.model().find_mat("a")->display->first, 100, 1e-9);
+}
+
+TEST_F(Editor, CopyAndPasteDuplicateMassesAndTheLinksAmongThem) {
+    const QString copied = document.copy({"a", "b", "k2"});
+    const QStringList added = document.paste(copied, {0, 80});
+    EXPECT_EQ(added.size(), 3) << added.join(",").toStdString();
+    EXPECT_EQ(document.model().mats.size(), 6u);
+    EXPECT_EQ(document.model().lias.size(), 4u);
+    const Lia& pasted = document.model().lias.back();
+    EXPECT_EQ(pasted.from, "a_2");
+    EXPECT_EQ(pasted.to, "b_2");
+    EXPECT_NEAR(document.model().find_mat("a_2")->display->second, 80, 1e-9);
+    EXPECT_TRUE(document.paste("not a model", {}).isEmpty()) << "foreign clipboard text is ignored";
+    document.undo_stack().undo();
+    EXPECT_EQ(text_of(document.model()), text_of(little_model()));
+}
+
+TEST_F(Editor, UndoTextsCountElementsInWords) {
+    document.paste(document.copy({"a"}), {0, 80});
+    EXPECT_EQ(document.undo_stack().text(document.undo_stack().count() - 1), "Paste 1 element");
+    document.paste(document.copy({"a", "b", "k2"}), {0, 160});
+    EXPECT_EQ(document.undo_stack().text(document.undo_stack().count() - 1), "Paste 3 elements");
+    document.remove({"a_2", "b_2"});
+    EXPECT_EQ(document.undo_stack().text(document.undo_stack().count() - 1), "Delete 2 elements");
+}
+
+TEST_F(Editor, ARefusedValueReadsAsASentence) {
+    Inspector inspector(document);
+    inspector.show_element("a");
+    EXPECT_FALSE(inspector.edit("mass", 0));
+    const std::string said = inspector.warning().toStdString();
+    EXPECT_NE(said.find("a.mass: must be above 0 kg (is 0)"), std::string::npos) << said;
+    EXPECT_EQ(said.find("0.000000"), std::string::npos) << said;
+    Model model = little_model();
+    try {
+        set_parameter(model, "k1", "damping", -0.25);
+        ADD_FAILURE() << "a negative damping is refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("must be at least 0 N·s/m (is -0.25)"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+// The shipped 110 Hz string as a model that has never been drawn: no display positions.
+Model undrawn_long_string() {
+    Model m = load_model_file(test::resource("models/bowed-string-110.json"));
+    for (Mat& mat : m.mats) mat.display.reset();
+    return m;
+}
+
+TEST(PasteTest, PastedElementsLandNextToTheOriginalsAndNotOnAnEarlierPaste) {
+    ModelDocument document;
+    document.reset(undrawn_long_string());
+    const QStringList originals{"s30", "s31"};
+    const QString copied = document.copy(originals);
+    const QStringList first = document.paste(copied, {40, 40});
+    const QStringList second = document.paste(copied, {40, 40});
+    // The two masses, then the link between them.
+    ASSERT_EQ(first.size(), 3) << first.join(",").toStdString();
+    ASSERT_EQ(second.size(), 3) << second.join(",").toStdString();
+    const auto& model = document.model();
+    auto at = [&](const QString& id) {
+        return document.position_of(*model.find_mat(id.toStdString()));
+    };
+    for (int i = 0; i < 2; ++i) {
+        const QPointF original = at(originals[i]);
+        EXPECT_LT(QLineF(at(first[i]), original).length(), 100)
+            << first[i].toStdString() << " beside " << originals[i].toStdString();
+        EXPECT_LT(QLineF(at(second[i]), original).length(), 200);
+        EXPECT_GT(QLineF(at(second[i]), at(first[i])).length(), 20)
+            << "a second paste is not drawn over the first";
+    }
+}
+
+// A view that fits itself must settle: scroll bars that appeared and vanished as it refitted
+// resized its viewport again and again (the studio froze for seconds on the 440 Hz string).
+TEST(GraphLabelsTest, FittingAModelSettlesAtOnce) {
+    EngineClientOptions no_engine;
+    no_engine.archet_binary = "/nonexistent/archet";  // the editor alone
+    MainWindow window(no_engine);
+    window.resize(1400, 900);
+    window.show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+    struct ResizeCounter : QObject {
+        int resizes = 0;
+        bool eventFilter(QObject*, QEvent* e) override {
+            if (e->type() == QEvent::Resize) ++resizes;
+            return false;
+        }
+    } counter;
+    window.graph().viewport()->installEventFilter(&counter);
+    for (const char* name : {"bowed-string-110", "bowed-string-440", "bowed-string-880"}) {
+        counter.resizes = 0;
+        window.open_model(load_model_file(test::resource(std::string("models/") + name + ".json")));
+        QTest::qWait(300);
+        EXPECT_LE(counter.resizes, 2) << name;
+    }
+    window.graph().viewport()->removeEventFilter(&counter);
+}
+
+TEST(GraphLabelsTest, ALongStringFitsWithReadableLabelsAndZoomingInShowsThemAll) {
+    ModelDocument document;
+    GraphView view(document);
+    view.resize(800, 400);
+    view.show();
+    document.reset(load_model_file(test::resource("models/bowed-string-110.json")));
+    view.fit();
+    ASSERT_GT(document.model().mats.size(), 60u);
+    ASSERT_EQ(view.labels().size(), document.model().mats.size());
+
+    auto on_screen_font_pixels = [&](const QGraphicsSimpleTextItem& label) {
+        const double scale = view.label_on_screen(label).height() / label.boundingRect().height();
+        return QFontInfo(label.font()).pixelSize() * scale;
+    };
+    auto shown = [&] {
+        std::vector<const QGraphicsSimpleTextItem*> visible;
+        for (const auto* label : view.labels())
+            if (label->isVisible()) visible.push_back(label);
+        return visible;
+    };
+    auto expect_readable_and_apart = [&](const char* when) {
+        const auto visible = shown();
+        for (std::size_t i = 0; i < visible.size(); ++i) {
+            EXPECT_GE(on_screen_font_pixels(*visible[i]), 8) << when;
+            for (std::size_t j = i + 1; j < visible.size(); ++j)
+                EXPECT_FALSE(
+                    view.label_on_screen(*visible[i]).intersects(view.label_on_screen(*visible[j])))
+                    << when << ": " << visible[i]->text().toStdString() << " over "
+                    << visible[j]->text().toStdString();
+        }
+    };
+    expect_readable_and_apart("fitted");
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-graph-fitted.png")));
+    EXPECT_GE(shown().size(), 5u) << "some labels stay on a fitted long string";
+    EXPECT_LT(shown().size(), view.labels().size()) << "too dense to show all at once";
+
+    // A selected node shows its id even where labels were thinned out.
+    const QGraphicsSimpleTextItem* hidden = nullptr;
+    for (const auto* label : view.labels())
+        if (!label->isVisible()) hidden = label;
+    ASSERT_NE(hidden, nullptr);
+    view.select({hidden->text()});
+    EXPECT_TRUE(hidden->isVisible());
+    view.select({});
+
+    // The wheel zooms in on the middle: every node in view then has its label.
+    const QPointF middle = view.viewport()->rect().center();
+    QWheelEvent wheel(middle, view.viewport()->mapToGlobal(middle), {}, {0, 1200}, Qt::NoButton,
+                      Qt::NoModifier, Qt::NoScrollPhase, false);
+    QApplication::sendEvent(view.viewport(), &wheel);
+    expect_readable_and_apart("zoomed in");
+    int in_view = 0;
+    for (const auto* label : view.labels()) {
+        const QPoint node = view.mapFromScene(label->parentItem()->scenePos());
+        if (!view.viewport()->rect().contains(node)) continue;
+        ++in_view;
+        EXPECT_TRUE(label->isVisible()) << label->text().toStdString();
+    }
+    EXPECT_GE(in_view, 3);
+    EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-graph-zoomed.png")));
+}
+
+TEST_F(Editor, AnEditedModelSavesAndReloadsIdentically) {
+    document.add_mat(MatKind::Oscillator, {50, 60});
+    document.set_parameter("k2", "stiffness", 250);
+    const auto dir = test::temp_dir("editor-save");
+    write_file_atomically(dir / "edited.json", format_model(document.model()));
+    const Model reloaded = load_model_file(dir / "edited.json");
+    EXPECT_EQ(text_of(reloaded), text_of(document.model()));
+    EXPECT_EQ(reloaded.find_lia("k2")->stiffness, 250);
+}
+
+TEST_F(Editor, TheInspectorRefusesAnUnstableValueAndSaysWhy) {
+    Inspector inspector(document);
+    inspector.show_element("k2");
+    EXPECT_TRUE(inspector.edit("stiffness", 300));
+    EXPECT_EQ(document.model().find_lia("k2")->stiffness, 300);
+    const std::string before = text_of(document.model());
+    // At 48 kHz two 10 g masses go unstable near K = 0.01·(2·48000)²/4 ≈ 2.3e7 N/m.
+    EXPECT_FALSE(inspector.edit("stiffness", 1e9));
+    EXPECT_NE(inspector.warning().indexOf("stab"), -1) << inspector.warning().toStdString();
+    EXPECT_EQ(text_of(document.model()), before) << "nothing changed";
+    EXPECT_FALSE(inspector.edit("stiffness", -5));
+    // Its own margin is on show: how far the stiffness may go before the scheme is unstable.
+    bool margin_shown = false;
+    for (QLabel* label : inspector.findChildren<QLabel*>())
+        margin_shown = margin_shown || label->text().startsWith("below ");
+    EXPECT_TRUE(margin_shown);
+    EXPECT_EQ(text_of(document.model()), before);
+    document.undo_stack().undo();
+    EXPECT_EQ(document.model().find_lia("k2")->stiffness, 100) << "the applied edit undoes";
+}
+
+TEST(CompareViewTest, RendersTwoDampingsSideBySide) {
+    CompareView view(load_model_file(test::resource("models/bowed-string-220.json")));
+    view.resize(1200, 800);
+    view.show();
+    view.set_variation("string.damping", "0.0005, 0.005");
+    bool done = false;
+    QObject::connect(&view, &CompareView::rendered, [&] { done = true; });
+    view.render();
+    ASSERT_TRUE(test::wait_until([&] { return done; }, 300000))
+        << "rendered off the GUI thread (waited for, however slow the machine)";
+    ASSERT_EQ(view.runs().size(), 2u);
+    EXPECT_EQ(view.figure().columns(), 2);
+    EXPECT_GT(view.runs()[1].dissipated_per_period, view.runs()[0].dissipated_per_period);
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-compare.png")));
+    // A/B: the first variant plays (on a device, or a null sink clocked in real time).
+    view.player().play(view.runs()[0].audio, view.runs()[0].sample_rate);
+    EXPECT_TRUE(test::wait_until([&] { return view.player().position() > 1000u; }, 60000))
+        << view.player().description().toStdString();
+    view.player().stop();
+}
+
+TEST(CompareViewTest, ABadVariationIsSaidAndNothingRuns) {
+    CompareView view(load_model_file(test::resource("models/bowed-string-220.json")));
+    view.set_variation("bow.position", "0.1, 0.9");
+    view.render();
+    EXPECT_FALSE(view.busy());
+    EXPECT_TRUE(view.runs().empty());
+}
+
+TEST(NewStringDialogTest, ItsDefaultsBuildTheShippedString) {
+    NewStringDialog dialog;
+    const Model built = build_bowed_string(dialog.options());
+    EXPECT_EQ(format_model(built),
+              format_model(load_model_file(test::resource("models/bowed-string-220.json"))))
+        << "the dialog's defaults are the builder's (and the shipped 220 Hz string's)";
+}
+
+TEST(PlayabilityPanelTest, ComputesInTheBackgroundMarksTheGestureAndPlaysAClickedPoint) {
+    const Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    PlayabilityPanel panel(model, [] { return std::make_pair(0.115, 0.15); });
+    panel.resize(1000, 800);
+    panel.show();
+    MapGrid grid;
+    grid.force_min = 0.005, grid.force_max = 1.5, grid.force_steps = 5;
+    grid.position_min = 0.08, grid.position_max = 0.2, grid.position_steps = 3;
+    grid.duration = 0.6;
+    panel.set_grid(grid);
+    QString error = "not yet";
+    QObject::connect(&panel, &PlayabilityPanel::computed, [&](const QString& e) { error = e; });
+    panel.compute();
+    EXPECT_TRUE(panel.busy());
+    ASSERT_TRUE(test::wait_until([&] { return error != "not yet"; }, 300000));
+    ASSERT_TRUE(error.isEmpty()) << error.toStdString();
+    ASSERT_EQ(panel.points().size(), 15u);
+    QTest::qWait(300);  // the gesture's cross is drawn by the refresh timer
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    EXPECT_TRUE(panel.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-playability.png")));
+    // A click on a point plays it.
+    auto& plot = panel.figure().plot();
+    const MapPoint& p = panel.points()[7];
+    const QPoint pixel(static_cast<int>(plot.xAxis->coordToPixel(p.position)),
+                       static_cast<int>(plot.yAxis->coordToPixel(p.force)));
+    EXPECT_EQ(panel.figure().point_at(pixel), 7);
+    panel.listen(7);
+    EXPECT_TRUE(test::wait_until([&] { return panel.player().position() > 1000u; }, 60000));
+    panel.player().stop();
+}
+
+TEST(ModesPanelTest, FindsTheStringsFundamental) {
+    ModelDocument document;
+    ModesPanel panel(document);
+    document.reset(load_model_file(test::resource("models/bowed-string-220-harmonic.json")));
+    EXPECT_NEAR(panel.fundamental(), 220.0, 1e-6);
+    EXPECT_GT(panel.mode_count(), 20);
+}
+
+TEST(ModesPanelTest, ShowsHertzToOneDecimalAndACentsChartScaledToTheData) {
+    ModelDocument document;
+    ModesPanel panel(document);
+    panel.resize(500, 700);
+    panel.show();
+    auto* table = panel.findChild<QTableWidget*>();
+    auto* chart = panel.findChild<QCustomPlot*>();
+    ASSERT_NE(table, nullptr);
+    ASSERT_NE(chart, nullptr);
+    const QRegularExpression hertz(R"(^\d+(\.\d)? Hz$)");
+    for (const char* shipped :
+         {"models/bowed-string-220.json", "models/bowed-string-220-harmonic.json"}) {
+        document.reset(load_model_file(test::resource(shipped)));
+        ASSERT_GT(table->rowCount(), 10) << shipped;
+        double lowest = 0, highest = 0;
+        bool fundamental_seen = false;
+        for (int row = 0; row < table->rowCount(); ++row) {
+            const QString frequency = table->item(row, 1)->text();
+            EXPECT_TRUE(hertz.match(frequency).hasMatch()) << frequency.toStdString();
+            fundamental_seen = fundamental_seen || frequency == "220.0 Hz";
+            bool number = false;
+            const double cents = table->item(row, 3)->text().toDouble(&number);
+            if (number) lowest = std::min(lowest, cents), highest = std::max(highest, cents);
+        }
+        EXPECT_TRUE(fundamental_seen) << shipped;
+        const QCPRange range = chart->yAxis->range();
+        // Every bar in view (to the 0.05 cents the table rounds to), 0 included ...
+        EXPECT_LE(range.lower, lowest + 0.05) << shipped;
+        EXPECT_GE(range.upper, highest - 0.05) << shipped;
+        // ... at least the ±5 cents below which the ear hears nothing, and not much more than
+        // the data need.
+        EXPECT_GE(range.size(), ModesPanel::kCentsSpan - 1e-9) << shipped;
+        EXPECT_LE(range.size(), std::max(ModesPanel::kCentsSpan, 1.5 * (highest - lowest)) + 0.1)
+            << shipped;
+        chart->replot();
+        const QVector<QString> labels = chart->yAxis->tickVectorLabels();
+        EXPECT_EQ(std::set<QString>(labels.begin(), labels.end()).size(),
+                  static_cast<std::size_t>(labels.size()))
+            << shipped;
+    }
+}
+
+TEST(PlayabilityFigureTest, TheLegendNamesEachRegimeInWords) {
+    const Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    MapGrid grid;
+    grid.force_steps = 1, grid.position_steps = 5;
+    std::vector<MapPoint> points;
+    for (Regime r : {Regime::Helmholtz, Regime::MultipleSlip, Regime::Raucous, Regime::AnomalousLow,
+                     Regime::Silent}) {
+        MapPoint p;
+        p.index = points.size();
+        p.force = grid.force(p.index), p.position = grid.position(p.index);
+        p.analysis.regime = r;
+        points.push_back(p);
+    }
+    PlayabilityFigure figure;
+    figure.resize(1000, 700);
+    figure.show_map(grid, points, model);
+    std::set<QString> names;
+    QCPLegend& legend = *figure.plot().legend;
+    for (int i = 0; i < legend.itemCount(); ++i)
+        if (auto* item = qobject_cast<QCPPlottableLegendItem*>(legend.item(i)))
+            names.insert(item->plottable()->name());
+    for (const char* words : {"Helmholtz", "multiple slip", "raucous", "anomalous low", "silent"})
+        EXPECT_EQ(names.count(words), 1u) << words;
+    for (const QString& name : names)
+        EXPECT_FALSE(name.contains('_') || name == "helmholtz") << name.toStdString();
+}
+
+// A probe history of the streams the scopes read: the bowing point barely moves (round-off
+// on a constant), the output is `sound(t)`.
+ProbeHistory history_of(std::size_t samples, double rate, double (*sound)(double)) {
+    ProbeHistory history;
+    history.reset({"bow_point_x", "friction_force", "bow_point_v", "bow_v", "slip_v"});
+    for (std::size_t i = 0; i < samples; ++i) {
+        const double noise = 1e-12 * std::sin(1.7 * static_cast<double>(i));
+        ipc::ProbeFrame frame{};
+        frame.tick = i;
+        frame.count = 5;
+        frame.values[0] = (0.0568245 + noise) * 1e-3;  // m: 0.0568245 mm
+        frame.values[1] = 0.0568245 + noise;           // N
+        frame.values[2] = frame.values[3] = noise;     // m/s
+        frame.values[4] = 0;
+        frame.output = sound(static_cast<double>(i) / rate);
+        history.append(frame);
+    }
+    return history;
+}
+
+double two_partials(double t) {
+    return std::sin(2 * std::numbers::pi * 110 * t) +
+           0.5 * std::sin(2 * std::numbers::pi * 220 * t);
+}
+
+TEST(ScopePanelTest, ANearlyConstantSignalKeepsEveryAxisReadable) {
+    ScopePanel panel;
+    panel.resize(1200, 800);
+    panel.show();
+    panel.set_trigger_on_slip(false);
+    const ProbeHistory history = history_of(4000, 48000, two_partials);
+    std::vector<float> shape(62, 1e-9f);
+    panel.refresh(history, shape, 48000);
+    using Scope = ScopePanel::Scope;
+    const struct {
+        const char* name;
+        QCPAxis* axis;
+        double minimum_span, centre;
+    } axes[] = {
+        {"displacement", panel.plot(Scope::Displacement).yAxis, ScopePanel::kDisplacementSpanMm,
+         0.0568245},
+        {"force", panel.plot(Scope::Force).yAxis, ScopePanel::kForceSpanN, 0.0568245},
+        {"velocity", panel.plot(Scope::Velocity).yAxis, ScopePanel::kVelocitySpanMPerS, 0},
+        {"Fig. 5 displacement", panel.plot(Scope::ForceAgainstDisplacement).xAxis,
+         ScopePanel::kDisplacementSpanMm, 0.0568245},
+        {"Fig. 5 force", panel.plot(Scope::ForceAgainstDisplacement).yAxis, ScopePanel::kForceSpanN,
+         0.0568245},
+        {"string", panel.plot(Scope::Shape).yAxis, ScopePanel::kShapeSpanMm, 0},
+    };
+    for (const auto& a : axes) {
+        a.axis->parentPlot()->replot();
+        EXPECT_GE(a.axis->range().size(), a.minimum_span * (1 - 1e-9)) << a.name;
+        EXPECT_NEAR(a.axis->range().center(), a.centre, 1e-6) << a.name << ": centred on the data";
+        const QVector<QString> labels = a.axis->tickVectorLabels();
+        EXPECT_GE(labels.size(), 3) << a.name;
+        EXPECT_EQ(std::set<QString>(labels.begin(), labels.end()).size(),
+                  static_cast<std::size_t>(labels.size()))
+            << a.name << ": " << QStringList(labels.begin(), labels.end()).join(" ").toStdString();
+    }
+    QCoreApplication::processEvents();  // the queued replots
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    EXPECT_TRUE(panel.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-scopes-still.png")));
+}
+
+// The local maxima of the drawn spectrum within 20 dB of its highest: the partials.
+std::vector<double> spectrum_peaks(QCustomPlot& plot) {
+    const auto data = plot.graph(0)->data();
+    double highest = -1e300;
+    for (const auto& point : *data) highest = std::max(highest, point.value);
+    std::vector<double> peaks;
+    for (auto it = data->constBegin() + 1; it + 1 < data->constEnd(); ++it)
+        if (it->value > highest - 20 && it->value > (it - 1)->value && it->value >= (it + 1)->value)
+            peaks.push_back(it->key);
+    return peaks;
+}
+
+TEST(ScopePanelTest, TheSpectrumResolvesTheLowestStringsPartialsAndSaysItsResolution) {
+    for (const double rate : {48000.0, 44100.0}) {
+        ScopePanel panel;
+        panel.resize(1200, 800);
+        panel.show();
+        const std::size_t window = ScopePanel::spectrum_window(rate);
+        const double resolution = rate / static_cast<double>(window);
+        EXPECT_LE(resolution, 12) << "partials 110 Hz apart stay apart under a Hann window";
+        QCustomPlot& spectrum = panel.plot(ScopePanel::Scope::Spectrum);
+
+        panel.refresh(history_of(window / 2, rate, two_partials), {}, rate);
+        EXPECT_TRUE(spectrum.graph(0)->data()->isEmpty()) << "no spectrum from half a window";
+        EXPECT_NE(spectrum.xAxis->label().indexOf("waits"), -1)
+            << spectrum.xAxis->label().toStdString();
+
+        panel.refresh(history_of(window + 100, rate, two_partials), {}, rate);
+        const QString said = QString("resolution %1 Hz").arg(resolution, 0, 'f', 1);
+        EXPECT_NE(spectrum.xAxis->label().indexOf(said), -1)
+            << spectrum.xAxis->label().toStdString() << " should say " << said.toStdString();
+        const std::vector<double> peaks = spectrum_peaks(spectrum);
+        ASSERT_EQ(peaks.size(), 2u) << rate;
+        EXPECT_NEAR(peaks[0], 110, resolution) << rate;
+        EXPECT_NEAR(peaks[1], 220, resolution) << rate;
+    }
+}
+
+}  // namespace
+}  // namespace archet::ui

@@ -1,0 +1,54 @@
+#pragma once
+// Helpers shared by the test suites: paths, running the real `archet` binary, and small
+// models built in code.
+
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "archet/model/model.hpp"
+#include "archet/physics/simulation.hpp"
+
+namespace archet::test {
+
+std::filesystem::path source_dir();
+std::filesystem::path resource(const std::string& relative);   ///< under resources/
+std::filesystem::path test_data(const std::string& relative);  ///< under tests/data/
+
+/// A fresh empty folder for one test.
+std::filesystem::path temp_dir(const std::string& name);
+
+struct CommandResult {
+    int status = -1;
+    std::string out, err;
+};
+/// Runs a program with the arguments (each shell-quoted), capturing both streams.
+CommandResult run_command(const std::vector<std::string>& arguments);
+/// The same for the `archet` built here.
+CommandResult run_archet(const std::vector<std::string>& arguments);
+
+std::string read_file(const std::filesystem::path& path);
+
+/// Polls `done` every 2 ms until it holds or `limit` passes; returns its last answer.
+bool wait_for(const std::function<bool()>& done, std::chrono::milliseconds limit);
+
+/// Zero-crossing frequency (Hz) of a signal sampled at fs, with linear interpolation,
+/// from the first to the last upward crossing.
+double zero_crossing_frequency(const std::vector<double>& signal, double fs);
+
+/// Frequency (Hz) of a pure sampled sinusoid from its recurrence x[n+1] + x[n−1] = 2cos(ΩT)x[n],
+/// by least squares: exact to round-off at any number of samples per period.
+double sinusoid_frequency(const std::vector<double>& signal, double fs);
+
+/// A MAT or LIA in one line.
+Mat mass(const std::string& id, double m, double position = 0, const std::string& rate = "audio");
+Mat fixed(const std::string& id, double position = 0, const std::string& rate = "audio");
+Lia spring_damper(const std::string& id, const std::string& from, const std::string& to, double k,
+                  double z, const std::string& rate = "audio");
+
+/// A fixed–fixed homogeneous chain of n masses (ids m1..mn, ends end_a and end_b).
+Model chain(int n, double m, double k, double z, double fs = 48000);
+
+}  // namespace archet::test
