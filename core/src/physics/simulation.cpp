@@ -135,23 +135,6 @@ void Simulation::compute_link_forces(CompiledLevel& lv) {
     }
 }
 
-// A faster link sees a slower MAT move along a straight line over the MAT's period, from
-// its previous position to its newest (a first-order hold): a gesture point then moves
-// smoothly at the link's rate instead of in steps its damper would feel as spikes. The
-// newest position is the one for the end of the period (the MAT computed it a period
-// ahead), so a gesture track or a simulated slower mass are followed without delay.
-inline double Simulation::seen_position(MatSlot s, CompiledCrossLink::EndRate rate,
-                                        bool between_steps) const {
-    if (rate != CompiledCrossLink::EndRate::Slower) return position(s);
-    const CompiledLevel& lv = model_.levels[s.level];
-    double done = period_done_[s.level];
-    if (between_steps) {  // the next step's view
-        const int period = lv.divider, countdown = countdown_[s.level];
-        done = countdown == 0 ? 1.0 : static_cast<double>(period - countdown) / period;
-    }
-    const double from = lv.x_prev()[s.index], to = lv.x()[s.index];
-    return from + (to - from) * done;
-}
 
 // Hand links: a spring-damper from a slower gesture point to a MAT at the link's rate, the
 // usual way to hold a bow. The link sees the hand move along its line and books the hand's
@@ -303,72 +286,6 @@ void Simulation::integrate(CompiledLevel& lv) {
     for (int s : lv.touched) lv.external[s] = 0.0;
 }
 
-// The bow–string friction, solved on the predicted motion so that it is stable for any
-// sharpness of the curve, and strictly passive in the scheme's own energy. Units below are
-// displacement per step (u = v·T); c = T²/m.
-//   u−     relative motion bow − string over the last step
-//   ufree  relative motion over the next step without friction
-//   F      friction on the string (−F on the bow): u+ = ufree − F·csum
-// The energy the friction takes over a step is F·(u+ + u−)/2; it must never be negative.
-// Stick: F closest to ufree/csum (u+ = 0) within [0, (ufree + u−)/csum], the passive range,
-//        when |F| ≤ μs·N.
-// Slip:  F = N·μ(|w|)·sign(w) at the mid-step velocity w = (u+ + u−)/(2T); with the
-//        hyperbolic curve μ(q) = μd + (μs − μd)·v0/(v0 + q) this is a quadratic in |w| with
-//        exactly one positive root.
-void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
-    const double* x = lv.x();
-    const double* xp = lv.x_prev();
-    double* xn = lv.x_next();
-    // How far each side moves per newton over the step: T²/m, or its modes' for a modal point.
-    const double cb = bow.bow_point < 0 ? lv.coeff[bow.bow] : lv.modal_points[bow.bow_point].coeff;
-    const double cs =
-        bow.string_point < 0 ? lv.coeff[bow.string] : lv.modal_points[bow.string_point].coeff;
-    const double csum = cb + cs;
-    const double u_prev = (x[bow.bow] - xp[bow.bow]) - (x[bow.string] - xp[bow.string]);
-    const double u_free = (xn[bow.bow] - x[bow.bow]) - (xn[bow.string] - x[bow.string]);
-    const double n = bow.normal;
-    double f = 0.0;
-    bow.sticking = false;
-    bow.dissipated = 0.0;
-    if (n > 0.0) {
-        const double f_target = u_free / csum;
-        const double f_passive = (u_free + u_prev) / csum;
-        const double f_stick =
-            std::clamp(f_target, std::min(0.0, f_passive), std::max(0.0, f_passive));
-        if (std::abs(f_stick) <= bow.mu_s * n) {
-            f = f_stick;
-            bow.sticking = true;
-            // F·(u+ + u−)/2 with u+ = ufree − F·csum, written so that rounding cannot flip
-            // its sign: F and (F_passive − F) share the sign of F_passive.
-            bow.dissipated = 0.5 * f * csum * (f_passive - f);
-        } else {
-            const double w_free = 0.5 * (u_free + u_prev);
-            const double q_free = std::abs(w_free) / lv.dt;
-            const double alpha = n * csum / (2.0 * lv.dt);
-            const double b = bow.v0 + alpha * bow.mu_d - q_free;
-            const double cq = bow.v0 * (alpha * bow.mu_s - q_free);  // < 0 when slipping
-            const double root = std::sqrt(b * b - 4.0 * cq);
-            const double q = b > 0.0 ? -2.0 * cq / (b + root) : 0.5 * (root - b);
-            const double mu = bow.mu_d + (bow.mu_s - bow.mu_d) * bow.v0 / (bow.v0 + q);
-            f = std::copysign(n * mu, w_free);
-            bow.dissipated = n * mu * q * lv.dt;  // |F|·|w|·T, w the mid-step velocity
-        }
-    }
-    if (bow.string_point < 0)
-        xn[bow.string] += f * cs;
-    else
-        apply_modal_force(lv, bow.string_point, f);
-    if (bow.bow_point < 0)
-        xn[bow.bow] -= f * cb;
-    else
-        apply_modal_force(lv, bow.bow_point, -f);
-    lv.external[bow.string] += f;
-    lv.external[bow.bow] -= f;
-    const double u_next = u_free - f * csum;
-    bow.friction = f;
-    bow.slip_velocity = u_next / lv.dt;
-}
-
 void Simulation::update_modal_points(CompiledLevel& lv) {
     double* xn = lv.x_next();
     for (const auto& p : lv.modal_points) {
@@ -401,36 +318,6 @@ void Simulation::update_gesture_points(CompiledLevel& lv) {
         g.work += work + g.faster_links_work;
         g.power = (work + g.faster_links_work) / lv.dt;
         g.faster_links_force = g.faster_links_work = 0.0;
-    }
-}
-
-void Simulation::account(CompiledLevel& lv) {
-    const double* x = lv.x();
-    const double* xp = lv.x_prev();
-    const double* xn = lv.x_next();
-    // A damper Z takes Z·T·v² over a step, v the centred velocity (x[n+1] − x[n−1])/2T: with
-    // the damper's in-flight term in stored_energy() this closes the books exactly.
-    auto taken = [&](double zdt, int a, int b) {
-        const double centred = (xn[a] - xn[b]) - (xp[a] - xp[b]);
-        return 0.25 * zdt * centred * centred;
-    };
-    const std::size_t lias = model_.source.lias.size();
-    for (int j = 1; j < lv.size; ++j)
-        if (lv.chain_element[j] >= 0)
-            dissipated_[lv.chain_element[j]] += taken(lv.chain_zdt[j], j, j + 1);
-    for (const auto& l : lv.links) {
-        if (l.contact && x[l.a] - x[l.b] - l.length <= 0.0) continue;
-        dissipated_[l.element] += taken(l.zdt, l.a, l.b);
-    }
-    for (const auto& g : lv.grounds)
-        dissipated_[lias + g.element] +=
-            0.25 * g.zdt * (xn[g.index] - xp[g.index]) * (xn[g.index] - xp[g.index]);
-    for (int b : lv.bows) {
-        const CompiledBow& bow = model_.bows[b];
-        const double p = x[bow.press] - x[bow.surface];
-        double buffer = 0;
-        if (p > 0.0 && bow.normal > 0.0) buffer = taken(bow.zbdt, bow.press, bow.surface);
-        dissipated_[bow.element] += bow.dissipated + buffer;
     }
 }
 
@@ -561,123 +448,6 @@ double Simulation::parameter(const ParameterSlot& s) const {
             return lv.x()[s.index];
     }
     return 0;
-}
-
-double Simulation::hand_work() const {
-    // The newest force's half of the move the hand links will see at their next tick.
-    double pending = 0;
-    for (int i = 0; i < model_.hand_links; ++i) {
-        const CompiledCrossLink& l = model_.cross_links[i];
-        pending +=
-            l.hand_sign * 0.5 * l.force *
-            (seen_position(l.hand_slot, CompiledCrossLink::EndRate::Slower, true) - l.hand_seen);
-    }
-    return hand_work_ + pending;
-}
-
-double Simulation::stored_energy() const {
-    // Kinetic ½m((x[n]−x[n−1])/T)², ½K·d[n]·d[n−1] per spring, and −(Z/4T)·(d[n]−d[n−1])² per
-    // damper: the energy a backward-difference damper has taken in but not yet lost. With it,
-    // a step's dissipation is Z·T·v² of the centred velocity, never negative, so the books
-    // close at every step whatever the hand does.
-    double e = 0;
-    for (const auto& lv : model_.levels) {
-        const double* x = lv.x();
-        const double* xp = lv.x_prev();
-        auto in_flight = [&](double zdt, int a, int b) {
-            const double u = (x[a] - x[b]) - (xp[a] - xp[b]);
-            return 0.25 * zdt * u * u;
-        };
-        for (int s = 1; s <= lv.size; ++s) {
-            const double v = (x[s] - xp[s]) / lv.dt;
-            e += 0.5 * lv.mass[s] * v * v;
-        }
-        for (int j = 1; j < lv.size; ++j)
-            e += 0.5 * lv.chain_k[j] * (x[j] - x[j + 1] - lv.chain_length[j]) *
-                     (xp[j] - xp[j + 1] - lv.chain_length[j]) -
-                 in_flight(lv.chain_zdt[j], j, j + 1);
-        for (const auto& l : lv.links) {
-            const double d = x[l.a] - x[l.b] - l.length, dp = xp[l.a] - xp[l.b] - l.length;
-            if (!l.contact || (d > 0 && dp > 0)) e += 0.5 * l.k * d * dp;
-            if (!l.contact || d > 0) e -= in_flight(l.zdt, l.a, l.b);
-        }
-        for (const auto& g : lv.grounds) {
-            const double u = x[g.index] - xp[g.index];
-            e += 0.5 * g.k * (x[g.index] - g.rest) * (xp[g.index] - g.rest) - 0.25 * g.zdt * u * u;
-        }
-        for (int b : lv.bows) {
-            const auto& bow = model_.bows[b];
-            const double p = x[bow.press] - x[bow.surface], pp = xp[bow.press] - xp[bow.surface];
-            if (p > 0 && pp > 0) e += 0.5 * bow.kb * p * pp;
-            if (p > 0) e -= in_flight(bow.zbdt, bow.press, bow.surface);
-        }
-    }
-    for (const auto& l : model_.cross_links) {
-        const double d =
-            seen_position(l.a, l.a_rate, true) - seen_position(l.b, l.b_rate, true) - l.length;
-        const double dp = l.d_prev - l.length;
-        if (!l.contact || (d > 0 && dp > 0)) e += 0.5 * l.k * d * dp;
-        if (!l.contact || d > 0) e -= 0.25 * l.zdt * (d - dp) * (d - dp);
-    }
-    return e;
-}
-
-GestureSample Simulation::device_force() const {
-    GestureSample f{};
-    for (const auto& lv : model_.levels)
-        for (const auto& g : lv.gestures)
-            (g.axis == GestureAxis::Slide ? f.slide : f.press) += g.force_scale * g.force;
-    return f;
-}
-
-double Simulation::power_in() const {
-    double p = 0;
-    for (const auto& lv : model_.levels)
-        for (const auto& g : lv.gestures) p += g.power;
-    return p;
-}
-
-double Simulation::probe(std::size_t i) const {
-    const CompiledProbe& p = model_.probes[i];
-    switch (p.kind) {
-        case ProbeKind::Position:
-            return position(p.mat);
-        case ProbeKind::Velocity:
-            return velocity(p.mat);
-        case ProbeKind::Force:
-            return model_.levels[p.mat.level].watched_force[p.watched];
-        case ProbeKind::NormalForce:
-            return model_.bows[p.bow].normal;
-        case ProbeKind::FrictionForce:
-            return model_.bows[p.bow].friction;
-        case ProbeKind::SlipVelocity:
-            return model_.bows[p.bow].slip_velocity;
-        case ProbeKind::Energy:
-            return stored_energy();
-        case ProbeKind::PowerIn:
-            return power_in();
-    }
-    return 0;
-}
-
-double Simulation::output() const {
-    double sum = 0;
-    for (const auto& o : model_.outputs) {
-        double v = 0;
-        switch (o.signal) {
-            case Output::Signal::Position:
-                v = position(o.mat);
-                break;
-            case Output::Signal::Velocity:
-                v = velocity(o.mat);
-                break;
-            case Output::Signal::Force:
-                v = model_.levels[o.mat.level].watched_force[o.watched];
-                break;
-        }
-        sum += o.gain * v;
-    }
-    return model_.output_gain * sum;
 }
 
 }  // namespace archet

@@ -120,4 +120,22 @@ class Simulation {
     std::vector<HandLinkPlan> hand_plan_;
 };
 
+// A faster link sees a slower MAT move along a straight line over the MAT's period, from
+// its previous position to its newest (a first-order hold): a gesture point then moves
+// smoothly at the link's rate instead of in steps its damper would feel as spikes. The
+// newest position is the one for the end of the period (the MAT computed it a period
+// ahead), so a gesture track or a simulated slower mass are followed without delay.
+inline double Simulation::seen_position(MatSlot s, CompiledCrossLink::EndRate rate,
+                                        bool between_steps) const {
+    if (rate != CompiledCrossLink::EndRate::Slower) return position(s);
+    const CompiledLevel& lv = model_.levels[s.level];
+    double done = period_done_[s.level];
+    if (between_steps) {  // the next step's view
+        const int period = lv.divider, countdown = countdown_[s.level];
+        done = countdown == 0 ? 1.0 : static_cast<double>(period - countdown) / period;
+    }
+    const double from = lv.x_prev()[s.index], to = lv.x()[s.index];
+    return from + (to - from) * done;
+}
+
 }  // namespace archet

@@ -1,0 +1,157 @@
+// The scheme's energy books (what each damper and the bow took over a step, what is stored,
+// what the hands put in) and the probes that read them and the state: Simulation's members.
+#include "archet/physics/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace archet {
+
+void Simulation::account(CompiledLevel& lv) {
+    const double* x = lv.x();
+    const double* xp = lv.x_prev();
+    const double* xn = lv.x_next();
+    // A damper Z takes Z·T·v² over a step, v the centred velocity (x[n+1] − x[n−1])/2T: with
+    // the damper's in-flight term in stored_energy() this closes the books exactly.
+    auto taken = [&](double zdt, int a, int b) {
+        const double centred = (xn[a] - xn[b]) - (xp[a] - xp[b]);
+        return 0.25 * zdt * centred * centred;
+    };
+    const std::size_t lias = model_.source.lias.size();
+    for (int j = 1; j < lv.size; ++j)
+        if (lv.chain_element[j] >= 0)
+            dissipated_[lv.chain_element[j]] += taken(lv.chain_zdt[j], j, j + 1);
+    for (const auto& l : lv.links) {
+        if (l.contact && x[l.a] - x[l.b] - l.length <= 0.0) continue;
+        dissipated_[l.element] += taken(l.zdt, l.a, l.b);
+    }
+    for (const auto& g : lv.grounds)
+        dissipated_[lias + g.element] +=
+            0.25 * g.zdt * (xn[g.index] - xp[g.index]) * (xn[g.index] - xp[g.index]);
+    for (int b : lv.bows) {
+        const CompiledBow& bow = model_.bows[b];
+        const double p = x[bow.press] - x[bow.surface];
+        double buffer = 0;
+        if (p > 0.0 && bow.normal > 0.0) buffer = taken(bow.zbdt, bow.press, bow.surface);
+        dissipated_[bow.element] += bow.dissipated + buffer;
+    }
+}
+
+double Simulation::hand_work() const {
+    // The newest force's half of the move the hand links will see at their next tick.
+    double pending = 0;
+    for (int i = 0; i < model_.hand_links; ++i) {
+        const CompiledCrossLink& l = model_.cross_links[i];
+        pending +=
+            l.hand_sign * 0.5 * l.force *
+            (seen_position(l.hand_slot, CompiledCrossLink::EndRate::Slower, true) - l.hand_seen);
+    }
+    return hand_work_ + pending;
+}
+
+double Simulation::stored_energy() const {
+    // Kinetic ½m((x[n]−x[n−1])/T)², ½K·d[n]·d[n−1] per spring, and −(Z/4T)·(d[n]−d[n−1])² per
+    // damper: the energy a backward-difference damper has taken in but not yet lost. With it,
+    // a step's dissipation is Z·T·v² of the centred velocity, never negative, so the books
+    // close at every step whatever the hand does.
+    double e = 0;
+    for (const auto& lv : model_.levels) {
+        const double* x = lv.x();
+        const double* xp = lv.x_prev();
+        auto in_flight = [&](double zdt, int a, int b) {
+            const double u = (x[a] - x[b]) - (xp[a] - xp[b]);
+            return 0.25 * zdt * u * u;
+        };
+        for (int s = 1; s <= lv.size; ++s) {
+            const double v = (x[s] - xp[s]) / lv.dt;
+            e += 0.5 * lv.mass[s] * v * v;
+        }
+        for (int j = 1; j < lv.size; ++j)
+            e += 0.5 * lv.chain_k[j] * (x[j] - x[j + 1] - lv.chain_length[j]) *
+                     (xp[j] - xp[j + 1] - lv.chain_length[j]) -
+                 in_flight(lv.chain_zdt[j], j, j + 1);
+        for (const auto& l : lv.links) {
+            const double d = x[l.a] - x[l.b] - l.length, dp = xp[l.a] - xp[l.b] - l.length;
+            if (!l.contact || (d > 0 && dp > 0)) e += 0.5 * l.k * d * dp;
+            if (!l.contact || d > 0) e -= in_flight(l.zdt, l.a, l.b);
+        }
+        for (const auto& g : lv.grounds) {
+            const double u = x[g.index] - xp[g.index];
+            e += 0.5 * g.k * (x[g.index] - g.rest) * (xp[g.index] - g.rest) - 0.25 * g.zdt * u * u;
+        }
+        for (int b : lv.bows) {
+            const auto& bow = model_.bows[b];
+            const double p = x[bow.press] - x[bow.surface], pp = xp[bow.press] - xp[bow.surface];
+            if (p > 0 && pp > 0) e += 0.5 * bow.kb * p * pp;
+            if (p > 0) e -= in_flight(bow.zbdt, bow.press, bow.surface);
+        }
+    }
+    for (const auto& l : model_.cross_links) {
+        const double d =
+            seen_position(l.a, l.a_rate, true) - seen_position(l.b, l.b_rate, true) - l.length;
+        const double dp = l.d_prev - l.length;
+        if (!l.contact || (d > 0 && dp > 0)) e += 0.5 * l.k * d * dp;
+        if (!l.contact || d > 0) e -= 0.25 * l.zdt * (d - dp) * (d - dp);
+    }
+    return e;
+}
+
+GestureSample Simulation::device_force() const {
+    GestureSample f{};
+    for (const auto& lv : model_.levels)
+        for (const auto& g : lv.gestures)
+            (g.axis == GestureAxis::Slide ? f.slide : f.press) += g.force_scale * g.force;
+    return f;
+}
+
+double Simulation::power_in() const {
+    double p = 0;
+    for (const auto& lv : model_.levels)
+        for (const auto& g : lv.gestures) p += g.power;
+    return p;
+}
+
+double Simulation::probe(std::size_t i) const {
+    const CompiledProbe& p = model_.probes[i];
+    switch (p.kind) {
+        case ProbeKind::Position:
+            return position(p.mat);
+        case ProbeKind::Velocity:
+            return velocity(p.mat);
+        case ProbeKind::Force:
+            return model_.levels[p.mat.level].watched_force[p.watched];
+        case ProbeKind::NormalForce:
+            return model_.bows[p.bow].normal;
+        case ProbeKind::FrictionForce:
+            return model_.bows[p.bow].friction;
+        case ProbeKind::SlipVelocity:
+            return model_.bows[p.bow].slip_velocity;
+        case ProbeKind::Energy:
+            return stored_energy();
+        case ProbeKind::PowerIn:
+            return power_in();
+    }
+    return 0;
+}
+
+double Simulation::output() const {
+    double sum = 0;
+    for (const auto& o : model_.outputs) {
+        double v = 0;
+        switch (o.signal) {
+            case Output::Signal::Position:
+                v = position(o.mat);
+                break;
+            case Output::Signal::Velocity:
+                v = velocity(o.mat);
+                break;
+            case Output::Signal::Force:
+                v = model_.levels[o.mat.level].watched_force[o.watched];
+                break;
+        }
+        sum += o.gain * v;
+    }
+    return model_.output_gain * sum;
+}
+
+}  // namespace archet
