@@ -12,7 +12,6 @@
 
 #include "archet/analysis/bowing_analysis.hpp"
 #include "archet/analysis/modal_analysis.hpp"
-#include "archet/builders/bowed_string.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/model/model_validation.hpp"

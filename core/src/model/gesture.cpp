@@ -19,4 +19,18 @@ GestureSample Gesture::at(double t) const {
     return {a.slide + u * (b.slide - a.slide), a.press + u * (b.press - a.press)};
 }
 
+Gesture steady_bow_gesture(double speed, double press, double duration) {
+    const double land = 0.03, accelerate = 0.1, lift = duration - 0.4;
+    std::vector<GestureKeyframe> k;
+    k.push_back({0.0, 0.0, 0.0});     // bow resting on the string
+    k.push_back({land, 0.0, press});  // lands
+    k.push_back({land + accelerate / 2, speed * accelerate / 8, press});  // speeds up
+    k.push_back({land + accelerate, speed * accelerate / 2, press});
+    const double x_lift = speed * accelerate / 2 + speed * (lift - land - accelerate);
+    k.push_back({lift, x_lift, press});                          // steady stroke
+    k.push_back({lift + 0.05, x_lift + speed * 0.025, -0.002});  // lifts off
+    k.push_back({duration, x_lift + speed * 0.025, -0.002});
+    return Gesture("steady bow", std::move(k));
+}
+
 }  // namespace archet

@@ -1,5 +1,5 @@
 // The scheme's energy books (what each damper and the bow took over a step, what is stored,
-// what the hands put in) and the probes that read them and the state: Simulation's members.
+// what the hands put in), and what probes and the output read: Simulation's members.
 #include "archet/physics/simulation.hpp"
 
 #include <algorithm>

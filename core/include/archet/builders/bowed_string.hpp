@@ -67,7 +67,5 @@ int max_stable_masses(double pitch, double sample_rate);
 /// The largest number of masses of a harmonic chain: its N-th partial N·f0 below fs/2.
 int max_harmonic_masses(double pitch, double sample_rate);
 
-/// A clean steady stroke: press lands, the bow accelerates to `speed`, holds, and lifts.
-Gesture steady_bow_gesture(double speed = 0.1, double press = 0.0015, double duration = 3.0);
 
 }  // namespace archet

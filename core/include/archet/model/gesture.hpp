@@ -47,4 +47,7 @@ class Gesture {
     mutable std::size_t cursor_ = 0;
 };
 
+/// A clean steady stroke: press lands, the bow accelerates to `speed`, holds, and lifts.
+Gesture steady_bow_gesture(double speed = 0.1, double press = 0.0015, double duration = 3.0);
+
 }  // namespace archet
