@@ -1,6 +1,7 @@
 #pragma once
 // All that the engine's control thread and its real-time thread share: lock-free rings local
-// to the process and atomics, each written by one thread only. Nothing here blocks.
+// to the process and atomics, each written by one thread only (once the device has stopped,
+// the control thread has both ends). Nothing here blocks.
 
 #include <atomic>
 #include <cstdint>
@@ -19,7 +20,7 @@ struct RealtimeCommand {
     ParameterSlot slot;
     double value, slide, press;
     TakeRecorder* take = nullptr;  ///< StartTake: the recorder, owned by the real-time thread
-    std::uint64_t generation = 0;  ///< StartTake: the model load it was prepared for
+    std::uint64_t generation = 0;  ///< StartTake, SetParameter: the model load it was made for
     std::uint32_t name = 0;        ///< SetParameter: its name in the take being recorded
 };
 
