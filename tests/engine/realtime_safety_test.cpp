@@ -337,10 +337,11 @@ TEST(RealtimeSafety, StepProbesAndOutputMakeNoForbiddenCall) {
 }
 
 // The engine's real-time thread, run in this process through its real code path: run_engine on
-// a null sink (whose thread calls Engine::render once a block, as a sound card's would), driven
-// through the shared segment as the studio drives it. A whole session: play, bow a simulated
-// hand (the haptic loop), glide parameters (the smoother), record takes (one stopped, one ended
-// by a model swap), swap models with a cross-fade, mute a blow-up and swap in the reset model.
+// a null sink (whose thread calls RealtimeThread::render once a block, as a sound card's
+// would), driven through the shared segment as the studio drives it. A whole session: play, bow a
+// simulated hand (the haptic loop), glide parameters (the smoother), record takes (one stopped, one
+// ended by a model swap), swap models with a cross-fade, mute a blow-up and swap in the reset
+// model.
 class EngineSession {
   public:
     explicit EngineSession(const std::string& haptic) : link_(link_options()) {

@@ -206,7 +206,9 @@ void EngineClient::read_status() {
     while (status.try_pop(f)) {
         const QString text = QString::fromUtf8(f.text);
         status_.xruns = f.xruns, status_.dropped = f.dropped, status_.load = f.load;
-        status_.worst_load = f.worst_load, status_.sample_rate = f.sample_rate;
+        status_.worst_load = f.worst_load;
+        // The header holds what the device runs at (written before the engine's first frame).
+        status_.sample_rate = link_->sample_rate(), status_.block_frames = link_->block_frames();
         status_.energy = f.energy, status_.realtime_allocations = f.realtime_allocations;
         changed = true;
         switch (static_cast<ipc::StatusKind>(f.kind)) {
@@ -219,9 +221,9 @@ void EngineClient::read_status() {
                 if (model_)
                     for (const auto& p : model_->probes) names.push_back(p.id);
                 // The same seconds of history at any rate the engine runs at.
-                if (f.sample_rate > 0)
-                    history_ =
-                        ProbeHistory(static_cast<std::size_t>(kHistorySeconds * f.sample_rate));
+                if (status_.sample_rate > 0)
+                    history_ = ProbeHistory(
+                        static_cast<std::size_t>(kHistorySeconds * status_.sample_rate));
                 history_.reset(names);
                 shape_.clear();
                 emit model_loaded(text);

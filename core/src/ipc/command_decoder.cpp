@@ -19,7 +19,7 @@ std::variant<DecodedCommand, std::string> decode_command(const CommandFrame& f) 
     switch (static_cast<Opcode>(f.opcode)) {
         case Opcode::LoadModel:
         case Opcode::StartTake:
-            if (c.text.empty()) return std::string("the command needs a path");
+            if (c.text.empty()) return std::string(opcode_name(f.opcode)) + " needs a path";
             break;
         case Opcode::SetParameter: {
             const auto dot = c.text.rfind('.');

@@ -12,9 +12,10 @@ namespace archet::ipc {
 
 inline constexpr std::uint32_t kMagic = 0x54454843;  // "CHET" little-endian
 /// 2: takes (StartTake, StopTake); 3: the running sample rate in the header and status frames,
-/// the load as a share of the budget.
-inline constexpr std::uint16_t kProtocolVersion = 3;
-inline constexpr std::uint16_t kMinimumCompatibleVersion = 3;
+/// the load as a share of the budget; 4: the block size in the header, which is then the one
+/// place both read the rate from (status frames no longer carry it).
+inline constexpr std::uint16_t kProtocolVersion = 4;
+inline constexpr std::uint16_t kMinimumCompatibleVersion = 4;
 
 inline constexpr std::size_t kMaxProbes = 16;        ///< probe values per probe frame
 inline constexpr std::size_t kMaxShapePoints = 512;  ///< string positions per shape frame
@@ -56,8 +57,12 @@ struct SegmentHeader {
     alignas(64) std::atomic<std::uint64_t> studio_heartbeat;  ///< counts up while the studio lives
     alignas(64) std::atomic<std::uint64_t> engine_heartbeat;  ///< counts up while the engine lives
     std::atomic<std::uint32_t> engine_state;                  ///< an EngineState
-    /// Hz: the rate the engine runs the model at, its device's (0 until the device is open).
-    /// Every time constant of the studio (scopes, spectra, fades) derives from it.
+    // What the engine's device actually runs at, whatever the studio asked for: written by the
+    // engine once its output is open (0 before), and read from here by the studio, nowhere else.
+    /// Frames per audio block (per real-time callback).
+    std::atomic<std::uint32_t> block_frames;
+    /// Hz: the rate the engine runs the model at. Every time constant of the studio (scopes,
+    /// spectra, fades) derives from it.
     std::atomic<double> sample_rate;
     RingDescriptor commands;  ///< studio → engine: CommandFrame
     RingDescriptor probes;    ///< engine → studio: ProbeFrame, one per audio sample
@@ -78,6 +83,33 @@ enum class Opcode : std::uint32_t {
     StartTake = 7,     ///< text: a new (or empty) folder to record a take into
     StopTake = 8,      ///< finish the take being recorded
 };
+
+/// The opcode's name for logs and messages ("unknown" for none of them).
+constexpr const char* opcode_name(Opcode op) {
+    switch (op) {
+        case Opcode::LoadModel:
+            return "LoadModel";
+        case Opcode::SetParameter:
+            return "SetParameter";
+        case Opcode::Play:
+            return "Play";
+        case Opcode::Stop:
+            return "Stop";
+        case Opcode::Gesture:
+            return "Gesture";
+        case Opcode::Quit:
+            return "Quit";
+        case Opcode::StartTake:
+            return "StartTake";
+        case Opcode::StopTake:
+            return "StopTake";
+    }
+    return "unknown";
+}
+/// A frame's raw opcode field, which may be anything.
+constexpr const char* opcode_name(std::uint32_t raw) {
+    return opcode_name(static_cast<Opcode>(raw));
+}
 
 struct CommandFrame {
     std::uint32_t opcode;    ///< an Opcode
@@ -110,6 +142,26 @@ enum class StatusKind : std::uint32_t {
     Take = 5,  ///< text: "recording DIR" when a take begins, "written DIR ..." when it is done
 };
 
+/// The status kind's name for logs and messages ("unknown" for none of them).
+constexpr const char* status_kind_name(StatusKind kind) {
+    switch (kind) {
+        case StatusKind::Heartbeat:
+            return "Heartbeat";
+        case StatusKind::ModelLoaded:
+            return "ModelLoaded";
+        case StatusKind::Error:
+            return "Error";
+        case StatusKind::Blowup:
+            return "Blowup";
+        case StatusKind::Take:
+            return "Take";
+    }
+    return "unknown";
+}
+constexpr const char* status_kind_name(std::uint32_t raw) {
+    return status_kind_name(static_cast<StatusKind>(raw));
+}
+
 struct StatusFrame {
     std::uint32_t kind;      ///< a StatusKind
     std::uint32_t sequence;  ///< of the command answered, 0 otherwise
@@ -119,7 +171,6 @@ struct StatusFrame {
     std::uint64_t dropped;  ///< probe frames dropped because the studio read too slowly
     double load;            ///< share of the real-time budget used over the last 0.2 s
     double worst_load;      ///< the longest block so far, as a fraction of one block's period
-    double sample_rate;     ///< Hz: the rate the model runs at (the device's)
     double energy;          ///< J stored in the model
     std::uint64_t realtime_allocations;  ///< made on the real-time thread: must stay 0
     char text[kTextSize];                ///< model name, or what went wrong
@@ -129,10 +180,72 @@ static_assert(std::atomic<std::uint64_t>::is_always_lock_free,
               "rings need lock-free 64-bit atomics");
 static_assert(std::atomic<std::uint32_t>::is_always_lock_free);
 static_assert(std::atomic<double>::is_always_lock_free);
+
+// The layout both processes map, pinned field by field (as JACK2 and SuperCollider do): a change
+// fails to compile here, and must come with a new kProtocolVersion.
+static_assert(offsetof(RingDescriptor, offset) == 0);
+static_assert(offsetof(RingDescriptor, frame_size) == 8);
+static_assert(offsetof(RingDescriptor, capacity) == 12);
+static_assert(sizeof(RingDescriptor) == 16);
+
+static_assert(offsetof(RingControl, written) == 0);
+static_assert(offsetof(RingControl, read) == 64);
+static_assert(offsetof(RingControl, dropped) == 128);
 static_assert(sizeof(RingControl) == 192);
+
+static_assert(offsetof(SegmentHeader, magic) == 0);
+static_assert(offsetof(SegmentHeader, protocol_version) == 4);
+static_assert(offsetof(SegmentHeader, minimum_compatible_version) == 6);
+static_assert(offsetof(SegmentHeader, header_size) == 8);
+static_assert(offsetof(SegmentHeader, reserved) == 12);
+static_assert(offsetof(SegmentHeader, segment_size) == 16);
+static_assert(offsetof(SegmentHeader, studio_pid) == 24);
+static_assert(offsetof(SegmentHeader, engine_pid) == 28);
+static_assert(offsetof(SegmentHeader, studio_heartbeat) == 64);
+static_assert(offsetof(SegmentHeader, engine_heartbeat) == 128);
+static_assert(offsetof(SegmentHeader, engine_state) == 136);
+static_assert(offsetof(SegmentHeader, block_frames) == 140);
+static_assert(offsetof(SegmentHeader, sample_rate) == 144);
+static_assert(offsetof(SegmentHeader, commands) == 152);
+static_assert(offsetof(SegmentHeader, probes) == 168);
+static_assert(offsetof(SegmentHeader, shapes) == 184);
+static_assert(offsetof(SegmentHeader, status) == 200);
 static_assert(alignof(SegmentHeader) == 64);
+static_assert(sizeof(SegmentHeader) == 256);
+
+static_assert(offsetof(CommandFrame, opcode) == 0);
+static_assert(offsetof(CommandFrame, sequence) == 4);
+static_assert(offsetof(CommandFrame, value) == 8);
+static_assert(offsetof(CommandFrame, slide) == 16);
+static_assert(offsetof(CommandFrame, press) == 24);
+static_assert(offsetof(CommandFrame, text) == 32);
 static_assert(sizeof(CommandFrame) == 288);
-static_assert(offsetof(SegmentHeader, commands) % 8 == 0);
+
+static_assert(offsetof(ProbeFrame, tick) == 0);
+static_assert(offsetof(ProbeFrame, count) == 8);
+static_assert(offsetof(ProbeFrame, reserved) == 12);
+static_assert(offsetof(ProbeFrame, values) == 16);
+static_assert(offsetof(ProbeFrame, output) == 144);
+static_assert(sizeof(ProbeFrame) == 152);
+
+static_assert(offsetof(ShapeFrame, tick) == 0);
+static_assert(offsetof(ShapeFrame, count) == 8);
+static_assert(offsetof(ShapeFrame, reserved) == 12);
+static_assert(offsetof(ShapeFrame, positions) == 16);
+static_assert(sizeof(ShapeFrame) == 2064);
+
+static_assert(offsetof(StatusFrame, kind) == 0);
+static_assert(offsetof(StatusFrame, sequence) == 4);
+static_assert(offsetof(StatusFrame, tick) == 8);
+static_assert(offsetof(StatusFrame, blocks) == 16);
+static_assert(offsetof(StatusFrame, xruns) == 24);
+static_assert(offsetof(StatusFrame, dropped) == 32);
+static_assert(offsetof(StatusFrame, load) == 40);
+static_assert(offsetof(StatusFrame, worst_load) == 48);
+static_assert(offsetof(StatusFrame, energy) == 56);
+static_assert(offsetof(StatusFrame, realtime_allocations) == 64);
+static_assert(offsetof(StatusFrame, text) == 72);
+static_assert(sizeof(StatusFrame) == 328);
 
 /// The plain (non-atomic) fields of a header: what a layout is planned as, and what a reader
 /// copies out of a segment before judging it.

@@ -14,8 +14,8 @@
 namespace archet::ipc {
 
 struct EngineLinkOptions {
-    std::string archet_binary;  ///< the `archet` executable
-    int block_frames = 64;
+    std::string archet_binary;    ///< the `archet` executable
+    int block_frames = 64;        ///< passed to the engine's --buffer (a device may differ)
     std::string audio = "null";   ///< passed to the engine's --audio (auto: the first that opens)
     std::string haptic = "none";  ///< passed to the engine's --haptic
     double sample_rate = 48000;   ///< Hz, passed to the engine's --rate (a device may differ)
@@ -61,8 +61,12 @@ class EngineLink {
     SpscRing<ShapeFrame> shapes() { return segment_.shapes(); }
     SpscRing<StatusFrame> status() { return segment_.status(); }
     SegmentHeader& header() { return segment_.header(); }
+    // The device's rate and block size, as the engine wrote them into the header: the only
+    // source (the options are what was asked for; a device may give something else).
     /// Hz: the rate the engine runs at, once its device is open (0 before).
     double sample_rate() { return segment_.header().sample_rate.load(); }
+    /// Frames per audio block the engine runs at, once its device is open (0 before).
+    std::uint32_t block_frames() { return segment_.header().block_frames.load(); }
 
     /// The studio is alive: call it from the GUI's timer.
     void heartbeat() { segment_.header().studio_heartbeat.fetch_add(1); }

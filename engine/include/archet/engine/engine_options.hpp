@@ -1,0 +1,28 @@
+#pragma once
+// What `archet engine` is started with: the studio's segment, the device, the take directory
+// and how long the studio may stay silent.
+
+#include <string>
+
+#include "archet/audio_output.hpp"
+
+namespace archet {
+
+struct EngineOptions {
+    std::string segment;  ///< shared-memory name, from the studio
+    AudioConfig audio;    ///< where the sound goes (null sink by default)
+    int shape_every = 8;  ///< blocks between string-shape frames
+    std::string haptic =
+        "none";  ///< none: the pad sets the device position; sim: it moves a simulated hand
+    /// The take directory (absolute): StartTake folders must lie inside it. Empty: no takes.
+    std::string takes;
+    /// The studio's pid, fixed at start (0: the segment header's, read once at attach; later
+    /// writes to the header change nothing).
+    int studio_pid = 0;
+    double studio_timeout = 2;   ///< s without the studio's heartbeat: fade out, play nothing
+    double studio_give_up = 60;  ///< s without it: exit
+    /// mlockall the process (the engine's own); off when a test runs the engine in-process.
+    bool lock_memory = true;
+};
+
+}  // namespace archet

@@ -1,0 +1,84 @@
+#pragma once
+// The engine's control thread (non-real-time): the process's main thread. It opens the device
+// and starts the real-time thread, then every 2 ms validates and answers the studio's commands,
+// loads and compiles models, resolves parameter names, watches the studio (StudioWatch),
+// publishes status (StatusPublisher), finishes the takes and deletes the models the real-time
+// thread hands back; at the end it stops the device and finishes what was left.
+//
+// Ownership: all members are the control thread's. It shares with the real-time thread only
+// `bridge_`, and the objects passed through it (LoadedModel, TakeRecorder) while they are the
+// real-time thread's.
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "archet/audio_output.hpp"
+#include "archet/engine/engine_options.hpp"
+#include "archet/haptic_choice.hpp"
+#include "archet/ipc/shared_segment.hpp"
+#include "archet/model/model.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "realtime_thread.hpp"
+#include "status_publisher.hpp"
+#include "studio_watch.hpp"
+#include "thread_bridge.hpp"
+
+namespace archet {
+
+class ControlThread {
+  public:
+    ControlThread(ipc::SharedSegment segment, const EngineOptions& options,
+                  std::int32_t studio_pid);
+    ~ControlThread();
+    ControlThread(const ControlThread&) = delete;
+    ControlThread& operator=(const ControlThread&) = delete;
+
+    /// Until told to quit, a signal, or the studio's end; returns the exit status.
+    int nrt_run();
+
+  private:
+    std::string nrt_open();
+    std::string nrt_request_realtime_resources() const;
+    void nrt_loop();
+    int nrt_shut_down();
+
+    void nrt_handle(const ipc::CommandFrame& c);
+    void nrt_send(const RealtimeCommand& r, const ipc::CommandFrame& c);
+    void nrt_fail(const ipc::CommandFrame& c, const std::string& message);
+    void nrt_load(const ipc::CommandFrame& c, const std::string& path);
+    void nrt_set_parameter(const ipc::CommandFrame& c, const std::string& name);
+    void nrt_set_in_waiting_model(const ParameterSlot& slot, double value);
+    void nrt_start_take(const ipc::CommandFrame& c, const std::string& folder);
+    void nrt_collect_takes();
+    std::string nrt_finish_take(TakeRecorder& take);
+    void nrt_collect_retired();
+    void nrt_recover_from_blowup();
+
+    ipc::SharedSegment segment_;
+    const EngineOptions options_;
+    const std::int32_t studio_pid_;  ///< fixed at start
+    ipc::SpscRing<ipc::CommandFrame> commands_;
+    HapticChoice haptic_;  ///< the device, used by the real-time thread (none by default)
+    ThreadBridge bridge_;  ///< declared before what uses it, after the haptic device it holds
+    StatusPublisher publisher_;
+    std::optional<StudioWatch> watch_;
+    std::unique_ptr<RealtimeThread> rt_;   ///< built once the device is open
+    std::unique_ptr<AudioOutput> output_;  ///< destroyed first: it calls rt_
+    double sample_rate_ = 48000;           ///< the device's clock, the master: set once open
+    bool quit_ = false;
+    std::uint64_t swaps_answered_ = 0;
+    std::filesystem::path take_root_;    ///< canonical take directory (empty: no takes)
+    std::string take_problem_;           ///< why the take directory could not be used
+    TakeRecorder* live_take_ = nullptr;  ///< the take it last started
+    std::string take_interruption_;      ///< why takes end early, if they do
+    // The view of the model the studio last loaded, for names and checks.
+    Model current_model_;
+    CompiledModel current_resolver_;
+    std::string current_name_;
+    std::uint64_t generation_ = 0;  ///< models loaded so far
+};
+
+}  // namespace archet

@@ -1,0 +1,89 @@
+#include "loaded_model.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <limits>
+
+#include "archet/common/denormal_guard.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/ipc/segment_layout.hpp"
+#include "archet/model/string_points.hpp"
+
+namespace archet {
+
+namespace {
+
+// A sanitizer's instrumented build runs the same code several times slower than the release
+// build whose real-time behaviour the model-cost check judges: its measurements are scaled
+// back by this much, so that CI under ThreadSanitizer accepts what a release engine plays.
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
+constexpr double kInstrumentationSlowdown = 10;
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer) || __has_feature(address_sanitizer)
+constexpr double kInstrumentationSlowdown = 10;
+#else
+constexpr double kInstrumentationSlowdown = 1;
+#endif
+#else
+constexpr double kInstrumentationSlowdown = 1;
+#endif
+
+constexpr int kCostSamples = 2048, kCostChunk = 8;
+constexpr double kCostSeconds = 0.02, kCostShare = 0.7;
+
+}  // namespace
+
+std::unique_ptr<LoadedModel> nrt_prepare_model(const Model& model, double sample_rate,
+                                               const HapticChoice& haptic, std::uint32_t sequence,
+                                               std::uint64_t generation) {
+    auto loaded = std::make_unique<LoadedModel>();
+    loaded->resolver = compile(model, sample_rate);  // the device's clock is the master
+    loaded->simulation = std::make_unique<Simulation>(loaded->resolver);
+    loaded->simulation->set_gesture_track(nullptr);  // live: the device or the pad plays it
+    if (haptic.device) loaded->haptic.emplace(*haptic.device, haptic.hand, *loaded->simulation);
+    if (const CompiledLevel* hand = hand_level(loaded->resolver))
+        loaded->haptic_divider = static_cast<std::uint64_t>(hand->divider),
+        loaded->haptic_dt = hand->dt;
+    for (const std::string& id : string_points(model))
+        if (loaded->shape.size() < ipc::kMaxShapePoints)
+            loaded->shape.push_back(loaded->resolver.mat_slots.at(id));
+    loaded->sequence = sequence;
+    loaded->generation = generation;
+    return loaded;
+}
+
+// A copy of the model is stepped for at most kCostSamples samples or kCostSeconds: its fastest
+// chunk's time per sample is what the model needs at least. Above kCostShare of the device's
+// time per sample it cannot keep up and is refused.
+void nrt_check_cost(const std::string& path, const LoadedModel& loaded, double sample_rate,
+                    int block_frames) {
+    const DenormalGuard no_denormals;
+    Simulation copy(loaded.resolver);
+    copy.set_gesture_track(nullptr);
+    using clock = std::chrono::steady_clock;
+    const auto start = clock::now();
+    double best = std::numeric_limits<double>::infinity();  // s per sample
+    for (int done = 0; done < kCostSamples;) {
+        const auto t0 = clock::now();
+        int n = 0;
+        for (; n < kCostChunk && done + n < kCostSamples; ++n) copy.step();
+        const auto t1 = clock::now();
+        done += n;
+        best = std::min(best, std::chrono::duration<double>(t1 - t0).count() / n);
+        if (std::chrono::duration<double>(t1 - start).count() > kCostSeconds) break;
+    }
+    const double needs = best / kInstrumentationSlowdown, budget = 1.0 / sample_rate;
+    if (needs <= kCostShare * budget) return;
+    const int block = block_frames;
+    char said[ipc::kTextSize];
+    std::snprintf(said, sizeof said,
+                  "cannot play in real time: this model needs %.3g ms per block of %d "
+                  "frames, which lasts %.3g ms at %g Hz (over %d %% of one core); reduce the "
+                  "masses and links",
+                  needs * block * 1e3, block, budget * block * 1e3, sample_rate,
+                  static_cast<int>(kCostShare * 100));
+    throw InputError(path, said);
+}
+
+}  // namespace archet

@@ -1,0 +1,43 @@
+#pragma once
+// A model as the real-time thread runs it. The control thread builds it (compiles, checks its
+// cost) and hands it over through ThreadBridge::pending; from then on the real-time thread
+// owns it until it hands it back through ThreadBridge::retired for the control thread to
+// delete. Only the control thread allocates or frees one.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "archet/haptic_choice.hpp"
+#include "archet/haptic_loop.hpp"
+#include "archet/model/model.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "archet/physics/simulation.hpp"
+
+namespace archet {
+
+struct LoadedModel {
+    CompiledModel resolver;  ///< names → slots, on the control thread
+    std::unique_ptr<Simulation> simulation;
+    std::vector<MatSlot> shape;        ///< the string's MATs (string_points), in model order
+    std::optional<HapticLoop> haptic;  ///< with a device: its loop and link for this model
+    std::uint64_t haptic_divider = 1;  ///< the gesture points' level, for takes
+    double haptic_dt = 0;
+    std::uint64_t generation = 0;  ///< which load of the control thread it comes from
+    std::uint32_t sequence = 0;
+};
+
+/// Control thread: compiles a validated model at the device's rate into what the real-time
+/// thread runs; `sequence` is the load command it answers, `generation` the load it counts as.
+std::unique_ptr<LoadedModel> nrt_prepare_model(const Model& model, double sample_rate,
+                                               const HapticChoice& haptic, std::uint32_t sequence,
+                                               std::uint64_t generation);
+
+/// Control thread: throws an InputError naming `path` when stepping the model takes more than
+/// its share of the device's time per sample (it would xrun on every block of `block_frames`).
+void nrt_check_cost(const std::string& path, const LoadedModel& loaded, double sample_rate,
+                    int block_frames);
+
+}  // namespace archet
