@@ -13,7 +13,7 @@
 
 #include "archet/common/input_error.hpp"
 #include "archet/common/monotonic_clock.hpp"
-#include "archet/realtime_allocations.hpp"
+#include "archet/realtime_thread_mark.hpp"
 
 namespace archet {
 
