@@ -20,7 +20,6 @@
 #include "archet/common/input_limits.hpp"
 #include "archet/common/monotonic_clock.hpp"
 #include "archet/engine/take_recorder.hpp"
-#include "archet/evdev_device.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/haptic_choice.hpp"
 #include "archet/haptic_loop.hpp"
@@ -29,7 +28,6 @@
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
 #include "archet/realtime_allocations.hpp"
-#include "archet/sdl_device.hpp"
 #include "archet/simulated_hand.hpp"
 #include "audio_options.hpp"
 #include "commands.hpp"
@@ -231,17 +229,23 @@ void add_devices_command(CLI::App& app, Action& action) {
         "devices", "List the audio outputs and haptic devices Archet can play with");
     cmd->callback([&action] {
         action = [] {
-            for (const auto& line : list_audio_devices()) std::cout << line << "\n";
-            const auto haptic = list_haptic_devices();
-            for (const auto& line : haptic) std::cout << line << "\n";
-            if (haptic.empty())
-                std::cout << "evdev: no force-feedback joystick found in /dev/input (readable "
-                             "event devices with "
-                             "two absolute axes and FF_CONSTANT)\n";
-            const auto sdl = list_sdl_joysticks();
-            for (const auto& line : sdl) std::cout << line << "\n";
-            if (sdl.empty()) std::cout << "sdl: no joystick found by SDL\n";
-            std::cout << "sim: simulated hand (always available)\n";
+            for (const AudioApiDevices& api : list_audio_devices())
+                for (const std::string& line : describe(api)) std::cout << line << "\n";
+            // A backend that found nothing says where it looked; the simulated hand is always
+            // there.
+            const std::pair<std::string, const char*> backends[] = {
+                {"evdev",
+                 "evdev: no force-feedback joystick found in /dev/input (readable event devices "
+                 "with two absolute axes and FF_CONSTANT)"},
+                {"sdl", "sdl: no joystick found by SDL"},
+                {"sim", ""}};
+            const std::vector<HapticDeviceInfo> haptic = list_haptic_choices();
+            for (const auto& [backend, none] : backends) {
+                bool found = false;
+                for (const HapticDeviceInfo& d : haptic)
+                    if (d.backend == backend) std::cout << describe(d) << "\n", found = true;
+                if (!found) std::cout << none << "\n";
+            }
             return 0;
         };
     });

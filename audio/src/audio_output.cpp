@@ -13,7 +13,7 @@
 
 #include "archet/common/input_error.hpp"
 #include "archet/common/monotonic_clock.hpp"
-#include "archet/realtime_allocations.hpp"
+#include "archet/realtime_thread_mark.hpp"
 
 namespace archet {
 
@@ -211,32 +211,46 @@ std::unique_ptr<AudioOutput> open_audio_output(const AudioConfig& c, std::string
     }
 }
 
-std::vector<std::string> list_audio_devices() {
-    std::vector<std::string> lines;
+std::vector<AudioApiDevices> list_audio_devices() {
+    std::vector<AudioApiDevices> found;
     std::vector<RtAudio::Api> apis;
     RtAudio::getCompiledApi(apis);
     for (RtAudio::Api api : apis) {
-        const std::string name = RtAudio::getApiName(api);
+        AudioApiDevices& listed = found.emplace_back();
+        listed.api = RtAudio::getApiName(api);
         try {
             RtAudio audio(api);
             audio.showWarnings(false);
             const unsigned count = audio.getDeviceCount();
-            if (count == 0) lines.push_back(name + ": no devices");
             for (unsigned i = 0; i < count; ++i) {
                 const RtAudio::DeviceInfo info = audio.getDeviceInfo(i);
                 if (!info.probed || info.outputChannels == 0) continue;
-                std::string rates;
-                for (unsigned r : info.sampleRates)
-                    rates += (rates.empty() ? "" : "/") + std::to_string(r);
-                lines.push_back(name + " " + std::to_string(i) + ": " + info.name + " (" +
-                                std::to_string(info.outputChannels) + " out, " + rates + " Hz)" +
-                                (info.isDefaultOutput ? " default" : ""));
+                listed.devices.push_back({listed.api, static_cast<int>(i), info.name,
+                                          static_cast<int>(info.outputChannels), info.sampleRates,
+                                          info.isDefaultOutput});
             }
         } catch (const RtAudioError& e) {
-            lines.push_back(name + ": unavailable (" + e.getMessage() + ")");
+            listed.unavailable = e.getMessage();
         }
     }
-    lines.push_back("null 0: null sink (always available)");
+    found.push_back({"null", {{"null", 0, "null sink", 0, {}, true}}, {}});
+    return found;
+}
+
+std::string describe(const AudioDeviceInfo& d) {
+    if (d.api == "null") return "null 0: null sink (always available)";
+    std::string rates;
+    for (unsigned r : d.rates) rates += (rates.empty() ? "" : "/") + std::to_string(r);
+    return d.api + " " + std::to_string(d.index) + ": " + d.name + " (" +
+           std::to_string(d.channels) + " out, " + rates + " Hz)" +
+           (d.is_default ? " default" : "");
+}
+
+std::vector<std::string> describe(const AudioApiDevices& api) {
+    if (!api.unavailable.empty()) return {api.api + ": unavailable (" + api.unavailable + ")"};
+    if (api.devices.empty()) return {api.api + ": no devices"};
+    std::vector<std::string> lines;
+    for (const AudioDeviceInfo& d : api.devices) lines.push_back(describe(d));
     return lines;
 }
 

@@ -6,11 +6,11 @@
 #include <new>
 
 namespace {
-thread_local bool realtime_thread = false;
+using archet::on_realtime_thread;
 std::atomic<std::uint64_t> allocated{0}, deallocated{0};
 
 void* try_allocate(std::size_t size, std::size_t alignment) noexcept {
-    if (realtime_thread) allocated.fetch_add(1, std::memory_order_relaxed);
+    if (on_realtime_thread()) allocated.fetch_add(1, std::memory_order_relaxed);
     if (size == 0) size = 1;
     return alignment > alignof(std::max_align_t)
                ? std::aligned_alloc(alignment, (size + alignment - 1) / alignment * alignment)
@@ -23,13 +23,13 @@ void* allocate(std::size_t size, std::size_t alignment) {
 }
 
 void deallocate(void* p) noexcept {
-    if (realtime_thread) deallocated.fetch_add(1, std::memory_order_relaxed);
+    if (on_realtime_thread()) deallocated.fetch_add(1, std::memory_order_relaxed);
     std::free(p);
 }
 }  // namespace
 
-// Replacements of the global allocation functions, linked into every program that uses the
-// engine. They behave as the standard ones apart from the count.
+// Replacements of the global allocation functions, linked into the programs that run the
+// engine or `archet play` (not the studio). They behave as the standard ones apart from the count.
 void* operator new(std::size_t size) {
     return allocate(size, 0);
 }
@@ -93,18 +93,6 @@ void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcep
 
 namespace archet {
 
-RealtimeThreadMark::RealtimeThreadMark() {
-    realtime_thread = true;
-}
-RealtimeThreadMark::~RealtimeThreadMark() {
-    realtime_thread = false;
-}
-void mark_realtime_thread() {
-    realtime_thread = true;
-}
-bool on_realtime_thread() noexcept {
-    return realtime_thread;
-}
 std::uint64_t realtime_allocations() {
     return allocated.load(std::memory_order_relaxed);
 }

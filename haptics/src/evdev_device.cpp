@@ -134,8 +134,8 @@ void EvdevDevice::io_loop() {
     send_levels(0, 0);
 }
 
-std::vector<std::string> list_haptic_devices() {
-    std::vector<std::string> found;
+std::vector<HapticDeviceInfo> list_evdev_devices() {
+    std::vector<HapticDeviceInfo> found;
     std::error_code ec;
     for (const auto& entry : std::filesystem::directory_iterator("/dev/input", ec)) {
         const std::string path = entry.path().string();
@@ -146,14 +146,19 @@ std::vector<std::string> list_haptic_devices() {
         if (libevdev_new_from_fd(fd, &dev) == 0) {
             if (libevdev_has_event_code(dev, EV_ABS, ABS_X) &&
                 libevdev_has_event_code(dev, EV_ABS, ABS_Y) &&
-                libevdev_has_event_code(dev, EV_FF, FF_CONSTANT))
-                found.push_back("evdev " + path + ": " + libevdev_get_name(dev) +
-                                " (force feedback)");
+                libevdev_has_event_code(dev, EV_FF, FF_CONSTANT)) {
+                int axes = 0;
+                for (unsigned code = 0; code <= ABS_MAX; ++code)
+                    axes += libevdev_has_event_code(dev, EV_ABS, code);
+                found.push_back(
+                    {"evdev", path, "evdev:" + path, libevdev_get_name(dev), axes, true});
+            }
             libevdev_free(dev);
         }
         ::close(fd);
     }
-    std::sort(found.begin(), found.end());
+    std::sort(found.begin(), found.end(),
+              [](const HapticDeviceInfo& a, const HapticDeviceInfo& b) { return a.id < b.id; });
     return found;
 }
 

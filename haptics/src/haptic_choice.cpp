@@ -37,4 +37,17 @@ HapticChoice open_haptic_device(const std::string& name) {
                                      "evdev:/dev/input/eventN or sdl:INDEX");
 }
 
+std::vector<HapticDeviceInfo> list_haptic_choices() {
+    std::vector<HapticDeviceInfo> choices = list_evdev_devices();
+    for (HapticDeviceInfo& joystick : list_sdl_joysticks()) choices.push_back(std::move(joystick));
+    choices.push_back({"sim", "", "sim", "simulated hand", 2, true});
+    return choices;
+}
+
+std::string describe(const HapticDeviceInfo& d) {
+    if (d.backend == "sim") return "sim: simulated hand (always available)";
+    return d.backend + " " + d.address + ": " + d.name +
+           (d.force_feedback ? " (force feedback)" : " (positions only)");
+}
+
 }  // namespace archet

@@ -146,14 +146,14 @@ void SdlDevice::io_loop_with(Session& session) {
     session.send(0, 0, options_.max_force);
 }
 
-std::vector<std::string> list_sdl_joysticks() {
-    std::vector<std::string> found;
+std::vector<HapticDeviceInfo> list_sdl_joysticks() {
+    std::vector<HapticDeviceInfo> found;
     SdlSubsystems subsystems;
     if (!subsystems.joystick()) return found;
     for (int i = 0; i < SDL_NumJoysticks(); ++i) {
         SDL_Joystick* joystick = SDL_JoystickOpen(i);
         if (!joystick) continue;
-        if (SDL_JoystickNumAxes(joystick) >= 2) {
+        if (const int axes = SDL_JoystickNumAxes(joystick); axes >= 2) {
             bool force = false;
             if (subsystems.haptic() && SDL_JoystickIsHaptic(joystick) == 1) {
                 if (SDL_Haptic* haptic = SDL_HapticOpenFromJoystick(joystick)) {
@@ -162,8 +162,8 @@ std::vector<std::string> list_sdl_joysticks() {
                 }
             }
             const char* name = SDL_JoystickName(joystick);
-            found.push_back("sdl " + std::to_string(i) + ": " + (name ? name : "joystick") +
-                            (force ? " (force feedback)" : " (positions only)"));
+            const std::string index = std::to_string(i);
+            found.push_back({"sdl", index, "sdl:" + index, name ? name : "joystick", axes, force});
         }
         SDL_JoystickClose(joystick);
     }

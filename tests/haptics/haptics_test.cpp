@@ -13,6 +13,7 @@
 
 #include "archet/evdev_device.hpp"
 #include "archet/files/model_file.hpp"
+#include "archet/haptic_choice.hpp"
 #include "archet/haptic_link.hpp"
 #include "archet/haptic_loop.hpp"
 #include "archet/physics/compiled_model.hpp"
@@ -191,11 +192,11 @@ TEST(Haptics, HandReadingsRespectRateLatencyAndResolution) {
 }
 
 TEST(Haptics, AForceFeedbackJoystickAnswersThroughEvdev) {
-    const auto devices = list_haptic_devices();
+    const auto devices = list_evdev_devices();
     if (devices.empty())
         GTEST_SKIP() << "no force-feedback joystick in /dev/input (needs hardware)";
-    const std::string path = devices.front().substr(6, devices.front().find(':') - 6);
-    EvdevDevice device(path);
+    EXPECT_EQ(devices.front().id, "evdev:" + devices.front().address);
+    EvdevDevice device(devices.front().address);
     EXPECT_FALSE(device.capabilities().name.empty());
     device.write(0.1, 0.0, 0.0);  // a gentle push, then let go
     bool answered = false;        // waited for, up to a generous minute: not assumed after 50 ms
@@ -204,6 +205,30 @@ TEST(Haptics, AForceFeedbackJoystickAnswersThroughEvdev) {
     EXPECT_TRUE(answered) << "its I/O thread answers";
     const HapticReading r = device.read();
     EXPECT_LE(std::abs(r.slide), device.capabilities().range);
+}
+
+// `archet devices` and the studio's settings list the same choices, each under the id
+// --haptic takes: the simulated hand always, last, after whatever joysticks are plugged in.
+TEST(Haptics, EveryListedChoiceCarriesTheIdThatOpensIt) {
+    const auto choices = list_haptic_choices();
+    ASSERT_FALSE(choices.empty());
+    const HapticDeviceInfo& sim = choices.back();
+    EXPECT_EQ(sim.backend, "sim");
+    EXPECT_EQ(describe(sim), "sim: simulated hand (always available)");
+    const HapticChoice opened = open_haptic_device(sim.id);
+    EXPECT_NE(opened.hand, nullptr) << "\"" << sim.id << "\" opens the simulated hand";
+    for (const HapticDeviceInfo& d : choices) {
+        if (d.backend == "sim") continue;
+        EXPECT_EQ(d.id, d.backend + ":" + d.address);
+        EXPECT_EQ(describe(d).rfind(d.backend + " " + d.address + ": " + d.name, 0), 0u)
+            << describe(d);
+        EXPECT_GE(d.axes, 2) << d.id;
+    }
+    const HapticDeviceInfo joystick{"sdl", "3", "sdl:3", "Pad", 2, false};
+    EXPECT_EQ(describe(joystick), "sdl 3: Pad (positions only)");
+    const HapticDeviceInfo evdev{
+        "evdev", "/dev/input/event7", "evdev:/dev/input/event7", "Wheel", 3, true};
+    EXPECT_EQ(describe(evdev), "evdev /dev/input/event7: Wheel (force feedback)");
 }
 
 // The engine swaps models under a device that goes on: the hand's clock is the device's, not

@@ -3,9 +3,9 @@
 // a joystick without force feedback plays with positions only, an unplugged one goes stale,
 // and bad indices are refused by name.
 
-#include <SDL.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -16,36 +16,10 @@
 #include "archet/physics/compiled_model.hpp"
 #include "archet/sdl_device.hpp"
 #include "test_support.hpp"
+#include "virtual_joystick.hpp"
 
 namespace archet {
 namespace {
-
-// A two-axis virtual joystick, attached for the test's lifetime.
-class VirtualJoystick {
-  public:
-    VirtualJoystick() {
-        if (SDL_InitSubSystem(SDL_INIT_JOYSTICK) != 0) return;
-        index_ = SDL_JoystickAttachVirtual(SDL_JOYSTICK_TYPE_GAMECONTROLLER, 2, 0, 0);
-        if (index_ >= 0) joystick_ = SDL_JoystickOpen(index_);
-    }
-    ~VirtualJoystick() {
-        unplug();
-        SDL_QuitSubSystem(SDL_INIT_JOYSTICK);
-    }
-    bool ready() const { return joystick_ != nullptr; }
-    int index() const { return index_; }
-    void set(int axis, Sint16 value) { SDL_JoystickSetVirtualAxis(joystick_, axis, value); }
-    void unplug() {
-        if (!joystick_) return;
-        SDL_JoystickClose(joystick_);
-        SDL_JoystickDetachVirtual(index_);
-        joystick_ = nullptr;
-    }
-
-  private:
-    int index_ = -1;
-    SDL_Joystick* joystick_ = nullptr;
-};
 
 // Waits until `done` holds, up to a generous minute (SDL's event thread under TSan is slow).
 template <typename Condition>
@@ -56,7 +30,7 @@ bool eventually(Condition done) {
 }
 
 TEST(SdlJoystick, ItsAxesMoveTheGesturePoints) {
-    VirtualJoystick stick;
+    test::VirtualJoystick stick;
     if (!stick.ready()) GTEST_SKIP() << "SDL cannot attach a virtual joystick: " << SDL_GetError();
     stick.set(0, 16384), stick.set(1, -32767);
     SdlDevice device(stick.index());
@@ -88,7 +62,7 @@ TEST(SdlJoystick, ItsAxesMoveTheGesturePoints) {
 }
 
 TEST(SdlJoystick, AnUnpluggedJoystickGoesStale) {
-    VirtualJoystick stick;
+    test::VirtualJoystick stick;
     if (!stick.ready()) GTEST_SKIP() << "SDL cannot attach a virtual joystick: " << SDL_GetError();
     SdlDevice device(stick.index());
     EXPECT_TRUE(eventually([&] { return !device.stale(0, 0.02); }));
@@ -111,13 +85,24 @@ TEST(SdlJoystick, BadIndicesAreRefusedByName) {
 }
 
 TEST(SdlJoystick, DevicesListsIt) {
-    VirtualJoystick stick;
+    test::VirtualJoystick stick;
     if (!stick.ready()) GTEST_SKIP() << "SDL cannot attach a virtual joystick: " << SDL_GetError();
     const auto found = list_sdl_joysticks();
     ASSERT_FALSE(found.empty());
-    EXPECT_NE(found.back().find("(positions only)"), std::string::npos) << found.back();
-    EXPECT_EQ(found.back().rfind("sdl " + std::to_string(stick.index()) + ": ", 0), 0u)
-        << found.back();
+    const HapticDeviceInfo& listed = found.back();
+    EXPECT_EQ(listed.id, "sdl:" + std::to_string(stick.index()));
+    EXPECT_FALSE(listed.force_feedback);
+    EXPECT_EQ(listed.axes, 2);
+    EXPECT_NE(describe(listed).find("(positions only)"), std::string::npos) << describe(listed);
+    EXPECT_EQ(describe(listed).rfind("sdl " + std::to_string(stick.index()) + ": ", 0), 0u)
+        << describe(listed);
+    const auto choices = list_haptic_choices();
+    EXPECT_TRUE(std::any_of(choices.begin(), choices.end(), [&](const HapticDeviceInfo& d) {
+        return d.id == listed.id;
+    })) << "among the choices the studio offers";
+    const HapticChoice opened = open_haptic_device(listed.id);
+    ASSERT_NE(opened.device, nullptr) << "--haptic " << listed.id << " opens it";
+    EXPECT_NE(opened.note.find("no force feedback"), std::string::npos) << opened.note;
 }
 
 }  // namespace

@@ -356,7 +356,7 @@ TEST(CompareViewTest, RendersTwoDampingsSideBySide) {
     // A/B: the first variant plays (on a device, or a null sink clocked in real time).
     view.player().play(view.runs()[0].audio, view.runs()[0].sample_rate);
     EXPECT_TRUE(test::wait_until([&] { return view.player().position() > 1000u; }, 60000))
-        << view.player().description().toStdString();
+        << view.player().description();
     view.player().stop();
 }
 

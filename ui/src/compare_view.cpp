@@ -6,7 +6,6 @@
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QLineEdit>
-#include <QMetaObject>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QVBoxLayout>
@@ -74,22 +73,15 @@ CompareView::CompareView(const Model& model, QWidget* parent) : QDialog(parent),
     layout->addWidget(figure_, 1);
     layout->addLayout(listen_);
     connect(render_, &QPushButton::clicked, this, &CompareView::render);
-    connect(cancel_, &QPushButton::clicked, this, [this] { cancel_requested_.store(true); });
+    connect(cancel_, &QPushButton::clicked, &job_, &BackgroundJob::cancel);
+    connect(&job_, &BackgroundJob::progressed, this,
+            [this](std::size_t done) { progress_->setValue(static_cast<int>(done)); });
     connect(export_button, &QPushButton::clicked, this, &CompareView::export_figure);
     connect(parameter_, &QComboBox::currentTextChanged, this, [this](const QString& p) {
         if (p == "string.damping") values_->setText(default_values(model_));
         if (p == "bow.position") values_->setText("0.08, 0.12, 0.2");
     });
     resize(1200, 800);
-}
-
-CompareView::~CompareView() {
-    cancel_requested_.store(true);
-    join();
-}
-
-void CompareView::join() {
-    if (worker_.joinable()) worker_.join();
 }
 
 void CompareView::set_variation(const QString& parameter, const QString& values) {
@@ -99,7 +91,6 @@ void CompareView::set_variation(const QString& parameter, const QString& values)
 
 void CompareView::render() {
     if (busy()) return;
-    join();
     std::pair<std::string, std::vector<double>> variation;
     try {
         QString values = values_->text();
@@ -118,34 +109,28 @@ void CompareView::render() {
     progress_->setRange(0, static_cast<int>(variation.second.size()));
     progress_->setValue(0);
     message_->setText(tr("rendering…"));
-    cancel_requested_.store(false);
-    finished_.store(false);
-    worker_ = std::thread([this, variation] {
+    struct Rendered {
         std::vector<ComparisonRun> runs;
-        QString error;
-        try {
+        bool cancelled = false;
+    };
+    job_.start(
+        [model = model_, gesture = gesture_, variation](BackgroundJob::Control& control) {
+            Rendered rendered;
             for (double v : variation.second) {
-                if (cancel_requested_.load()) {
-                    error = tr("cancelled");
-                    break;
-                }
-                runs.push_back(
-                    compare_variant(model_, gesture_, variation.first, v, gesture_.duration()));
-                const int done = static_cast<int>(runs.size());
-                QMetaObject::invokeMethod(this, [this, done] { progress_->setValue(done); });
+                if ((rendered.cancelled = control.cancelled())) break;
+                rendered.runs.push_back(
+                    compare_variant(model, gesture, variation.first, v, gesture.duration()));
+                control.progress(rendered.runs.size(), variation.second.size());
             }
-        } catch (const std::exception& e) {
-            error = QString::fromUtf8(e.what());
-        }
-        finished_.store(true);
-        QMetaObject::invokeMethod(this, [this, runs = std::move(runs), error]() mutable {
-            finish(std::move(runs), error);
-        });
-    });
+            return rendered;
+        },
+        [this](Rendered r) {
+            finish(std::move(r.runs), r.cancelled ? tr("cancelled") : QString());
+        },
+        [this](const QString& error) { finish({}, error); });
 }
 
 void CompareView::finish(std::vector<ComparisonRun> runs, QString error) {
-    join();
     render_->setEnabled(true);
     cancel_->setEnabled(false);
     if (!error.isEmpty()) {
@@ -154,7 +139,16 @@ void CompareView::finish(std::vector<ComparisonRun> runs, QString error) {
     }
     runs_ = std::move(runs);
     figure_->show_runs(runs_);
-    // One button per variant: play A, then B, and hear the difference.
+    show_listen_buttons();
+    if (error.isEmpty())
+        message_->setText(tr("%1 variants rendered; the string's energy lost per period is in each "
+                             "title")
+                              .arg(runs_.size()));
+    emit rendered();
+}
+
+// One button per variant: play A, then B, and hear the difference.
+void CompareView::show_listen_buttons() {
     while (listen_->count() > 3) {
         QLayoutItem* item = listen_->takeAt(1);
         delete item->widget();
@@ -164,17 +158,12 @@ void CompareView::finish(std::vector<ComparisonRun> runs, QString error) {
         auto* play = new QPushButton(QString::fromStdString(runs_[i].label));
         connect(play, &QPushButton::clicked, this, [this, i] {
             player_.play(runs_[i].audio, runs_[i].sample_rate);
-            message_->setText(
-                tr("playing %1 on %2")
-                    .arg(QString::fromStdString(runs_[i].label), player_.description()));
+            message_->setText(tr("playing %1 on %2")
+                                  .arg(QString::fromStdString(runs_[i].label),
+                                       QString::fromStdString(player_.description())));
         });
         listen_->insertWidget(static_cast<int>(i) + 1, play);
     }
-    if (error.isEmpty())
-        message_->setText(tr("%1 variants rendered; the string's energy lost per period is in each "
-                             "title")
-                              .arg(runs_.size()));
-    emit rendered();
 }
 
 void CompareView::export_figure() {

@@ -4,12 +4,12 @@
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QLabel>
-#include <QMetaObject>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QSpinBox>
 #include <QTimer>
 #include <QVBoxLayout>
+#include <thread>
 
 #include "archet/common/number_text.hpp"
 #include "archet/ui/playability_figure.hpp"
@@ -78,18 +78,16 @@ PlayabilityPanel::PlayabilityPanel(
     connect(compute_, &QPushButton::clicked, this, &PlayabilityPanel::compute);
     connect(cancel_button_, &QPushButton::clicked, this, &PlayabilityPanel::cancel);
     connect(figure_, &PlayabilityFigure::point_clicked, this, &PlayabilityPanel::listen);
+    connect(&job_, &BackgroundJob::progressed, this, [this](std::size_t done, std::size_t total) {
+        progress_->setMaximum(static_cast<int>(total));
+        progress_->setValue(static_cast<int>(done));
+    });
+    // The player's bow moves while the map is shown: its cross follows.
     connect(refresh_, &QTimer::timeout, this, [this] {
-        progress_->setMaximum(static_cast<int>(total_.load()));
-        progress_->setValue(static_cast<int>(done_.load()));
         if (!points_.empty()) figure_->mark(gesture_point_ ? gesture_point_() : std::nullopt);
     });
     refresh_->start(200);
     resize(1000, 800);
-}
-
-PlayabilityPanel::~PlayabilityPanel() {
-    cancel_.store(true);
-    if (worker_.joinable()) worker_.join();
 }
 
 void PlayabilityPanel::set_grid(const MapGrid& g) {
@@ -112,29 +110,23 @@ MapGrid PlayabilityPanel::grid_from_fields() const {
 }
 
 void PlayabilityPanel::compute() {
-    if (running_.load()) return;
-    if (worker_.joinable()) worker_.join();
+    if (busy()) return;
     grid_ = grid_from_fields();
-    cancel_.store(false), running_.store(true);
-    done_.store(0), total_.store(grid_.size());
+    progress_->setMaximum(static_cast<int>(grid_.size()));
+    progress_->setValue(0);
     compute_->setEnabled(false), cancel_button_->setEnabled(true);
     message_->setText(tr("computing %1 on every core…")
                           .arg(QString::fromStdString(count_of(grid_.size(), "point", "points"))));
-    worker_ = std::thread([this, grid = grid_] {
-        std::vector<MapPoint> points;
-        QString error;
-        try {
-            points = play_map(
-                model_, grid, static_cast<int>(std::max(1u, std::thread::hardware_concurrency())),
-                0, 1, [this](std::size_t done, std::size_t) { done_.store(done); }, &cancel_);
-        } catch (const std::exception& e) {
-            error = QString::fromUtf8(e.what());
-        }
-        running_.store(false);
-        QMetaObject::invokeMethod(this, [this, points = std::move(points), error]() mutable {
-            finished(std::move(points), error);
-        });
-    });
+    job_.start(
+        [model = model_, grid = grid_](BackgroundJob::Control& control) {
+            const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+            return play_map(
+                model, grid, cores, 0, 1,
+                [&control](std::size_t done, std::size_t total) { control.progress(done, total); },
+                &control.cancel_flag());
+        },
+        [this](std::vector<MapPoint> points) { finished(std::move(points), {}); },
+        [this](const QString& error) { finished({}, error); });
 }
 
 void PlayabilityPanel::finished(std::vector<MapPoint> points, QString error) {
@@ -161,14 +153,14 @@ void PlayabilityPanel::listen(long index) {
         std::vector<double> sound;
         const MapPoint p =
             play_map_point(model_, grid_, static_cast<std::size_t>(index), 0, &sound);
-        player_.play(std::move(sound), model_.sample_rate);
+        player_.play(sound, model_.sample_rate);
         message_->setText(tr("β %1, %2 N: %3 (%4 slips per period, %5 cents) — playing on %6")
                               .arg(p.position, 0, 'f', 3)
                               .arg(p.force, 0, 'g', 3)
                               .arg(regime_name(p.analysis.regime))
                               .arg(p.analysis.slips_per_period, 0, 'f', 2)
                               .arg(p.analysis.pitch_cents, 0, 'f', 1)
-                              .arg(player_.description()));
+                              .arg(QString::fromStdString(player_.description())));
     } catch (const std::exception& e) {
         message_->setText(QString::fromUtf8(e.what()));
     }

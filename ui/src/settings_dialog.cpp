@@ -6,8 +6,7 @@
 #include <QLabel>
 #include <QSpinBox>
 
-#include "archet/evdev_device.hpp"
-#include "archet/sdl_device.hpp"
+#include "archet/haptic_choice.hpp"
 
 namespace archet::ui {
 
@@ -33,19 +32,17 @@ SettingsDialog::SettingsDialog(const EngineClientOptions& current, QWidget* pare
         tr("Asked of the device; the model runs at the rate the device gives "
            "(the status bar says which)"));
     haptic_ = new QComboBox;
-    haptic_->addItem(tr("The pad moves a simulated hand"), "sim");
-    haptic_->addItem(tr("The pad sets the bow's position directly"), "none");
-    // Joysticks found now; their line reads "evdev PATH: NAME ..." or "sdl N: NAME ...".
-    for (const std::string& line : list_haptic_devices()) {
-        const auto colon = line.find(':');
-        haptic_->addItem(QString::fromStdString(line),
-                         QString::fromStdString("evdev:" + line.substr(6, colon - 6)));
+    haptic_->setObjectName("haptic");
+    // The devices found now, under the ids --haptic takes: the simulated hand first, in the
+    // studio's words, then no device, then the joysticks as `archet devices` lists them.
+    for (const HapticDeviceInfo& d : list_haptic_choices()) {
+        const bool sim = d.backend == "sim";
+        haptic_->insertItem(
+            sim ? 0 : haptic_->count(),
+            sim ? tr("The pad moves a simulated hand") : QString::fromStdString(describe(d)),
+            QString::fromStdString(d.id));
     }
-    for (const std::string& line : list_sdl_joysticks()) {
-        const auto colon = line.find(':');
-        haptic_->addItem(QString::fromStdString(line),
-                         QString::fromStdString("sdl:" + line.substr(4, colon - 4)));
-    }
+    haptic_->insertItem(1, tr("The pad sets the bow's position directly"), "none");
     haptic_->setCurrentIndex(std::max(0, haptic_->findData(current.haptic)));
     auto* note =
         new QLabel(tr("Each axis's displacement and force scaling are the gesture "

@@ -5,7 +5,6 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QListWidget>
-#include <QMetaObject>
 #include <QProgressBar>
 #include <QPushButton>
 #include <QVBoxLayout>
@@ -51,44 +50,33 @@ SoundExamplesDialog::SoundExamplesDialog(QString resources, QString folder, QWid
     });
     connect(start_, &QPushButton::clicked, this, &SoundExamplesDialog::start);
     connect(cancel_, &QPushButton::clicked, this, &SoundExamplesDialog::cancel);
+    connect(&job_, &BackgroundJob::progressed, this, [this](std::size_t done) {
+        rendered_ = static_cast<int>(done);
+        progress_->setValue(rendered_);
+    });
     resize(700, 420);
 }
 
-SoundExamplesDialog::~SoundExamplesDialog() {
-    cancel_requested_.store(true);
-    if (worker_.joinable()) worker_.join();
-}
-
 void SoundExamplesDialog::start() {
-    if (running_.load()) return;
-    if (worker_.joinable()) worker_.join();
-    cancel_requested_.store(false);
-    running_.store(true);
+    if (busy()) return;
     rendered_ = 0;
     progress_->setValue(0);
     start_->setEnabled(false);
     cancel_->setEnabled(true);
     message_->setText(tr("rendering…"));
     const std::string resources = resources_.toStdString(), folder = folder_->text().toStdString();
-    worker_ = std::thread([this, resources, folder] {
-        int count = 0;
-        QString error;
-        try {
+    job_.start(
+        [resources, folder](BackgroundJob::Control& control) {
+            std::size_t count = 0;
             for (const SoundExample& e : sound_examples()) {
-                if (cancel_requested_.load()) {
-                    error = tr("cancelled");
-                    break;
-                }
+                if (control.cancelled()) return false;
                 render_sound_example(e, resources, folder);
-                ++count;
-                QMetaObject::invokeMethod(this, [this, count] { progress_->setValue(count); });
+                control.progress(++count, sound_examples().size());
             }
-        } catch (const std::exception& e) {
-            error = QString::fromUtf8(e.what());
-        }
-        running_.store(false);
-        QMetaObject::invokeMethod(this, [this, count, error] { done(count, error); });
-    });
+            return true;
+        },
+        [this](bool all) { done(rendered_, all ? QString() : tr("cancelled")); },
+        [this](const QString& error) { done(rendered_, error); });
 }
 
 void SoundExamplesDialog::done(int rendered, const QString& error) {

@@ -85,8 +85,8 @@ bool TakesPanel::play() {
     if (take.isEmpty()) return false;
     try {
         SoundData sound = read_sound_file((take + "/take.wav").toStdString());
-        player_.play(std::move(sound.samples), sound.sample_rate);
-        message_->setText(tr("playing on %1").arg(player_.description()));
+        player_.play(sound.samples, sound.sample_rate);
+        message_->setText(tr("playing on %1").arg(QString::fromStdString(player_.description())));
         return true;
     } catch (const std::exception& e) {
         message_->setText(QString::fromUtf8(e.what()));

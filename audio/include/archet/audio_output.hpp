@@ -51,7 +51,32 @@ class AudioOutput {
 /// null sink; `warning` then says why. Unknown APIs and bad numbers are InputErrors.
 std::unique_ptr<AudioOutput> open_audio_output(const AudioConfig& config, std::string* warning);
 
-/// One line per output device of each compiled API: "api index: name (channels, rates)".
-std::vector<std::string> list_audio_devices();
+/// An output device, as `archet devices` lists it.
+struct AudioDeviceInfo {
+    std::string api;  ///< what --audio takes: jack, alsa, pulse or null
+    int index = 0;    ///< what --device takes
+    std::string name;
+    int channels = 0;             ///< output channels
+    std::vector<unsigned> rates;  ///< Hz it offers
+    bool is_default = false;      ///< the API's default output
+};
+
+/// One compiled API's output devices, or why it could not be asked.
+struct AudioApiDevices {
+    std::string api;
+    std::vector<AudioDeviceInfo> devices;
+    std::string unavailable;  ///< RtAudio's reason; empty when the API answered
+};
+
+/// Each compiled API's output devices, then the null sink (always available).
+std::vector<AudioApiDevices> list_audio_devices();
+
+/// "api index: name (2 out, 44100/48000 Hz) default", or "null 0: null sink (always
+/// available)".
+std::string describe(const AudioDeviceInfo& device);
+
+/// An API's lines in `archet devices`: one per device, else "api: no devices" or
+/// "api: unavailable (why)".
+std::vector<std::string> describe(const AudioApiDevices& api);
 
 }  // namespace archet

@@ -47,8 +47,7 @@ class EvdevDevice final : public JoystickExchange {
     std::thread io_;
 };
 
-/// "evdev PATH: NAME (force feedback)" for each input device with two absolute axes and
-/// constant-force effects.
-std::vector<std::string> list_haptic_devices();
+/// Each readable input device with two absolute axes and constant-force effects, by path.
+std::vector<HapticDeviceInfo> list_evdev_devices();
 
 }  // namespace archet

@@ -14,6 +14,16 @@ struct HapticCapabilities {
     double force_rate = 1000;     ///< Hz, how often it takes new forces
 };
 
+/// A device Archet can play with, as `archet devices` and the studio's settings list it.
+struct HapticDeviceInfo {
+    std::string backend;  ///< evdev, sdl or sim
+    std::string address;  ///< /dev/input/eventN for evdev, the joystick index for sdl; sim: ""
+    std::string id;       ///< what --haptic takes: evdev:/dev/input/eventN, sdl:N, sim
+    std::string name;     ///< the device's own name
+    int axes = 0;         ///< absolute axes it reports (two are used)
+    bool force_feedback = false;
+};
+
 struct HapticReading {
     double slide = 0, press = 0;  ///< m
     double time = -1;             ///< s on the engine's clock when measured; < 0: never

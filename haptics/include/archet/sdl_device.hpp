@@ -45,7 +45,7 @@ class SdlDevice final : public JoystickExchange {
     std::thread io_;
 };
 
-/// "sdl N: NAME (force feedback | positions only)" for each joystick SDL finds with two axes.
-std::vector<std::string> list_sdl_joysticks();
+/// Each joystick SDL finds with two axes or more, by index, with or without force feedback.
+std::vector<HapticDeviceInfo> list_sdl_joysticks();
 
 }  // namespace archet

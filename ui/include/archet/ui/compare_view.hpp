@@ -5,13 +5,12 @@
 // can be cancelled.
 
 #include <QDialog>
-#include <atomic>
-#include <thread>
 #include <vector>
 
 #include "archet/analysis/comparison.hpp"
 #include "archet/model/model.hpp"
-#include "archet/ui/sound_player.hpp"
+#include "archet/preview_player.hpp"
+#include "archet/ui/background_job.hpp"
 
 class QComboBox;
 class QHBoxLayout;
@@ -29,22 +28,21 @@ class CompareView : public QDialog {
 
   public:
     explicit CompareView(const Model& model, QWidget* parent = nullptr);
-    ~CompareView() override;
 
     void set_variation(const QString& parameter, const QString& values);
     /// Starts rendering (as the Render button does).
     void render();
-    bool busy() const { return worker_.joinable() && !finished_.load(); }
+    bool busy() const { return job_.busy(); }
     const std::vector<ComparisonRun>& runs() const { return runs_; }
     CompareFigure& figure() { return *figure_; }
-    SoundPlayer& player() { return player_; }
+    PreviewPlayer& player() { return player_; }
 
   signals:
     void rendered();
 
   private:
     void finish(std::vector<ComparisonRun> runs, QString error);
-    void join();
+    void show_listen_buttons();
     void export_figure();
 
     Model model_;
@@ -58,9 +56,8 @@ class CompareView : public QDialog {
     CompareFigure* figure_;
     QHBoxLayout* listen_;
     std::vector<ComparisonRun> runs_;
-    std::thread worker_;
-    std::atomic<bool> cancel_requested_{false}, finished_{true};
-    SoundPlayer player_;
+    PreviewPlayer player_;  ///< the preview path, apart from the engine
+    BackgroundJob job_;     ///< last: destroyed (cancelled and joined) first
 };
 
 }  // namespace archet::ui

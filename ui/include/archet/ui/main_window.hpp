@@ -2,12 +2,15 @@
 // The studio's main window: the graph editor over the scopes, the gesture pad, the inspector
 // and the modes beside them, menus for files, editing and playing, and the engine's state in
 // the status bar. Every edit goes through the ModelDocument (undoable) and reaches the
-// running engine: a parameter glides in, a new element reloads the model.
+// running engine: a parameter glides in, a new element reloads the model. Its parts are a
+// source each: main_window.cpp (the window), _menus, _files and _engine.
 
 #include <QElapsedTimer>
+#include <QKeySequence>
 #include <QMainWindow>
 #include <QString>
 #include <QTimer>
+#include <utility>
 #include <vector>
 
 #include "archet/model/model.hpp"
@@ -78,22 +81,44 @@ class MainWindow : public QMainWindow {
     void closeEvent(QCloseEvent*) override;
 
   private:
-    void build_menus();
-    QToolBar* build_palette();
-    void new_string();
-    void open_dialog();
+    // Building the window (main_window.cpp).
+    void build_panels();
+    QTabWidget* build_tabs();
+    void build_status_bar();
+    void connect_panels();
     void save_layout();
     void restore_layout();
-    void toggle_play();
-    void toggle_take();
     void copy();
     void paste();
+    void update_title();
+
+    // Menus, tool bars and the dialogs they open (main_window_menus.cpp).
+    template <typename Slot>
+    QAction* add_action(QMenu* menu, const QString& text, QKeySequence keys, Slot slot);
+    void build_menus();
+    void build_file_menu();
+    std::pair<QAction*, QAction*> build_edit_menu();  ///< undo and redo, for the tool bar
+    void build_view_menu();
+    void build_play_menu();
+    void build_help_menu();
+    QToolBar* build_palette();
+    void open_settings();
+    void open_playability();
+
+    // Files (main_window_files.cpp).
+    void new_string();
+    void open_dialog();
+    void connect_autosave();
+    void remember_recent(const QString& path);
+    void fill_recent_menu();
+
+    // The live engine (main_window_engine.cpp).
+    void connect_engine();
+    void toggle_play();
+    void toggle_take();
     void model_changed(int change, const QString& element, const QString& name);
     void refresh();
     void show_status();
-    void remember_recent(const QString& path);
-    void fill_recent_menu();
-    void update_title();
 
     EngineClient* engine_;
     ModelDocument* document_;

@@ -3,14 +3,13 @@
 // background on every core, the current gesture's point on it, and a click on a run to hear it.
 
 #include <QDialog>
-#include <atomic>
 #include <functional>
 #include <optional>
-#include <thread>
 
 #include "archet/analysis/playability.hpp"
 #include "archet/model/model.hpp"
-#include "archet/ui/sound_player.hpp"
+#include "archet/preview_player.hpp"
+#include "archet/ui/background_job.hpp"
 
 class QDoubleSpinBox;
 class QLabel;
@@ -31,15 +30,14 @@ class PlayabilityPanel : public QDialog {
     PlayabilityPanel(const Model& model,
                      std::function<std::optional<std::pair<double, double>>()> gesture_point,
                      QWidget* parent = nullptr);
-    ~PlayabilityPanel() override;
 
     void set_grid(const MapGrid& grid);
     void compute();
-    void cancel() { cancel_.store(true); }
-    bool busy() const { return running_.load(); }
+    void cancel() { job_.cancel(); }
+    bool busy() const { return job_.busy(); }
     const std::vector<MapPoint>& points() const { return points_; }
     PlayabilityFigure& figure() { return *figure_; }
-    SoundPlayer& player() { return player_; }
+    PreviewPlayer& player() { return player_; }
     /// Renders grid point `index` again and plays it.
     void listen(long index);
 
@@ -61,10 +59,8 @@ class PlayabilityPanel : public QDialog {
     PlayabilityFigure* figure_;
     QTimer* refresh_;
     std::vector<MapPoint> points_;
-    std::thread worker_;
-    std::atomic<bool> cancel_{false}, running_{false};
-    std::atomic<std::size_t> done_{0}, total_{0};
-    SoundPlayer player_;
+    PreviewPlayer player_;  ///< the preview path, apart from the engine
+    BackgroundJob job_;     ///< last: destroyed (cancelled and joined) first
 };
 
 }  // namespace archet::ui

@@ -3,8 +3,8 @@
 // folder, off the GUI thread, with a progress bar and cancel.
 
 #include <QDialog>
-#include <atomic>
-#include <thread>
+
+#include "archet/ui/background_job.hpp"
 
 class QLabel;
 class QLineEdit;
@@ -20,11 +20,10 @@ class SoundExamplesDialog : public QDialog {
   public:
     /// `resources` holds models/ and gestures/.
     SoundExamplesDialog(QString resources, QString folder, QWidget* parent = nullptr);
-    ~SoundExamplesDialog() override;
 
     void start();
-    void cancel() { cancel_requested_.store(true); }
-    bool busy() const { return running_.load(); }
+    void cancel() { job_.cancel(); }
+    bool busy() const { return job_.busy(); }
     int rendered() const { return rendered_; }
 
   signals:
@@ -40,9 +39,8 @@ class SoundExamplesDialog : public QDialog {
     QLabel* message_;
     QPushButton* start_;
     QPushButton* cancel_;
-    std::thread worker_;
-    std::atomic<bool> cancel_requested_{false}, running_{false};
-    int rendered_ = 0;
+    int rendered_ = 0;   ///< so far, as the job reports them
+    BackgroundJob job_;  ///< last: destroyed (cancelled and joined) first
 };
 
 }  // namespace archet::ui

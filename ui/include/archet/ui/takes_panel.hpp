@@ -4,7 +4,7 @@
 
 #include <QWidget>
 
-#include "archet/ui/sound_player.hpp"
+#include "archet/preview_player.hpp"
 
 class QLabel;
 class QListWidget;
@@ -25,7 +25,7 @@ class TakesPanel : public QWidget {
     bool play();
     /// Writes the selected take's audio to `path` (WAV or FLAC by suffix) or its probes (CSV).
     bool export_to(const QString& path);
-    SoundPlayer& player() { return player_; }
+    PreviewPlayer& player() { return player_; }
     /// Says something about the takes under the list (the engine's news of the last take:
     /// written, interrupted, clipped), until something else is said there.
     void show_note(const QString& text);
@@ -37,7 +37,7 @@ class TakesPanel : public QWidget {
     QString folder_;
     QListWidget* list_;
     QLabel* message_;
-    SoundPlayer player_;
+    PreviewPlayer player_;  ///< the preview path, apart from the engine
 };
 
 }  // namespace archet::ui

@@ -1,35 +1,40 @@
-#include "archet/ui/sound_player.hpp"
+#include "archet/preview_player.hpp"
 
 #include <algorithm>
 
-namespace archet::ui {
+namespace archet {
 
-SoundPlayer::~SoundPlayer() {
+namespace {
+// A preview is heard, not played with: a buffer this long survives a busy desktop.
+constexpr int kPreviewBufferFrames = 512;
+}  // namespace
+
+PreviewPlayer::~PreviewPlayer() {
     stop();
 }
 
-void SoundPlayer::play(std::vector<double> samples, double sample_rate) {
-    stop();
+void PreviewPlayer::play(const std::vector<double>& samples, double sample_rate) {
+    stop();  // the output's thread is gone: the samples are ours to replace
     samples_.assign(samples.begin(), samples.end());
     for (float& s : samples_) s = std::clamp(s, -1.0f, 1.0f);
     position_.store(0);
     AudioConfig config;
     config.api = "auto";
     config.sample_rate = sample_rate;
-    config.buffer_frames = 512;
+    config.buffer_frames = kPreviewBufferFrames;
     std::string warning;
     output_ = open_audio_output(config, &warning);
-    description_ = QString::fromStdString(output_->description());
-    if (!warning.empty()) description_ += " — " + QString::fromStdString(warning);
+    description_ = output_->description();
+    if (!warning.empty()) description_ += " — " + warning;
     output_->start(*this);
 }
 
-void SoundPlayer::stop() {
+void PreviewPlayer::stop() {
     if (output_) output_->stop();
     output_.reset();
 }
 
-void SoundPlayer::render(float* out, int frames, int channels) {
+void PreviewPlayer::render(float* out, int frames, int channels) {
     std::size_t at = position_.load(std::memory_order_relaxed);
     for (int i = 0; i < frames; ++i, ++at) {
         const float y = at < samples_.size() ? samples_[at] : 0.0f;
@@ -38,4 +43,4 @@ void SoundPlayer::render(float* out, int frames, int channels) {
     position_.store(std::min(at, samples_.size()), std::memory_order_relaxed);
 }
 
-}  // namespace archet::ui
+}  // namespace archet
