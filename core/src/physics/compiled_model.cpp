@@ -4,6 +4,7 @@
 #include <set>
 
 #include "archet/common/input_error.hpp"
+#include "archet/model/model_parameters.hpp"
 
 namespace archet {
 
@@ -268,7 +269,7 @@ CompiledModel compile(const Model& model, double sample_rate) {
         if (ctl.source == Control::Source::Position) cc.position_of = slot(ctl.element);
         cc.gain = ctl.gain, cc.offset = ctl.offset, cc.minimum = ctl.minimum,
         cc.maximum = ctl.maximum;
-        cc.target = c.resolve_parameter(ctl.target_element, ctl.target_parameter);
+        cc.target = c.resolve_parameter(ctl.target);
         c.controls.push_back(cc);
     }
     return c;
@@ -282,49 +283,42 @@ const CompiledLevel* hand_level(const CompiledModel& model) {
     return slowest;
 }
 
-ParameterSlot CompiledModel::resolve_parameter(const std::string& element,
-                                               const std::string& name) const {
+// The table (element_kinds.cpp) says which parameters a kind has and what each is to the
+// physics; here a role finds its slot in the arrays the element was compiled into.
+ParameterSlot CompiledModel::resolve_parameter(const ParameterName& name) const {
     using K = ParameterSlot::Kind;
-    const std::string where = element + "." + name;
-    if (const Mat* m = source.find_mat(element)) {
-        const MatSlot s = mat_slots.at(element);
+    using R = ParameterRole;
+    const std::string where = name.text();
+    const R role = parameter_role(source, name);  // throws for unknown elements and names
+    if (const Mat* m = source.find_mat(name.element)) {
+        const MatSlot s = mat_slots.at(name.element);
         const CompiledLevel& lv = levels[s.level];
         auto find_in = [&](const auto& list) {
             for (int i = 0; i < static_cast<int>(list.size()); ++i)
                 if (list[i].index == s.index) return i;
             return -1;
         };
-        if (name == "mass" && (m->kind == MatKind::Mass || m->kind == MatKind::Oscillator))
-            return {K::Mass, s.level, s.index};
-        if (m->kind == MatKind::Oscillator && (name == "stiffness" || name == "damping"))
-            return {name == "stiffness" ? K::GroundK : K::GroundZ, s.level, find_in(lv.grounds)};
-        if (m->kind == MatKind::Gesture && (name == "position_scale" || name == "force_scale"))
-            return {name == "position_scale" ? K::GesturePositionScale : K::GestureForceScale,
+        if (role == R::Mass) return {K::Mass, s.level, s.index};
+        if (role == R::Stiffness || role == R::Damping)  // an oscillator's, to ground
+            return {role == R::Stiffness ? K::GroundK : K::GroundZ, s.level, find_in(lv.grounds)};
+        if (role == R::PositionScale || role == R::ForceScale)
+            return {role == R::PositionScale ? K::GesturePositionScale : K::GestureForceScale,
                     s.level, find_in(lv.gestures)};
-        if (m->kind == MatKind::Fixed && name == "position")
+        if (m->kind == MatKind::Fixed && role == R::Position)
             return {K::FixedPosition, s.level, s.index};
-        if (name == "position" || name == "velocity")
-            throw InputError(where,
-                             "is an initial condition and cannot change while the model runs");
-        throw InputError(where, "is not a parameter of this mass");
+        throw InputError(where, "is an initial condition and cannot change while the model runs");
     }
-    const Lia* l = source.find_lia(element);
-    if (!l) throw InputError(where, "no mass or link has this id");
-    const int li = static_cast<int>(l - source.lias.data());
+    const int li = static_cast<int>(source.find_lia(name.element) - source.lias.data());
     for (int b = 0; b < static_cast<int>(bows.size()); ++b) {
         if (bows[b].element != li) continue;
-        const std::map<std::string, K> names{{"buffer_stiffness", K::BowKb},
-                                             {"buffer_damping", K::BowZb},
-                                             {"mu_s", K::BowMuS},
-                                             {"mu_d", K::BowMuD},
-                                             {"v0", K::BowV0}};
-        auto it = names.find(name);
-        if (it == names.end()) break;
-        return {it->second, bows[b].level, b};
+        const std::map<R, K> kinds{{R::Stiffness, K::BowKb},
+                                   {R::Damping, K::BowZb},
+                                   {R::MuStatic, K::BowMuS},
+                                   {R::MuDynamic, K::BowMuD},
+                                   {R::V0, K::BowV0}};
+        return {kinds.at(role), bows[b].level, b};
     }
-    const bool length = name == "length" || name == "gap";
-    const bool is_k = name == "stiffness", is_z = name == "damping";
-    if (!(length || is_k || is_z)) throw InputError(where, "is not a parameter of this link");
+    const bool is_k = role == R::Stiffness, is_z = role == R::Damping;
     for (int lv = 0; lv < static_cast<int>(levels.size()); ++lv) {
         const auto& level = levels[lv];
         for (int s = 0; s < static_cast<int>(level.chain_element.size()); ++s)

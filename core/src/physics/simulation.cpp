@@ -108,7 +108,7 @@ void Simulation::apply_controls() {
                 signal = position(c.position_of);
                 break;
         }
-        set_parameter(c.target, std::clamp(c.offset + c.gain * signal, c.minimum, c.maximum));
+        write_slot(c.target, std::clamp(c.offset + c.gain * signal, c.minimum, c.maximum));
     }
 }
 
@@ -434,7 +434,7 @@ void Simulation::account(CompiledLevel& lv) {
     }
 }
 
-void Simulation::set_parameter(const ParameterSlot& s, double v) {
+void Simulation::write_slot(const ParameterSlot& s, double v) {
     using K = ParameterSlot::Kind;
     CompiledLevel& lv = model_.levels[s.level];
     switch (s.kind) {
@@ -510,7 +510,7 @@ void Simulation::set_parameter(const ParameterSlot& s, double v) {
     }
 }
 
-double Simulation::parameter(const ParameterSlot& s) const {
+double Simulation::read_slot(const ParameterSlot& s) const {
     using K = ParameterSlot::Kind;
     const CompiledLevel& lv = model_.levels[s.level];
     switch (s.kind) {
