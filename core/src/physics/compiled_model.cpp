@@ -68,23 +68,66 @@ std::vector<int> order_level(const Model& model, const std::set<std::string>& le
     return order;
 }
 
-}  // namespace
+// One compiled level's arrays, its MATs in `order` (chains consecutive), each chain link
+// stored with the MAT before it.
+void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<int>& order,
+                const std::vector<int>& chain_link_after) {
+    CompiledLevel& lv = c.levels[li];
+    lv.size = static_cast<int>(order.size());
+    const int storage = lv.size + 2;
+    for (auto& b : lv.buffer) b.assign(storage, 0.0);
+    lv.coeff.assign(storage, 0.0);
+    lv.mass.assign(storage, 0.0);
+    lv.external.assign(storage, 0.0);
+    lv.held.assign(storage, 0.0);
+    lv.chain_k.assign(storage, 0.0);
+    lv.chain_zdt.assign(storage, 0.0);
+    lv.chain_length.assign(storage, 0.0);
+    lv.chain_force.assign(storage, 0.0);
+    lv.chain_element.assign(storage, -1);
+    lv.element_of.assign(storage, -1);
+    lv.modal_point_of.assign(storage, -1);
+    for (int k = 0; k < lv.size; ++k) {
+        const int s = k + 1;
+        const Mat& m = model.mats[order[k]];
+        c.mat_slots[m.id] = {li, s};
+        lv.element_of[s] = order[k];
+        const bool movable = m.kind == MatKind::Mass || m.kind == MatKind::Oscillator;
+        lv.mass[s] = movable ? m.mass : 0.0;
+        lv.coeff[s] = movable ? lv.dt * lv.dt / m.mass : 0.0;
+        // Initial state: x[0] = position, x[−1] = position − velocity·T.
+        lv.x()[s] = m.position;
+        lv.x_prev()[s] = movable ? m.position - m.velocity * lv.dt : m.position;
+        if (m.kind == MatKind::Oscillator)
+            lv.grounds.push_back({s, m.stiffness, m.damping / lv.dt, m.position, order[k]});
+        if (m.kind == MatKind::Gesture) {
+            lv.watched.push_back(s);
+            lv.gestures.push_back({s, m.axis, m.position_scale, m.force_scale, order[k],
+                                   static_cast<int>(lv.watched.size()) - 1});
+        }
+        const int link = chain_link_after[k];
+        if (link >= 0) {
+            const Lia& l = model.lias[link];
+            // The chain computes d = x[s] − x[s+1]; flip the sign when the link runs the
+            // other way so that its length keeps its meaning.
+            const bool forward = l.from == m.id;
+            lv.chain_k[s] = l.stiffness;
+            lv.chain_zdt[s] = l.damping / lv.dt;
+            lv.chain_length[s] = forward ? l.length : -l.length;
+            lv.has_chain_lengths = lv.has_chain_lengths || l.length != 0.0;
+            lv.chain_element[s] = link;
+        }
+    }
+}
 
-CompiledModel compile(const Model& model, double sample_rate) {
-    CompiledModel c;
-    c.source = model;
-    c.sample_rate = sample_rate > 0 ? sample_rate : model.sample_rate;
-    c.output_gain = model.output_gain;
-
+// Rate levels that share a divider tick together: they compile into one level, so links
+// between them are ordinary links rather than rate crossings. Fastest first.
+void compile_levels(CompiledModel& c, const Model& model, std::map<std::string, int>& level_index,
+                    std::vector<bool>& is_chain_link) {
     std::map<std::string, int> mat_index;
     for (int i = 0; i < static_cast<int>(model.mats.size()); ++i) mat_index[model.mats[i].id] = i;
-
-    // Rate levels that share a divider tick together: they compile into one level, so links
-    // between them are ordinary links rather than rate crossings. Fastest first.
     std::map<int, std::set<std::string>> by_divider;
     for (const auto& r : model.rates) by_divider[r.divider].insert(r.id);
-    std::map<std::string, int> level_index;
-    std::vector<bool> is_chain_link(model.lias.size(), false);
     for (const auto& [divider, ids] : by_divider) {
         const int li = static_cast<int>(c.levels.size());
         CompiledLevel& lv = c.levels.emplace_back();
@@ -96,53 +139,11 @@ CompiledModel compile(const Model& model, double sample_rate) {
         std::vector<int> chain_link_after;
         const std::vector<int> order =
             order_level(model, ids, mat_index, is_chain_link, chain_link_after);
-        lv.size = static_cast<int>(order.size());
-        const int storage = lv.size + 2;
-        for (auto& b : lv.buffer) b.assign(storage, 0.0);
-        lv.coeff.assign(storage, 0.0);
-        lv.mass.assign(storage, 0.0);
-        lv.external.assign(storage, 0.0);
-        lv.held.assign(storage, 0.0);
-        lv.chain_k.assign(storage, 0.0);
-        lv.chain_zdt.assign(storage, 0.0);
-        lv.chain_length.assign(storage, 0.0);
-        lv.chain_force.assign(storage, 0.0);
-        lv.chain_element.assign(storage, -1);
-        lv.element_of.assign(storage, -1);
-        lv.modal_point_of.assign(storage, -1);
-        for (int k = 0; k < lv.size; ++k) {
-            const int s = k + 1;
-            const Mat& m = model.mats[order[k]];
-            c.mat_slots[m.id] = {li, s};
-            lv.element_of[s] = order[k];
-            const bool movable = m.kind == MatKind::Mass || m.kind == MatKind::Oscillator;
-            lv.mass[s] = movable ? m.mass : 0.0;
-            lv.coeff[s] = movable ? lv.dt * lv.dt / m.mass : 0.0;
-            // Initial state: x[0] = position, x[−1] = position − velocity·T.
-            lv.x()[s] = m.position;
-            lv.x_prev()[s] = movable ? m.position - m.velocity * lv.dt : m.position;
-            if (m.kind == MatKind::Oscillator)
-                lv.grounds.push_back({s, m.stiffness, m.damping / lv.dt, m.position, order[k]});
-            if (m.kind == MatKind::Gesture) {
-                lv.watched.push_back(s);
-                lv.gestures.push_back({s, m.axis, m.position_scale, m.force_scale, order[k],
-                                       static_cast<int>(lv.watched.size()) - 1});
-            }
-            const int link = chain_link_after[k];
-            if (link >= 0) {
-                const Lia& l = model.lias[link];
-                // The chain computes d = x[s] − x[s+1]; flip the sign when the link runs the
-                // other way so that its length keeps its meaning.
-                const bool forward = l.from == m.id;
-                lv.chain_k[s] = l.stiffness;
-                lv.chain_zdt[s] = l.damping / lv.dt;
-                lv.chain_length[s] = forward ? l.length : -l.length;
-                lv.has_chain_lengths = lv.has_chain_lengths || l.length != 0.0;
-                lv.chain_element[s] = link;
-            }
-        }
+        fill_level(c, model, li, order, chain_link_after);
     }
+}
 
+void compile_modal_points(CompiledModel& c, const Model& model) {
     auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
     for (const auto& m : model.mats) {
         if (m.kind != MatKind::ModalPoint) continue;
@@ -161,29 +162,70 @@ CompiledModel compile(const Model& model, double sample_rate) {
         lv.modal_point_of[p.index] = static_cast<int>(lv.modal_points.size());
         lv.modal_points.push_back(std::move(point));
     }
-    auto touch = [&](MatSlot s) { c.levels[s.level].touched.push_back(s.index); };
-    auto gesture_point = [&](MatSlot s) {
-        const auto& gestures = c.levels[s.level].gestures;
-        for (int i = 0; i < static_cast<int>(gestures.size()); ++i)
-            if (gestures[i].index == s.index) return i;
-        return -1;
+}
+
+int gesture_point(const CompiledModel& c, MatSlot s) {
+    const auto& gestures = c.levels[s.level].gestures;
+    for (int i = 0; i < static_cast<int>(gestures.size()); ++i)
+        if (gestures[i].index == s.index) return i;
+    return -1;
+}
+
+// A link between two compiled levels, weighted by their rates; a spring from a slower
+// gesture point is a hand link.
+CompiledCrossLink cross_link(const CompiledModel& c, int li, int level, MatSlot a, MatSlot b,
+                             double k, double zdt, double length, bool contact) {
+    CompiledCrossLink x;
+    x.level = level, x.a = a, x.b = b;
+    x.k = k, x.zdt = zdt, x.length = length, x.contact = contact;
+    x.element = li;
+    const int link_div = c.levels[level].divider;
+    const int a_div = c.levels[a.level].divider, b_div = c.levels[b.level].divider;
+    using R = CompiledCrossLink::EndRate;
+    auto rate = [&](int div) {
+        return div == link_div ? R::Same : div < link_div ? R::Faster : R::Slower;
     };
+    x.a_rate = rate(a_div), x.b_rate = rate(b_div);
+    x.a_weight = x.a_rate == R::Slower ? static_cast<double>(link_div) / a_div : 1.0;
+    x.b_weight = x.b_rate == R::Slower ? static_cast<double>(link_div) / b_div : 1.0;
+    x.d_prev = c.levels[a.level].x()[a.index] - c.levels[b.level].x()[b.index];
+    const int hand_at_a = x.a_rate == R::Slower ? gesture_point(c, a) : -1;
+    const int hand_at_b = x.b_rate == R::Slower ? gesture_point(c, b) : -1;
+    if (!contact && hand_at_a >= 0 && x.b_rate == R::Same)
+        x.hand = hand_at_a, x.hand_is_a = true, x.hand_slot = a, x.end_slot = b;
+    if (!contact && hand_at_b >= 0 && x.a_rate == R::Same)
+        x.hand = hand_at_b, x.hand_is_a = false, x.hand_slot = b, x.end_slot = a;
+    x.hand_sign = x.hand_is_a ? 1.0 : -1.0;
+    return x;
+}
+
+CompiledBow compile_bow(const CompiledModel& c, const Lia& l, int li, int level, double dt) {
+    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
+    CompiledBow bow;
+    bow.level = level;
+    bow.bow = slot(l.bow()).index, bow.string = slot(l.bowed_string()).index;
+    bow.press = slot(l.press).index, bow.surface = slot(l.surface).index;
+    bow.kb = l.buffer_stiffness(), bow.zbdt = l.buffer_damping() / dt;
+    bow.mu_s = l.mu_static, bow.mu_d = l.mu_dynamic, bow.v0 = l.v0;
+    bow.element = li;
+    return bow;
+}
+
+// Every link not in a chain: bows, same-level links and links across levels.
+void compile_links(CompiledModel& c, const Model& model,
+                   const std::map<std::string, int>& level_index,
+                   const std::vector<bool>& is_chain_link) {
+    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
+    auto touch = [&](MatSlot s) { c.levels[s.level].touched.push_back(s.index); };
     for (int li = 0; li < static_cast<int>(model.lias.size()); ++li) {
         const Lia& l = model.lias[li];
         if (is_chain_link[li]) continue;
         const int level = level_index.at(l.rate);
         const double dt = c.levels[level].dt;
         if (l.kind == LiaKind::BowFriction) {
-            CompiledBow bow;
-            bow.level = level;
-            bow.bow = slot(l.from).index, bow.string = slot(l.to).index;
-            bow.press = slot(l.press).index, bow.surface = slot(l.surface).index;
-            bow.kb = l.stiffness, bow.zbdt = l.damping / dt;
-            bow.mu_s = l.mu_static, bow.mu_d = l.mu_dynamic, bow.v0 = l.v0;
-            bow.element = li;
             for (const auto* id : {&l.from, &l.to, &l.press, &l.surface}) touch(slot(*id));
             c.levels[level].bows.push_back(static_cast<int>(c.bows.size()));
-            c.bows.push_back(bow);
+            c.bows.push_back(compile_bow(c, l, li, level, dt));
             continue;
         }
         const bool contact = l.kind == LiaKind::Buffer;
@@ -191,40 +233,23 @@ CompiledModel compile(const Model& model, double sample_rate) {
         const double length = contact ? -l.length : l.length;
         const MatSlot a = slot(l.from), b = slot(l.to);
         touch(a), touch(b);
-        if (a.level == level && b.level == level) {  // same compiled level
+        if (a.level == level && b.level == level)  // same compiled level
             c.levels[level].links.push_back(
                 {a.index, b.index, l.stiffness, l.damping / dt, length, contact, li});
-        } else {
-            CompiledCrossLink x;
-            x.level = level, x.a = a, x.b = b;
-            x.k = l.stiffness, x.zdt = l.damping / dt, x.length = length, x.contact = contact;
-            x.element = li;
-            const int link_div = c.levels[level].divider;
-            const int a_div = c.levels[a.level].divider, b_div = c.levels[b.level].divider;
-            using R = CompiledCrossLink::EndRate;
-            auto rate = [&](int div) {
-                return div == link_div ? R::Same : div < link_div ? R::Faster : R::Slower;
-            };
-            x.a_rate = rate(a_div), x.b_rate = rate(b_div);
-            x.a_weight = x.a_rate == R::Slower ? static_cast<double>(link_div) / a_div : 1.0;
-            x.b_weight = x.b_rate == R::Slower ? static_cast<double>(link_div) / b_div : 1.0;
-            x.d_prev = c.levels[a.level].x()[a.index] - c.levels[b.level].x()[b.index];
-            const int hand_at_a = x.a_rate == R::Slower ? gesture_point(a) : -1;
-            const int hand_at_b = x.b_rate == R::Slower ? gesture_point(b) : -1;
-            if (!contact && hand_at_a >= 0 && x.b_rate == R::Same)
-                x.hand = hand_at_a, x.hand_is_a = true, x.hand_slot = a, x.end_slot = b;
-            if (!contact && hand_at_b >= 0 && x.a_rate == R::Same)
-                x.hand = hand_at_b, x.hand_is_a = false, x.hand_slot = b, x.end_slot = a;
-            x.hand_sign = x.hand_is_a ? 1.0 : -1.0;
-            c.cross_links.push_back(x);
-        }
+        else
+            c.cross_links.push_back(
+                cross_link(c, li, level, a, b, l.stiffness, l.damping / dt, length, contact));
     }
     // Hand links first: they have a short path of their own in the simulation.
     std::stable_partition(c.cross_links.begin(), c.cross_links.end(),
                           [](const CompiledCrossLink& l) { return l.hand >= 0; });
     c.hand_links = static_cast<int>(std::count_if(c.cross_links.begin(), c.cross_links.end(),
                                                   [](const auto& l) { return l.hand >= 0; }));
+}
 
+// Probes and outputs, with the forces the levels must keep for them.
+void compile_readouts(CompiledModel& c, const Model& model) {
+    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
     auto watch = [&](MatSlot s) {
         auto& w = c.levels[s.level].watched;
         auto it = std::find(w.begin(), w.end(), s.index);
@@ -260,6 +285,22 @@ CompiledModel compile(const Model& model, double sample_rate) {
         lv.touched.erase(std::unique(lv.touched.begin(), lv.touched.end()), lv.touched.end());
         lv.watched_force.assign(lv.watched.size(), 0.0);
     }
+}
+
+}  // namespace
+
+CompiledModel compile(const Model& model, double sample_rate) {
+    CompiledModel c;
+    c.source = model;
+    c.sample_rate = sample_rate > 0 ? sample_rate : model.sample_rate;
+    c.output_gain = model.output_gain;
+    std::map<std::string, int> level_index;
+    std::vector<bool> is_chain_link(model.lias.size(), false);
+    compile_levels(c, model, level_index, is_chain_link);
+    compile_modal_points(c, model);
+    compile_links(c, model, level_index, is_chain_link);
+    compile_readouts(c, model);
+    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
     for (const auto& ctl : model.controls) {
         CompiledControl cc;
         cc.source = ctl.source;
