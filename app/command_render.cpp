@@ -120,6 +120,23 @@ RenderPlan plan_from_take(const RenderArguments& a) {
     return plan;
 }
 
+// What was written, and by how much it clipped.
+void report_render(const RenderArguments& a, const SoundFileWriter& audio, double duration,
+                   double sample_rate, bool with_probes) {
+    std::cout << "wrote " << a.output << " (" << duration << " s at " << sample_rate << " Hz, peak "
+              << std::fixed << std::setprecision(1)
+              << (audio.peak() > 0 ? 20 * std::log10(audio.peak()) : -INFINITY) << " dBFS)"
+              << std::defaultfloat;
+    if (with_probes) std::cout << " and " << a.probes;
+    std::cout << "\n";
+    if (audio.clipped_samples() > 0)
+        std::cerr << "archet: warning: " << audio.clipped_samples()
+                  << " samples exceeded full scale (peak " << audio.peak()
+                  << ") and were clipped; lower the model's output_gain by at least "
+                  << std::ceil(20 * std::log10(audio.peak()) * 10) / 10
+                  << " dB (the \"output_gain\" field of the model file)\n";
+}
+
 int run_render(const RenderArguments& a) {
     const InterruptionGuard
         stop_on_signal;  // SIGINT, SIGTERM, SIGHUP: stop, leave no temporary file
@@ -141,14 +158,9 @@ int run_render(const RenderArguments& a) {
     }
     // The take's parameter changes glide in as the engine glided them.
     std::vector<ParameterSlot> slots;
-    for (const auto& c : plan.changes) {
-        const auto dot = c.parameter.rfind('.');
-        if (dot == std::string::npos)
-            throw InputError(a.take + "/parameters.json",
-                             "\"" + c.parameter + "\" is not ELEMENT.PARAMETER");
-        slots.push_back(
-            sim.model().resolve_parameter(c.parameter.substr(0, dot), c.parameter.substr(dot + 1)));
-    }
+    for (const auto& c : plan.changes)
+        slots.push_back(sim.model().resolve_parameter(
+            ParameterName::parse(c.parameter, a.take + "/parameters.json")));
     const auto frames =
         plan.frames > 0 ? plan.frames
                         : static_cast<std::uint64_t>(std::llround(duration * sim.sample_rate()));
@@ -197,18 +209,7 @@ int run_render(const RenderArguments& a) {
     if (show_progress) std::fputc('\n', stderr);
     audio.close();
     if (csv) csv->close();
-    std::cout << "wrote " << a.output << " (" << duration << " s at " << sim.sample_rate()
-              << " Hz, peak " << std::fixed << std::setprecision(1)
-              << (audio.peak() > 0 ? 20 * std::log10(audio.peak()) : -INFINITY) << " dBFS)"
-              << std::defaultfloat;
-    if (csv) std::cout << " and " << a.probes;
-    std::cout << "\n";
-    if (audio.clipped_samples() > 0)
-        std::cerr << "archet: warning: " << audio.clipped_samples()
-                  << " samples exceeded full scale (peak " << audio.peak()
-                  << ") and were clipped; lower the model's output_gain by at least "
-                  << std::ceil(20 * std::log10(audio.peak()) * 10) / 10
-                  << " dB (the \"output_gain\" field of the model file)\n";
+    report_render(a, audio, duration, sim.sample_rate(), csv != nullptr);
     return 0;
 }
 

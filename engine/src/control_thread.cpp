@@ -142,7 +142,7 @@ void ControlThread::nrt_handle(const CommandFrame& c) {
         case Opcode::LoadModel:
             return nrt_load(c, d.text);
         case Opcode::SetParameter:
-            return nrt_set_parameter(c, d.text);
+            return nrt_set_live_parameter(c, d.parameter);
         case Opcode::Play:
             return nrt_send({RealtimeCommand::Play, {}, 0, 0, 0}, c);
         case Opcode::Stop:
@@ -186,18 +186,17 @@ void ControlThread::nrt_load(const CommandFrame& c, const std::string& path) {
     }
 }
 
-void ControlThread::nrt_set_parameter(const CommandFrame& c, const std::string& name) {
+void ControlThread::nrt_set_live_parameter(const CommandFrame& c, const ParameterName& name) {
     try {
-        if (current_name_.empty()) throw InputError(name, "no model is loaded");
-        const auto dot = name.rfind('.');  // decode_command made sure there is one
-        const std::string element = name.substr(0, dot), parameter = name.substr(dot + 1);
-        const ParameterSlot slot = current_resolver_.resolve_parameter(element, parameter);
-        // The studio checked the value, but commands come from another process.
-        set_parameter_validated(current_model_, element, parameter, c.value);
+        if (current_name_.empty()) throw InputError(name.text(), "no model is loaded");
+        const ParameterSlot slot = current_resolver_.resolve_parameter(name);
+        // The trust boundary: the studio checked the value, but commands come from another
+        // process, and the engine runs at its device's rate. Range and stability, once.
+        set_parameter_validated(current_model_, name, c.value);
         nrt_set_in_waiting_model(slot, c.value);
         RealtimeCommand r{RealtimeCommand::SetParameter, slot, c.value, 0, 0};
         r.generation = generation_;  // the real-time thread applies it to that model only
-        if (live_take_) r.name = live_take_->parameter_name(name);
+        if (live_take_) r.name = live_take_->parameter_name(name.text());
         nrt_send(r, c);
     } catch (const std::exception& e) {
         nrt_fail(c, e.what());
@@ -209,7 +208,7 @@ void ControlThread::nrt_set_parameter(const CommandFrame& c, const std::string& 
 void ControlThread::nrt_set_in_waiting_model(const ParameterSlot& slot, double value) {
     LoadedModel* waiting = bridge_.pending.exchange(nullptr, std::memory_order_acq_rel);
     if (!waiting) return;  // none, or the real-time thread took it: the command will do
-    waiting->simulation->set_parameter(slot, value);
+    waiting->simulation->write_slot(slot, value);
     delete bridge_.pending.exchange(waiting, std::memory_order_acq_rel);  // only this stores
 }
 

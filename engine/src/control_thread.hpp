@@ -20,6 +20,7 @@
 #include "archet/haptic_choice.hpp"
 #include "archet/ipc/shared_segment.hpp"
 #include "archet/model/model.hpp"
+#include "archet/model/parameter_name.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "realtime_thread.hpp"
 #include "status_publisher.hpp"
@@ -49,7 +50,7 @@ class ControlThread {
     void nrt_send(const RealtimeCommand& r, const ipc::CommandFrame& c);
     void nrt_fail(const ipc::CommandFrame& c, const std::string& message);
     void nrt_load(const ipc::CommandFrame& c, const std::string& path);
-    void nrt_set_parameter(const ipc::CommandFrame& c, const std::string& name);
+    void nrt_set_live_parameter(const ipc::CommandFrame& c, const ParameterName& name);
     void nrt_set_in_waiting_model(const ParameterSlot& slot, double value);
     void nrt_start_take(const ipc::CommandFrame& c, const std::string& folder);
     void nrt_collect_takes();

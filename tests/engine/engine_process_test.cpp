@@ -110,7 +110,7 @@ TEST(EngineProcess, AParameterSentDuringASwapReachesTheModelThatPlays) {
         std::vector<std::string> errors;
         ASSERT_TRUE(wait_status(link, StatusKind::ModelLoaded, link.load_model(path), errors));
         link.load_model(path);  // while the first is still cross-fading in
-        link.set_parameter("hand_press.position_scale", inverted ? -1.0 : 1.0);
+        link.send_parameter({"hand_press", "position_scale"}, inverted ? -1.0 : 1.0);
         EXPECT_TRUE(bow_until([&] { return inverted ? normal == 0.0 : normal > 0.01; }))
             << "round " << round << ": the value is in the model that plays (normal force "
             << normal << " N)";
@@ -203,7 +203,7 @@ TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
     EXPECT_EQ(shape.count, 62u) << "the string: its two bridges and 60 masses, not the bow";
 
     // A parameter change takes effect: no bow force once the pressure axis is inverted.
-    link.set_parameter("hand_press.position_scale", -1.0);
+    link.send_parameter({"hand_press", "position_scale"}, -1.0);
     double late_normal = 1;
     wait_for(
         [&] {
@@ -217,8 +217,8 @@ TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
 
     // Bad commands are answered with errors and change nothing.
     errors.clear();
-    link.set_parameter("nothing.mass", 1);
-    link.set_parameter("k3.stiffness", 1e12);
+    link.send_parameter({"nothing", "mass"}, 1);
+    link.send_parameter({"k3", "stiffness"}, 1e12);
     link.load_model("/no/such/model.json");
     CommandFrame garbage{};
     std::memset(&garbage, 'x', sizeof garbage);

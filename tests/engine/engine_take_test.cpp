@@ -149,7 +149,7 @@ TEST(EngineTake, StartedMidPerformanceReRendersToTheByte) {
         return f.sequence == started && std::string(f.text).rfind("recording ", 0) == 0;
     })) << (engine.errors().empty() ? "" : engine.errors()[0]);
     engine.bow(0.4);
-    engine.link().set_parameter("friction.mu_s", 0.7);  // recorded, and replayed
+    engine.link().send_parameter({"friction", "mu_s"}, 0.7);  // recorded, and replayed
     engine.bow(0.4);
     engine.link().stop_take();
     std::string said;
@@ -202,7 +202,7 @@ TEST(EngineTake, AKilledEnginesTakeIsRecoveredByRender) {
         return size_of(dir / "take" / "take.wav") > 48000 * 3 / 2;
     })) << "the take never grew";
     // A change made while it records: streamed, and replayed by the recovered take.
-    engine.link().set_parameter("friction.mu_s", 0.7);
+    engine.link().send_parameter({"friction", "mu_s"}, 0.7);
     const std::uintmax_t before = size_of(dir / "take" / "take.wav");
     ASSERT_TRUE(engine.bow_until(
         [&] { return size_of(dir / "take" / "take.wav") > before + 48000 * 3 / 2; }));

@@ -315,14 +315,13 @@ TEST(RealtimeSafety, StepProbesAndOutputMakeNoForbiddenCall) {
     BowedStringOptions o;
     Model model = build_bowed_string(o);
     Control c;
-    c.id = "c", c.target_element = "friction", c.target_parameter = "mu_s",
-    c.source = Control::Source::Envelope;
+    c.id = "c", c.target = {"friction", "mu_s"}, c.source = Control::Source::Envelope;
     c.envelope = {{0, 0.8}, {1, 0.9}}, c.minimum = 0.5, c.maximum = 1.0;
     model.controls.push_back(c);
     Simulation sim(compile(model));
     sim.enable_accounting(true);
     const auto mu_d =
-        sim.model().resolve_parameter("friction", "mu_d");  // resolved off the real-time path
+        sim.model().resolve_parameter({"friction", "mu_d"});  // resolved off the real-time path
     double sink = 0;
     const RealtimeCalls calls = counted_on_marked_thread([&] {
         for (int i = 0; i < 48000; ++i) {
@@ -330,7 +329,7 @@ TEST(RealtimeSafety, StepProbesAndOutputMakeNoForbiddenCall) {
             sink += sim.output();
             for (std::size_t p = 0; p < sim.probe_count(); ++p) sink += sim.probe(p);
         }
-        sim.set_parameter(mu_d, 0.25);
+        sim.write_slot(mu_d, 0.25);
     });
     EXPECT_EQ(calls.total(), 0u) << calls.describe();
     EXPECT_TRUE(std::isfinite(sink));
@@ -461,16 +460,16 @@ TEST(RealtimeSafety, TheEnginesRealtimeThreadMakesNoForbiddenCallInAWholeSession
             << "the simulated hand bowed the string and felt it";
 
         // The smoother: the press axis inverted glides the bow off the string, and back.
-        link.set_parameter("hand_press.position_scale", -1.0);
+        link.send_parameter({"hand_press", "position_scale"}, -1.0);
         ASSERT_TRUE(e.bow_until([&] { return e.normal_ == 0.0; })) << e.said();
-        link.set_parameter("hand_press.position_scale", 1.0);
+        link.send_parameter({"hand_press", "position_scale"}, 1.0);
         ASSERT_TRUE(e.bow_until([&] { return e.normal_ > 0.01; })) << e.said();
 
         // A take, begun at a block boundary, fed samples, gestures and a parameter change, stopped.
         link.start_take((dir / "take-1").string());
         ASSERT_TRUE(e.bow_until([&] { return e.take_said("recording"); })) << e.said();
         ASSERT_TRUE(e.bow_for(4800));
-        link.set_parameter("friction.mu_d", 0.3);
+        link.send_parameter({"friction", "mu_d"}, 0.3);
         ASSERT_TRUE(e.bow_for(4800));
         link.stop_take();
         ASSERT_TRUE(e.bow_until([&] {

@@ -41,6 +41,7 @@ TEST(CommandDecoder, DecodesWhatWasSent) {
     const auto& c = std::get<DecodedCommand>(d);
     EXPECT_EQ(c.opcode, Opcode::SetParameter);
     EXPECT_EQ(c.text, "friction.mu_s");
+    EXPECT_EQ(c.parameter, (ParameterName{"friction", "mu_s"}));
     EXPECT_EQ(c.value, 0.7);
     EXPECT_EQ(c.sequence, 7u);
 }

@@ -65,9 +65,8 @@ TEST(ModelFile, EveryElementKindAndFieldRoundTrips) {
     bow.v0 = 0.05;
     m.lias.insert(m.lias.end(), {spring, damper, buffer, bow});
     Control c;
-    c.id = "c", c.target_element = "bw", c.target_parameter = "mu_s",
-    c.source = Control::Source::Envelope, c.envelope = {{0, 0.7}, {1, 0.9}}, c.minimum = 0.5,
-    c.maximum = 1.0;
+    c.id = "c", c.target = {"bw", "mu_s"}, c.source = Control::Source::Envelope,
+    c.envelope = {{0, 0.7}, {1, 0.9}}, c.minimum = 0.5, c.maximum = 1.0;
     m.controls.push_back(c);
     m.probes = {{"x", ProbeKind::Position, "a"}, {"e", ProbeKind::Energy, ""}};
     m.outputs = {{"o", Output::Signal::Velocity, 0.5}};

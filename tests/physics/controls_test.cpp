@@ -34,7 +34,7 @@ Model oscillator_with_control(Control control) {
 
 TEST(Controls, AnEnvelopeRetunesAnOscillatorWhileItRuns) {
     Control c;
-    c.id = "tune", c.rate = "audio", c.target_element = "osc", c.target_parameter = "stiffness";
+    c.id = "tune", c.rate = "audio", c.target = {"osc", "stiffness"};
     c.source = Control::Source::Envelope;
     c.envelope = {{0.0, 1000.0}, {1.0, 1000.0}, {1.0001, 4000.0}};
     c.minimum = 500, c.maximum = 8000;
@@ -51,13 +51,13 @@ TEST(Controls, AnEnvelopeRetunesAnOscillatorWhileItRuns) {
 
 TEST(Controls, AGestureAxisDrivesAParameterWithinItsRange) {
     Control c;
-    c.id = "hand", c.rate = "audio", c.target_element = "osc", c.target_parameter = "stiffness";
+    c.id = "hand", c.rate = "audio", c.target = {"osc", "stiffness"};
     c.source = Control::Source::Gesture;
     c.axis = GestureAxis::Press;
     c.offset = 1000, c.gain = 1e6;  // N/m per metre of the pressure axis
     c.minimum = 1000, c.maximum = 3000;
     Simulation sim(compile(oscillator_with_control(c)));
-    const auto slot = sim.model().resolve_parameter("osc", "stiffness");
+    const auto slot = sim.model().resolve_parameter({"osc", "stiffness"});
     const Gesture g("press", {{0, 0, 0}, {1, 0, 0.001}, {2, 0, 0.01}});
     sim.set_gesture_track(&g);
     auto stiffness = [&] { return sim.model().levels[slot.level].grounds[slot.index].k; };
@@ -70,7 +70,7 @@ TEST(Controls, AGestureAxisDrivesAParameterWithinItsRange) {
 
 TEST(Controls, RefusesARangeThatWouldMakeTheModelUnstable) {
     Control c;
-    c.id = "too_far", c.rate = "audio", c.target_element = "osc", c.target_parameter = "stiffness";
+    c.id = "too_far", c.rate = "audio", c.target = {"osc", "stiffness"};
     c.source = Control::Source::Envelope;
     c.envelope = {{0.0, 1000.0}};
     c.minimum = 1000, c.maximum = 4.0 * kMass / (kDt * kDt) * 1.01;  // past K·T²/m = 4

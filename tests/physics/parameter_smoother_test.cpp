@@ -14,40 +14,40 @@ namespace {
 
 TEST(ParameterSmoother, GlidesLinearlyToTheTarget) {
     Simulation sim(compile(build_bowed_string({})));
-    const auto slot = sim.model().resolve_parameter("friction", "mu_s");
+    const auto slot = sim.model().resolve_parameter({"friction", "mu_s"});
     ParameterSmoother smoother;
     smoother.glide(sim, slot, 0.9, 480);
-    double previous = sim.parameter(slot);
+    double previous = sim.read_slot(slot);
     EXPECT_EQ(previous, 0.8);
     for (int i = 0; i < 480; ++i) {
         smoother.advance(sim);
-        const double now = sim.parameter(slot);
+        const double now = sim.read_slot(slot);
         EXPECT_NEAR(now - previous, 0.1 / 480, 1e-12) << "step " << i;
         previous = now;
         sim.step();
     }
-    EXPECT_EQ(sim.parameter(slot), 0.9);
+    EXPECT_EQ(sim.read_slot(slot), 0.9);
     EXPECT_EQ(smoother.active(), 0u);
 }
 
 TEST(ParameterSmoother, RetargetsFromWhereItIsAndSetsAtOnceWhenFull) {
     Simulation sim(compile(build_bowed_string({})));
-    const auto slot = sim.model().resolve_parameter("k3", "stiffness");
-    const double start = sim.parameter(slot);
+    const auto slot = sim.model().resolve_parameter({"k3", "stiffness"});
+    const double start = sim.read_slot(slot);
     ParameterSmoother smoother;
     smoother.glide(sim, slot, 2 * start, 100);
     for (int i = 0; i < 50; ++i) smoother.advance(sim);
-    EXPECT_NEAR(sim.parameter(slot), 1.5 * start, 1e-9 * start);
+    EXPECT_NEAR(sim.read_slot(slot), 1.5 * start, 1e-9 * start);
     smoother.glide(sim, slot, start, 10);  // back, from halfway
     EXPECT_EQ(smoother.active(), 1u);
     for (int i = 0; i < 10; ++i) smoother.advance(sim);
-    EXPECT_NEAR(sim.parameter(slot), start, 1e-9 * start);
+    EXPECT_NEAR(sim.read_slot(slot), start, 1e-9 * start);
     for (int i = 0; i < static_cast<int>(ParameterSmoother::kCapacity); ++i)
-        smoother.glide(sim, sim.model().resolve_parameter("k" + std::to_string(i + 1), "damping"),
+        smoother.glide(sim, sim.model().resolve_parameter({"k" + std::to_string(i + 1), "damping"}),
                        1e-4, 100);
-    const auto extra = sim.model().resolve_parameter("k40", "damping");
+    const auto extra = sim.model().resolve_parameter({"k40", "damping"});
     smoother.glide(sim, extra, 2e-4, 100);
-    EXPECT_EQ(sim.parameter(extra), 2e-4) << "no room: set at once";
+    EXPECT_EQ(sim.read_slot(extra), 2e-4) << "no room: set at once";
 }
 
 TEST(SimulationParameters, EveryKindReadsBackWhatWasSet) {
@@ -69,13 +69,13 @@ TEST(SimulationParameters, EveryKindReadsBackWhatWasSet) {
                                                           {"hand_slide", "position_scale"},
                                                           {"hand_press", "force_scale"},
                                                           {"surface", "position"}}) {
-        const auto slot = sim.model().resolve_parameter(element, name);
-        EXPECT_NEAR(sim.parameter(slot), get_parameter(model, element, name),
-                    1e-12 * std::abs(get_parameter(model, element, name)))
+        const auto slot = sim.model().resolve_parameter({element, name});
+        EXPECT_NEAR(sim.read_slot(slot), get_parameter(model, {element, name}),
+                    1e-12 * std::abs(get_parameter(model, {element, name})))
             << element << "." << name;
-        const double value = 0.37 * (get_parameter(model, element, name) + 1.0);
-        sim.set_parameter(slot, value);
-        EXPECT_NEAR(sim.parameter(slot), value, 1e-12 * std::abs(value)) << element << "." << name;
+        const double value = 0.37 * (get_parameter(model, {element, name}) + 1.0);
+        sim.write_slot(slot, value);
+        EXPECT_NEAR(sim.read_slot(slot), value, 1e-12 * std::abs(value)) << element << "." << name;
     }
 }
 

@@ -112,19 +112,19 @@ Model lone_oscillator(double m, double k, double z) {
 TEST(StabilityLimit, MatchesTheClosedFormOfAnOscillator) {
     const double m = 0.01, k = 1e5, z = 0.5, T = 1.0 / 48000;
     const Model model = lone_oscillator(m, k, z);
-    const auto stiffness = stability_limit(model, "osc", "stiffness");
+    const auto stiffness = stability_limit(model, {"osc", "stiffness"});
     ASSERT_TRUE(stiffness);
     EXPECT_TRUE(stiffness->upper);
     EXPECT_NEAR(stiffness->value, (4 - 2 * z * T / m) * m / (T * T), 2e-6 * stiffness->value);
-    const auto damping = stability_limit(model, "osc", "damping");
+    const auto damping = stability_limit(model, {"osc", "damping"});
     ASSERT_TRUE(damping);
     EXPECT_NEAR(damping->value, (4 - k * T * T / m) * m / (2 * T), 2e-6 * damping->value);
-    const auto mass = stability_limit(model, "osc", "mass");
+    const auto mass = stability_limit(model, {"osc", "mass"});
     ASSERT_TRUE(mass);
     EXPECT_FALSE(mass->upper) << "a mass may only shrink so far";
     EXPECT_NEAR(mass->value, (k * T * T + 2 * z * T) / 4, 2e-6 * mass->value);
     EXPECT_EQ(mass->current, m);
-    EXPECT_FALSE(stability_limit(model, "osc", "position")) << "not a stability parameter";
+    EXPECT_FALSE(stability_limit(model, {"osc", "position"})) << "not a stability parameter";
 }
 
 }  // namespace

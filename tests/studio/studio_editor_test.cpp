@@ -178,7 +178,7 @@ TEST_F(Editor, ARefusedValueReadsAsASentence) {
     EXPECT_EQ(said.find("0.000000"), std::string::npos) << said;
     Model model = little_model();
     try {
-        set_parameter(model, "k1", "damping", -0.25);
+        set_parameter(model, {"k1", "damping"}, -0.25);
         ADD_FAILURE() << "a negative damping is refused";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("must be at least 0 N·s/m (is -0.25)"),
@@ -309,7 +309,7 @@ TEST(GraphLabelsTest, ALongStringFitsWithReadableLabelsAndZoomingInShowsThemAll)
 
 TEST_F(Editor, AnEditedModelSavesAndReloadsIdentically) {
     document.add_mat(MatKind::Oscillator, {50, 60});
-    document.set_parameter("k2", "stiffness", 250);
+    document.edit_parameter({"k2", "stiffness"}, 250);
     const auto dir = test::temp_dir("editor-save");
     write_file_atomically(dir / "edited.json", format_model(document.model()));
     const Model reloaded = load_model_file(dir / "edited.json");

@@ -234,7 +234,7 @@ TEST_F(LiveEdit, UndoingBackToAnUnstableModelIsCheckedNotPlayed) {
     ASSERT_FALSE(doc.paste(QString::fromStdString(format_model(part)), {0, 0}).isEmpty());
     QTest::qWait(100);
     EXPECT_EQ(loads, 1) << "not played: it would blow up";
-    doc.set_parameter("wild", "stiffness", 100);  // now it validates, and is played
+    doc.edit_parameter({"wild", "stiffness"}, 100);  // now it validates, and is played
     ASSERT_TRUE(wait_until([&] { return loads == 2; }, 60000)) << said();
     doc.undo_stack().undo();  // back to 1e9
     QTest::qWait(200);
@@ -354,8 +354,8 @@ TEST_P(LiveEditAtRate, TheWholeLoopRunsAtTheDevicesRate) {
     Model at_file_rate = window->document().model();
     Model at_running_rate = at_file_rate;
     at_running_rate.sample_rate = rate;
-    const auto file_limit = stability_limit(at_file_rate, "k30", "stiffness");
-    const auto running_limit = stability_limit(at_running_rate, "k30", "stiffness");
+    const auto file_limit = stability_limit(at_file_rate, {"k30", "stiffness"});
+    const auto running_limit = stability_limit(at_running_rate, {"k30", "stiffness"});
     ASSERT_TRUE(file_limit && running_limit);
     const double between = (file_limit->value + running_limit->value) / 2;
     window->graph().select({"k30"});

@@ -123,7 +123,7 @@ class Session : public ::testing::Test {
 
 TEST_F(Session, SavingAShippedModelWritesACopyInTheUsersDocuments) {
     const std::string shipped_bytes = test::read_file(shipped_220().toStdString());
-    window->document().set_parameter("friction", "mu_s", 0.7);
+    window->document().edit_parameter({"friction", "mu_s"}, 0.7);
     QString proposed;
     const QString copy = QString::fromStdString((dir / "my-string.json").string());
     auto asked = answer_next<QFileDialog>([&](QFileDialog& d) {
@@ -147,7 +147,7 @@ TEST_F(Session, SavingAShippedModelWritesACopyInTheUsersDocuments) {
     EXPECT_EQ(window->document().path(), copy);
 
     // The copy is the user's: Ctrl+S now saves it in place, Ctrl+Shift+S asks anew.
-    window->document().set_parameter("friction", "mu_s", 0.65);
+    window->document().edit_parameter({"friction", "mu_s"}, 0.65);
     window->activateWindow();
     ASSERT_TRUE(QTest::qWaitForWindowActive(window.get()));
     QTest::keyClick(window.get(), Qt::Key_S, Qt::ControlModifier);
@@ -160,7 +160,7 @@ TEST_F(Session, SavingAShippedModelWritesACopyInTheUsersDocuments) {
 }
 
 TEST_F(Session, EveryWayOfDroppingEditsAsksFirst) {
-    window->document().set_parameter("friction", "mu_s", 0.7);
+    window->document().edit_parameter({"friction", "mu_s"}, 0.7);
     const QString other =
         QString::fromStdString(test::resource("models/bowed-string-440.json").string());
 
@@ -198,12 +198,12 @@ TEST_F(Session, EveryWayOfDroppingEditsAsksFirst) {
 }
 
 TEST_F(Session, TheNewestEditIsAutosavedAtOnce) {
-    window->document().set_parameter("friction", "mu_s", 0.71);
+    window->document().edit_parameter({"friction", "mu_s"}, 0.71);
     const auto file = dir / "autosave" / "bowed-string-220.json";
     ASSERT_TRUE(wait_until([&] { return std::filesystem::exists(file); }, 60000));
     ASSERT_TRUE(wait_until(
         [&] { return load_model_file(file).find_lia("friction")->mu_static == 0.71; }, 60000));
-    window->document().set_parameter("friction", "mu_s", 0.72);
+    window->document().edit_parameter({"friction", "mu_s"}, 0.72);
     EXPECT_TRUE(wait_until(
         [&] { return load_model_file(file).find_lia("friction")->mu_static == 0.72; }, 60000))
         << "the newest edit, not the first";

@@ -244,7 +244,7 @@ TEST(Studio, AutosaveKeepsTheEditsAndTheLibraryOffersThem) {
     MainWindow window(engine_options());
     window.set_autosave_folder(QString::fromStdString(dir.string()));
     ASSERT_TRUE(window.open_file(test::resource("models/bowed-string-880.json").c_str()));
-    window.document().set_parameter("friction", "mu_s", 0.75);
+    window.document().edit_parameter({"friction", "mu_s"}, 0.75);
     const QString saved = window.autosave();
     EXPECT_EQ(format_model(load_model_file(saved.toStdString())),
               format_model(window.document().model()));
@@ -262,7 +262,7 @@ TEST(Studio, WithoutAnEngineBinaryItSaysSoAndStaysUp) {
     MainWindow window(o);
     ASSERT_TRUE(window.open_file(test::resource("models/bowed-string-220.json").c_str()));
     EXPECT_EQ(window.engine().status().state, "not running");
-    window.document().set_parameter("friction", "mu_s", 0.7);  // editing still works
+    window.document().edit_parameter({"friction", "mu_s"}, 0.7);  // editing still works
     EXPECT_EQ(window.document().model().find_lia("friction")->mu_static, 0.7);
 }
 

@@ -37,7 +37,7 @@ CompareView::CompareView(const Model& model, QWidget* parent) : QDialog(parent),
     for (const auto& l : model_.lias)
         if (l.kind == LiaKind::BowFriction)
             for (const auto& p : element_parameters(model_, l.id))
-                parameter_->addItem(QString::fromStdString(l.id + "." + p.name));
+                parameter_->addItem(QString::fromStdString(ParameterName{l.id, p.name}.text()));
     parameter_->setToolTip(
         tr("string.damping (N·s/m per string link), bow.position (β), or any "
            "ELEMENT.PARAM"));

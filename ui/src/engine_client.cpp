@@ -5,6 +5,7 @@
 #include <QTime>
 #include <algorithm>
 
+#include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_parameters.hpp"
 
@@ -104,24 +105,23 @@ void EngineClient::stop() {
     if (link_) link_->stop();
 }
 
-void EngineClient::set_parameter(const QString& name, double value) {
-    const std::uint32_t sequence = link_ ? link_->set_parameter(name.toStdString(), value) : 0;
+// The document validated the value: it is sent and remembered as it is, not checked again.
+void EngineClient::send_parameter(const ParameterName& name, double value) {
+    const std::uint32_t sequence = link_ ? link_->send_parameter(name, value) : 0;
     if (!model_) return;
     // Remembered, so that a restarted engine plays what the user set; taken back if the
     // engine refuses it (read_status).
-    const auto dot = name.lastIndexOf('.');
-    const std::string element = name.left(dot).toStdString();
-    const std::string parameter = name.mid(dot + 1).toStdString();
+    double* field = nullptr;
     try {
-        const double before = get_parameter(*model_, element, parameter);
-        archet::set_parameter(*model_, element, parameter, value);
-        if (sequence != 0) {
-            sent_parameters_.push_back({sequence, element, parameter, before});
-            if (sent_parameters_.size() > kRememberedParameters) sent_parameters_.pop_front();
-        }
-    } catch (const std::exception&) {
-        // Unknown or out of range: set_parameter changed nothing; the engine says why.
+        field = &parameter_field(*model_, name);  // a lookup, no check
+    } catch (const InputError&) {
+        return;  // not in the model it loaded: the engine refuses it and says why
     }
+    if (sequence != 0) {
+        sent_parameters_.push_back({sequence, name, *field});
+        if (sent_parameters_.size() > kRememberedParameters) sent_parameters_.pop_front();
+    }
+    *field = value;
 }
 
 void EngineClient::gesture(double slide, double press) {
@@ -195,7 +195,7 @@ void EngineClient::take_back_refused_parameter(std::uint32_t sequence) {
     const auto sent = std::find_if(sent_parameters_.begin(), sent_parameters_.end(),
                                    [&](const SentParameter& p) { return p.sequence == sequence; });
     if (sent == sent_parameters_.end() || !model_) return;
-    archet::set_parameter(*model_, sent->element, sent->parameter, sent->before);
+    parameter_field(*model_, sent->name) = sent->before;  // it was in force before
     sent_parameters_.erase(sent);
 }
 

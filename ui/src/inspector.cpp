@@ -15,6 +15,21 @@
 
 namespace archet::ui {
 
+namespace {
+// The table's unit and range, as the field's tooltip.
+QString range_text(const ParameterInfo& p) {
+    const QString unit = p.unit.empty() ? QString() : " " + QString::fromStdString(p.unit);
+    return Inspector::tr("%1: %2 %3 to %4%5%6")
+        .arg(QString::fromStdString(p.name))
+        .arg(p.strictly_positive ? Inspector::tr("above") : Inspector::tr("from"))
+        .arg(p.minimum, 0, 'g', 6)
+        .arg(p.maximum, 0, 'g', 6)
+        .arg(unit)
+        .arg(p.stability_relevant ? Inspector::tr("; the stability bound depends on it")
+                                  : QString());
+}
+}  // namespace
+
 Inspector::Inspector(ModelDocument& document, QWidget* parent)
     : QWidget(parent), document_(document) {
     title_ = new QLabel;
@@ -51,7 +66,8 @@ bool Inspector::edit(const QString& parameter, double value) {
     warning_.clear();
     warning_label_->clear();
     try {
-        document_.set_parameter(element_, parameter, value);  // names, range and stability
+        // The document checks it once: the table's range, then stability.
+        document_.edit_parameter({element_.toStdString(), parameter.toStdString()}, value);
     } catch (const std::exception& e) {
         warning_ = tr("Not applied: %1").arg(QString::fromUtf8(e.what()));
         warning_label_->setText(warning_);
@@ -96,26 +112,24 @@ void Inspector::rebuild() {
     form_->addRow(tr("Rate level"), rates);
     for (const ParameterInfo& p : element_parameters(model, id)) {
         const QString name = QString::fromStdString(p.name);
-        auto* field = new QLineEdit(QString::number(get_parameter(model, id, p.name), 'g', 10));
+        auto* field = new QLineEdit(QString::number(get_parameter(model, {id, p.name}), 'g', 10));
         field->setObjectName(name);
         auto* validator = new QDoubleValidator(field);
         validator->setLocale(QLocale::c());
         field->setValidator(validator);
-        field->setToolTip(tr("%1 in %2; at least %3%4")
-                              .arg(name, QString::fromStdString(p.unit))
-                              .arg(p.minimum)
-                              .arg(p.strictly_positive ? tr(", above zero") : QString()));
+        field->setToolTip(range_text(p));
         connect(field, &QLineEdit::editingFinished, this, [this, field, name] {
             bool ok = false;
             const double value = QLocale::c().toDouble(field->text(), &ok);
             const double now =
-                get_parameter(document_.model(), element_.toStdString(), name.toStdString());
+                get_parameter(document_.model(), {element_.toStdString(), name.toStdString()});
             if (ok && value != now) edit(name, value);
         });
         const QString unit = QString::fromStdString(p.unit);
         form_->addRow(unit.isEmpty() ? name : tr("%1 (%2)").arg(name, unit), field);
         // This element's own margin: how far the value may go before the scheme turns unstable.
-        if (const auto limit = stability_limit(model, id, p.name)) {
+        if (const auto limit =
+                p.stability_relevant ? document_.stability_limit({id, p.name}) : std::nullopt) {
             const double room = limit->upper ? 1 - limit->current / limit->value
                                              : 1 - limit->value / limit->current;
             auto* margin = new QLabel(tr("%1 %2 %3 to stay stable (%4 % of room left)")

@@ -73,8 +73,8 @@ void MainWindow::model_changed(int change, const QString& element, const QString
     const bool parameter = kind == ModelDocument::Change::Parameter ||
                            kind == ModelDocument::Change::ReplayedParameter;
     auto glide = [&] {
-        engine_->set_parameter(element + "." + name,
-                               get_parameter(model, element.toStdString(), name.toStdString()));
+        const ParameterName edited{element.toStdString(), name.toStdString()};
+        engine_->send_parameter(edited, get_parameter(model, edited));
     };
     if (kind == ModelDocument::Change::Parameter && !engine_behind_) return glide();
     if (!parameter) pad_->set_notice(unplayable_reason(model));

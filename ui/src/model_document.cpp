@@ -74,29 +74,26 @@ class ModelEdit : public QUndoCommand {
 // string edited value by value would otherwise copy it twice per keystroke).
 class ParameterEdit : public QUndoCommand {
   public:
-    ParameterEdit(ModelDocument& document, QString element, QString name, double before,
-                  double after)
-        : QUndoCommand(QObject::tr("Set %1.%2").arg(element, name)),
+    ParameterEdit(ModelDocument& document, ParameterName name, double before, double after)
+        : QUndoCommand(QObject::tr("Set %1").arg(QString::fromStdString(name.text()))),
           document_(document),
-          element_(std::move(element)),
           name_(std::move(name)),
           before_(before),
           after_(after) {}
 
     void redo() override {
         document_.apply_parameter(
-            element_, name_, after_,
+            name_, after_,
             fresh_ ? ModelDocument::Change::Parameter : ModelDocument::Change::ReplayedParameter);
         fresh_ = false;
     }
     void undo() override {
-        document_.apply_parameter(element_, name_, before_,
-                                  ModelDocument::Change::ReplayedParameter);
+        document_.apply_parameter(name_, before_, ModelDocument::Change::ReplayedParameter);
     }
 
   private:
     ModelDocument& document_;
-    QString element_, name_;
+    ParameterName name_;
     double before_, after_;
     bool fresh_ = true;  ///< the first redo() is the edit itself, validated when it was made
 };
@@ -122,10 +119,12 @@ void ModelDocument::apply(const Model& model, Change change, const QString& elem
     emit changed(change, element, name);
 }
 
-void ModelDocument::apply_parameter(const QString& element, const QString& name, double value,
-                                    Change change) {
-    archet::set_parameter(model_, element.toStdString(), name.toStdString(), value);
-    emit changed(change, element, name);
+// Both values were in force in a validated model: written without another check (undo and
+// redo are checked against the model as it is now by whoever plays them).
+void ModelDocument::apply_parameter(const ParameterName& name, double value, Change change) {
+    parameter_field(model_, name) = value;
+    emit changed(change, QString::fromStdString(name.element),
+                 QString::fromStdString(name.parameter));
 }
 
 void ModelDocument::push(const QString& text, Model after, Change change, const QString& element,
@@ -143,6 +142,10 @@ QString ModelDocument::fresh_id(const QString& stem) const {
 void ModelDocument::validate() {
     const RunningRate at(model_, running_rate_);
     validate_model(model_);
+}
+
+std::optional<StabilityLimit> ModelDocument::stability_limit(const ParameterName& name) {
+    return archet::stability_limit(model_, name);
 }
 
 QPointF ModelDocument::position_of(const Mat& mat) const {
@@ -220,7 +223,7 @@ void ModelDocument::remove(const QStringList& ids) {
     std::erase_if(after.probes, [&](const Probe& p) { return gone.count(p.element) > 0; });
     std::erase_if(after.outputs, [&](const Output& o) { return gone.count(o.element) > 0; });
     std::erase_if(after.controls, [&](const Control& c) {
-        return gone.count(c.target_element) || (!c.element.empty() && gone.count(c.element));
+        return gone.count(c.target.element) || (!c.element.empty() && gone.count(c.element));
     });
     if (after.mats.size() == model_.mats.size() && after.lias.size() == model_.lias.size()) return;
     push(ids.size() == 1 ? tr("Delete %1").arg(ids.front())
@@ -239,15 +242,15 @@ void ModelDocument::move(const QStringList& ids, QPointF delta, bool continuing_
          continuing_drag ? kMoveMerge : -1);
 }
 
-void ModelDocument::set_parameter(const QString& id, const QString& name, double value) {
-    const std::string element = id.toStdString(), parameter = name.toStdString();
-    const double before = get_parameter(model_, element, parameter);  // throws for a bad name
+// The edge where a value enters: the table's range and the whole model (stability at the
+// running rate) are checked here, once, in place; the walk on to the engine trusts it.
+void ModelDocument::edit_parameter(const ParameterName& name, double value) {
+    const double before = get_parameter(model_, name);  // throws for a bad name
     {
         const RunningRate at(model_, running_rate_);
-        set_parameter_validated(model_, element, parameter, value);  // checked once, in place
+        set_parameter_validated(model_, name, value);
     }
-    archet::set_parameter(model_, element, parameter, before);  // the edit's redo() sets it
-    undo_.push(new ParameterEdit(*this, id, name, before, value));
+    undo_.push(new ParameterEdit(*this, name, before, value));  // its first redo() announces it
 }
 
 void ModelDocument::set_rate(const QString& id, const QString& rate) {

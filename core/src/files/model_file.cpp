@@ -3,6 +3,7 @@
 #include <unistd.h>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <system_error>
 
@@ -13,6 +14,7 @@
 #include "archet/common/printable_text.hpp"
 #include "archet/files/json_reader.hpp"
 #include "archet/files/output_target.hpp"
+#include "archet/model/element_kinds.hpp"
 #include "archet/model/gesture_validation.hpp"
 
 namespace archet {
@@ -63,6 +65,27 @@ void check_header(JsonObjectReader& r, const std::string& format, int version) {
                                         std::to_string(version));
 }
 
+// A kind's numbers, by the parameter table: those with a file default may be left out.
+template <class Element>
+void read_parameters(JsonObjectReader& r, Element& e) {
+    for (const auto& p : kind_parameters(e.kind))
+        e.*p.field =
+            p.file_default ? r.number(p.info.name, *p.file_default) : r.number(p.info.name);
+}
+
+void read_modal_point(JsonObjectReader& r, Mat& m) {
+    const Json& modes = r.array("modes");
+    const Json& weights = r.array("weights");
+    for (const auto& id : modes) {
+        if (!id.is_string()) throw InputError(r.where(), "\"modes\" must list mass ids (strings)");
+        m.modes.push_back(id.get<std::string>());
+    }
+    for (const auto& w : weights) {
+        if (!w.is_number()) throw InputError(r.where(), "\"weights\" must be numbers");
+        m.weights.push_back(w.get<double>());
+    }
+}
+
 Mat read_mat(const Json& item, std::size_t index) {
     JsonObjectReader r(item, element_where("mass", item, index));
     Mat m;
@@ -72,41 +95,11 @@ Mat read_mat(const Json& item, std::size_t index) {
         {MatKind::Mass, MatKind::Fixed, MatKind::Oscillator, MatKind::Gesture, MatKind::ModalPoint},
         r.where(), "mass type");
     m.rate = r.text("rate", "audio");
-    if (m.kind != MatKind::ModalPoint) m.position = r.number("position", 0.0);
-    switch (m.kind) {
-        case MatKind::Mass:
-            m.mass = r.number("mass");
-            m.velocity = r.number("velocity", 0.0);
-            break;
-        case MatKind::Oscillator:
-            m.mass = r.number("mass");
-            m.velocity = r.number("velocity", 0.0);
-            m.stiffness = r.number("stiffness");
-            m.damping = r.number("damping", 0.0);
-            break;
-        case MatKind::Fixed:
-            break;
-        case MatKind::Gesture:
-            m.axis = parse_enum(r.text("axis"), {GestureAxis::Slide, GestureAxis::Press}, r.where(),
-                                "axis");
-            m.position_scale = r.number("position_scale", 1.0);
-            m.force_scale = r.number("force_scale", 1.0);
-            break;
-        case MatKind::ModalPoint: {
-            const Json& modes = r.array("modes");
-            const Json& weights = r.array("weights");
-            for (const auto& id : modes) {
-                if (!id.is_string())
-                    throw InputError(r.where(), "\"modes\" must list mass ids (strings)");
-                m.modes.push_back(id.get<std::string>());
-            }
-            for (const auto& w : weights) {
-                if (!w.is_number()) throw InputError(r.where(), "\"weights\" must be numbers");
-                m.weights.push_back(w.get<double>());
-            }
-            break;
-        }
-    }
+    read_parameters(r, m);
+    if (m.kind == MatKind::Gesture)
+        m.axis =
+            parse_enum(r.text("axis"), {GestureAxis::Slide, GestureAxis::Press}, r.where(), "axis");
+    if (m.kind == MatKind::ModalPoint) read_modal_point(r, m);
     m.display = read_display(r);
     r.finish();
     return m;
@@ -121,33 +114,13 @@ Lia read_lia(const Json& item, std::size_t index) {
                          LiaKind::BowFriction},
                         r.where(), "link type");
     l.rate = r.text("rate", "audio");
-    switch (l.kind) {
-        case LiaKind::Spring:
-            l.from = r.text("from"), l.to = r.text("to");
-            l.stiffness = r.number("stiffness");
-            l.length = r.number("length", 0.0);
-            break;
-        case LiaKind::Damper:
-            l.from = r.text("from"), l.to = r.text("to");
-            l.damping = r.number("damping");
-            break;
-        case LiaKind::SpringDamper:
-        case LiaKind::Buffer:
-            l.from = r.text("from"), l.to = r.text("to");
-            l.stiffness = r.number("stiffness");
-            l.damping = r.number("damping", 0.0);
-            l.length = r.number(l.kind == LiaKind::Buffer ? "gap" : "length", 0.0);
-            break;
-        case LiaKind::BowFriction:
-            l.from = r.text("bow"), l.to = r.text("string");
-            l.press = r.text("press"), l.surface = r.text("surface");
-            l.stiffness = r.number("buffer_stiffness");
-            l.damping = r.number("buffer_damping", 0.0);
-            l.mu_static = r.number("mu_s");
-            l.mu_dynamic = r.number("mu_d");
-            l.v0 = r.number("v0");
-            break;
+    if (l.kind == LiaKind::BowFriction) {  // its bow and string masses are `from` and `to`
+        l.from = r.text("bow"), l.to = r.text("string");
+        l.press = r.text("press"), l.surface = r.text("surface");
+    } else {
+        l.from = r.text("from"), l.to = r.text("to");
     }
+    read_parameters(r, l);
     l.display = read_display(r);
     r.finish();
     return l;
@@ -158,12 +131,7 @@ Control read_control(const Json& item, std::size_t index) {
     Control c;
     c.id = r.text("id");
     c.rate = r.text("rate", "audio");
-    const std::string target = r.text("target");
-    const auto dot = target.rfind('.');
-    if (dot == std::string::npos || dot == 0 || dot + 1 == target.size())
-        throw InputError(r.where(), "\"target\" must be ELEMENT.PARAMETER, e.g. \"bow.mu_s\"");
-    c.target_element = target.substr(0, dot);
-    c.target_parameter = target.substr(dot + 1);
+    c.target = ParameterName::parse(r.text("target"), r.where() + " target");
     JsonObjectReader s(r.object("source"), r.where() + " source");
     c.source =
         parse_enum(s.text("type"),
@@ -247,6 +215,85 @@ Json write_keyframes(const Gesture& g) {
     return frames;
 }
 
+template <class Item, class Writer>
+Json write_list(const std::vector<Item>& items, Writer write) {
+    Json list = Json::array();
+    for (const auto& item : items) list.push_back(write(item));
+    return list;
+}
+
+Json write_rate(const RateLevel& rl) {
+    return Json{{"id", rl.id}, {"divider", rl.divider}};
+}
+
+template <class Element>
+Json element_header(const Element& e) {
+    return Json{{"id", e.id}, {"type", to_string(e.kind)}, {"rate", e.rate}};
+}
+
+// A kind's numbers from row `first` to before row `end` of the parameter table.
+template <class Element>
+void write_parameters(Json& j, const Element& e, std::size_t first, std::size_t end) {
+    const auto& rows = kind_parameters(e.kind);
+    for (std::size_t i = first; i < std::min(end, rows.size()); ++i)
+        j[rows[i].info.name] = e.*rows[i].field;
+}
+
+constexpr auto kAllRows = std::numeric_limits<std::size_t>::max();
+
+Json write_mat(const Mat& e) {
+    Json j = element_header(e);
+    // The file has a gesture point's axis after its position (the first row), before the rest.
+    write_parameters(j, e, 0, 1);
+    if (e.kind == MatKind::Gesture) j["axis"] = to_string(e.axis);
+    if (e.kind == MatKind::ModalPoint) j["modes"] = e.modes, j["weights"] = e.weights;
+    write_parameters(j, e, 1, kAllRows);
+    if (e.display) j["display"] = write_display(e.display);
+    return j;
+}
+
+Json write_lia(const Lia& e) {
+    Json j = element_header(e);
+    if (e.kind == LiaKind::BowFriction) {
+        j["bow"] = e.bow(), j["string"] = e.bowed_string(), j["press"] = e.press;
+        j["surface"] = e.surface;
+    } else {
+        j["from"] = e.from, j["to"] = e.to;
+    }
+    write_parameters(j, e, 0, kAllRows);
+    if (e.display) j["display"] = write_display(e.display);
+    return j;
+}
+
+Json write_control(const Control& c) {
+    Json source{{"type", to_string(c.source)}};
+    if (c.source == Control::Source::Envelope) {
+        Json points = Json::array();
+        for (const auto& [t, v] : c.envelope) points.push_back(Json::array({t, v}));
+        source["points"] = points;
+    } else if (c.source == Control::Source::Gesture) {
+        source["axis"] = to_string(c.axis);
+    } else {
+        source["element"] = c.element;
+    }
+    source["gain"] = c.gain, source["offset"] = c.offset;
+    return Json{{"id", c.id},
+                {"rate", c.rate},
+                {"target", c.target.text()},
+                {"source", source},
+                {"range", Json::array({c.minimum, c.maximum})}};
+}
+
+Json write_probe(const Probe& p) {
+    Json j{{"id", p.id}, {"kind", to_string(p.kind)}};
+    if (!p.element.empty()) j["element"] = p.element;
+    return j;
+}
+
+Json write_output(const Output& o) {
+    return Json{{"element", o.element}, {"signal", to_string(o.signal)}, {"gain", o.gain}};
+}
+
 Json parse_json(const std::string& text, const std::string& source) {
     try {
         return Json::parse(text);
@@ -314,100 +361,12 @@ std::string format_model(const Model& m) {
     root["description"] = m.description;
     root["sample_rate"] = m.sample_rate;
     root["output_gain"] = m.output_gain;
-    Json rates = Json::array();
-    for (const auto& rl : m.rates) rates.push_back(Json{{"id", rl.id}, {"divider", rl.divider}});
-    root["rates"] = rates;
-
-    Json mats = Json::array();
-    for (const auto& e : m.mats) {
-        Json j{{"id", e.id}, {"type", to_string(e.kind)}, {"rate", e.rate}};
-        if (e.kind != MatKind::ModalPoint) j["position"] = e.position;
-        switch (e.kind) {
-            case MatKind::Mass:
-                j["mass"] = e.mass, j["velocity"] = e.velocity;
-                break;
-            case MatKind::Oscillator:
-                j["mass"] = e.mass, j["velocity"] = e.velocity;
-                j["stiffness"] = e.stiffness, j["damping"] = e.damping;
-                break;
-            case MatKind::Fixed:
-                break;
-            case MatKind::Gesture:
-                j["axis"] = to_string(e.axis);
-                j["position_scale"] = e.position_scale, j["force_scale"] = e.force_scale;
-                break;
-            case MatKind::ModalPoint:
-                j["modes"] = e.modes, j["weights"] = e.weights;
-                break;
-        }
-        if (e.display) j["display"] = write_display(e.display);
-        mats.push_back(j);
-    }
-    root["masses"] = mats;
-
-    Json lias = Json::array();
-    for (const auto& e : m.lias) {
-        Json j{{"id", e.id}, {"type", to_string(e.kind)}, {"rate", e.rate}};
-        switch (e.kind) {
-            case LiaKind::Spring:
-                j["from"] = e.from, j["to"] = e.to;
-                j["stiffness"] = e.stiffness, j["length"] = e.length;
-                break;
-            case LiaKind::Damper:
-                j["from"] = e.from, j["to"] = e.to, j["damping"] = e.damping;
-                break;
-            case LiaKind::SpringDamper:
-            case LiaKind::Buffer:
-                j["from"] = e.from, j["to"] = e.to;
-                j["stiffness"] = e.stiffness, j["damping"] = e.damping;
-                j[e.kind == LiaKind::Buffer ? "gap" : "length"] = e.length;
-                break;
-            case LiaKind::BowFriction:
-                j["bow"] = e.from, j["string"] = e.to, j["press"] = e.press;
-                j["surface"] = e.surface;
-                j["buffer_stiffness"] = e.stiffness, j["buffer_damping"] = e.damping;
-                j["mu_s"] = e.mu_static, j["mu_d"] = e.mu_dynamic, j["v0"] = e.v0;
-                break;
-        }
-        if (e.display) j["display"] = write_display(e.display);
-        lias.push_back(j);
-    }
-    root["links"] = lias;
-
-    Json controls = Json::array();
-    for (const auto& c : m.controls) {
-        Json source{{"type", to_string(c.source)}};
-        if (c.source == Control::Source::Envelope) {
-            Json points = Json::array();
-            for (const auto& [t, v] : c.envelope) points.push_back(Json::array({t, v}));
-            source["points"] = points;
-        } else if (c.source == Control::Source::Gesture) {
-            source["axis"] = to_string(c.axis);
-        } else {
-            source["element"] = c.element;
-        }
-        source["gain"] = c.gain, source["offset"] = c.offset;
-        controls.push_back(Json{{"id", c.id},
-                                {"rate", c.rate},
-                                {"target", c.target_element + "." + c.target_parameter},
-                                {"source", source},
-                                {"range", Json::array({c.minimum, c.maximum})}});
-    }
-    root["controls"] = controls;
-
-    Json probes = Json::array();
-    for (const auto& p : m.probes) {
-        Json j{{"id", p.id}, {"kind", to_string(p.kind)}};
-        if (!p.element.empty()) j["element"] = p.element;
-        probes.push_back(j);
-    }
-    root["probes"] = probes;
-
-    Json outputs = Json::array();
-    for (const auto& o : m.outputs)
-        outputs.push_back(
-            Json{{"element", o.element}, {"signal", to_string(o.signal)}, {"gain", o.gain}});
-    root["outputs"] = outputs;
+    root["rates"] = write_list(m.rates, write_rate);
+    root["masses"] = write_list(m.mats, write_mat);
+    root["links"] = write_list(m.lias, write_lia);
+    root["controls"] = write_list(m.controls, write_control);
+    root["probes"] = write_list(m.probes, write_probe);
+    root["outputs"] = write_list(m.outputs, write_output);
     if (m.gesture)
         root["gesture"] =
             Json{{"name", m.gesture->name()}, {"keyframes", write_keyframes(*m.gesture)}};

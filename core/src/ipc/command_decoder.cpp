@@ -21,13 +21,14 @@ std::variant<DecodedCommand, std::string> decode_command(const CommandFrame& f) 
         case Opcode::StartTake:
             if (c.text.empty()) return std::string(opcode_name(f.opcode)) + " needs a path";
             break;
-        case Opcode::SetParameter: {
-            const auto dot = c.text.rfind('.');
-            if (dot == std::string::npos || dot == 0 || dot + 1 == c.text.size())
-                return "\"" + c.text + "\": expected ELEMENT.PARAMETER";
+        case Opcode::SetParameter:
+            try {
+                c.parameter = ParameterName::parse(c.text);
+            } catch (const std::exception& e) {
+                return std::string(e.what());
+            }
             if (!std::isfinite(c.value)) return c.text + ": the value must be a finite number";
             break;
-        }
         case Opcode::Gesture:
             if (!std::isfinite(c.slide) || !std::isfinite(c.press) ||
                 std::abs(c.slide) > kMaxGesture || std::abs(c.press) > kMaxGesture)

@@ -117,18 +117,7 @@ class Checker {
                            "\" does not exist; declare it in \"rates\" or use one that does");
     }
 
-    void positive(const std::string& where, const char* name, double value, const char* unit) {
-        if (!(value > 0.0))
-            add(where, std::string(name) + " must be above 0 " + unit + " (is " +
-                           format_number(value) + ")");
-    }
-    void non_negative(const std::string& where, const char* name, double value, const char* unit) {
-        if (!(value >= 0.0))
-            add(where, std::string(name) + " must be at least 0 " + unit + " (is " +
-                           format_number(value) + ")");
-    }
-
-    // Every parameter within its physical range (model_parameters.cpp), so that no state
+    // Every parameter within its physical range (the table, element_kinds.cpp), so that no state
     // or energy of a model that passes can overflow.
     bool in_ranges(const std::string& where, const std::vector<ParameterValue>& values) {
         for (const auto& [info, value] : values) {
@@ -147,13 +136,7 @@ class Checker {
                 add(where, "has a non-finite parameter (NaN or infinity)");
                 return;
             }
-        if (!in_ranges(where, parameter_values(m))) return;
-        if (m.kind == MatKind::Mass || m.kind == MatKind::Oscillator)
-            positive(where, "mass", m.mass, "kg");
-        if (m.kind == MatKind::Oscillator) {
-            non_negative(where, "stiffness", m.stiffness, "N/m");
-            non_negative(where, "damping", m.damping, "N·s/m");
-        }
+        if (!in_ranges(where, parameter_values(m))) return;  // the table's ranges, per kind
         if (m.kind == MatKind::ModalPoint) check_modal_point(where, m);
         if (m.kind == MatKind::Gesture && m.position_scale == 0.0)
             add(where, "position_scale must not be 0 (the device could not move it)");
@@ -198,9 +181,7 @@ class Checker {
                 add(where, "has a non-finite parameter (NaN or infinity)");
                 return;
             }
-        if (!in_ranges(where, parameter_values(l))) return;
-        non_negative(where, "stiffness", l.stiffness, "N/m");
-        non_negative(where, "damping", l.damping, "N·s/m");
+        if (!in_ranges(where, parameter_values(l))) return;  // the table's ranges, per kind
         if (l.kind != LiaKind::BowFriction) {
             const Mat* a = mat_ref(where, "\"from\"", l.from);
             const Mat* b = mat_ref(where, "\"to\"", l.to);
@@ -208,21 +189,12 @@ class Checker {
                 add(where,
                     "joins mass " + quoted_text(l.from) + " to itself; pick two different masses");
             if (a && b) check_rate_crossing(where, l, *a, *b);
-            if (l.kind == LiaKind::Spring) positive(where, "stiffness", l.stiffness, "N/m");
-            if (l.kind == LiaKind::Damper) positive(where, "damping", l.damping, "N·s/m");
-            if (l.kind == LiaKind::Buffer) positive(where, "stiffness", l.stiffness, "N/m");
             return;
         }
-        positive(where, "buffer_stiffness", l.stiffness, "N/m");
-        if (!(l.mu_static > 0.0 && l.mu_static <= 10.0))
-            add(where, "mu_s must be in (0, 10] (is " + format_number(l.mu_static) +
-                           "; rosin is about 0.8)");
+        // Beyond its range (mu_s in (0, 10], v0 in (0, 100] m/s): the one rule across two.
         if (!(l.mu_dynamic >= 0.0 && l.mu_dynamic <= l.mu_static))
             add(where, "mu_d must be in [0, mu_s] (is " + format_number(l.mu_dynamic) + ", mu_s " +
                            format_number(l.mu_static) + ")");
-        if (!(l.v0 > 0.0 && l.v0 <= 100.0))
-            add(where, "v0 must be in (0, 100] m/s (is " + format_number(l.v0) +
-                           "; about 0.1 m/s for rosin)");
         const std::pair<const char*, const std::string*> roles[] = {{"\"bow\"", &l.from},
                                                                     {"\"string\"", &l.to},
                                                                     {"\"press\"", &l.press},
@@ -294,17 +266,18 @@ class Checker {
     void check_control(const Control& c) {
         const std::string where = quoted("control", c.id);
         check_rate(where, c.rate);
-        if (!model_.find_mat(c.target_element) && !model_.find_lia(c.target_element)) {
-            add(where, "target element " + quoted_text(c.target_element) + " does not exist");
+        const ParameterName& target = c.target;
+        if (!model_.find_mat(target.element) && !model_.find_lia(target.element)) {
+            add(where, "target element " + quoted_text(target.element) + " does not exist");
             return;
         }
         bool known = false;
         ParameterInfo info{};
-        for (const auto& p : element_parameters(model_, c.target_element))
-            if (p.name == c.target_parameter) known = true, info = p;
+        for (const auto& p : element_parameters(model_, target.element))
+            if (p.name == target.parameter) known = true, info = p;
         if (!known) {
-            add(where, quoted_text(c.target_element) + " has no parameter " +
-                           quoted_text(c.target_parameter));
+            add(where,
+                quoted_text(target.element) + " has no parameter " + quoted_text(target.parameter));
             return;
         }
         for (double v : {c.gain, c.offset, c.minimum, c.maximum})
@@ -315,7 +288,7 @@ class Checker {
         if (!(c.minimum <= c.maximum)) add(where, "range minimum must not exceed its maximum");
         if (c.minimum < info.minimum || (info.strictly_positive && c.minimum <= info.minimum))
             add(where, "range minimum " + format_number(c.minimum) + " is outside what " +
-                           c.target_parameter + " accepts");
+                           c.target.parameter + " accepts");
         if (c.source == Control::Source::Envelope) {
             if (c.envelope.empty()) add(where, "an envelope needs at least one point");
             for (std::size_t i = 1; i < c.envelope.size(); ++i)
@@ -325,15 +298,16 @@ class Checker {
         if (c.source == Control::Source::Position) mat_ref(where, "source element", c.element);
     }
 
-    // A control may take its parameter anywhere in its range: check both ends.
+    // A control may take its parameter anywhere in its range: check both ends of those the
+    // stability bound depends on (on a copy of the model: the checker only reads it).
     void check_control_extremes(const Control& c) {
+        if (!parameter_info(model_, c.target).stability_relevant) return;
         for (double value : {c.minimum, c.maximum}) {
             Model copy = model_;
-            set_parameter(copy, c.target_element, c.target_parameter, value);
+            set_parameter(copy, c.target, value);
             const auto before = problems_.size();
-            check_stability(copy, "when control " + quoted_text(c.id) + " sets " +
-                                      c.target_element + "." + c.target_parameter + " to " +
-                                      format_number(value) + ", ");
+            check_stability(copy, "when control " + quoted_text(c.id) + " sets " + c.target.text() +
+                                      " to " + format_number(value) + ", ");
             if (problems_.size() != before) return;
         }
     }
@@ -410,14 +384,13 @@ void validate_model(const Model& model) {
     if (!problems.empty()) throw InputError(problems.front().where, problems.front().message);
 }
 
-void set_parameter_validated(Model& model, const std::string& element, const std::string& parameter,
-                             double value) {
-    const double before = get_parameter(model, element, parameter);  // throws for a bad name
-    set_parameter(model, element, parameter, value);                 // throws out of range
+void set_parameter_validated(Model& model, const ParameterName& name, double value) {
+    const double before = get_parameter(model, name);  // throws for a bad name
+    set_parameter(model, name, value);                 // throws out of range
     try {
         validate_model(model);
     } catch (const std::exception&) {
-        set_parameter(model, element, parameter, before);
+        parameter_field(model, name) = before;  // it was in force: no second check
         throw;
     }
 }

@@ -73,10 +73,9 @@ void set_variant_parameter(Model& model, const std::string& name, double value) 
             if (p.element == old) p.element = bowed;
         return;
     }
-    const auto dot = name.rfind('.');
-    if (dot == std::string::npos || dot == 0 || dot + 1 == name.size())
+    if (name.find('.') == std::string::npos)
         throw InputError(name, "expected ELEMENT.PARAM, string.damping or bow.position");
-    set_parameter(model, name.substr(0, dot), name.substr(dot + 1), value);
+    set_parameter(model, ParameterName::parse(name), value);
 }
 
 std::pair<std::string, std::vector<double>> parse_variation(const std::string& text) {

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "archet/common/input_error.hpp"
+#include "archet/model/model_parameters.hpp"
 
 namespace archet {
 
@@ -67,88 +68,30 @@ std::vector<int> order_level(const Model& model, const std::set<std::string>& le
     return order;
 }
 
-}  // namespace
-
-namespace {
-
-/// compile() in named steps, in the order they must run: levels (storage order and the MATs'
-/// initial state), modal points (which read their modes' state), links, then what reads the
-/// links' slots (probes, outputs, controls).
-class Compiler {
-  public:
-    Compiler(const Model& model, double sample_rate)
-        : model_(model), is_chain_link_(model.lias.size(), false) {
-        c_.source = model;
-        c_.sample_rate = sample_rate > 0 ? sample_rate : model.sample_rate;
-        c_.output_gain = model.output_gain;
-        for (int i = 0; i < static_cast<int>(model.mats.size()); ++i)
-            mat_index_[model.mats[i].id] = i;
-    }
-
-    CompiledModel run() {
-        compile_levels();
-        compile_modal_points();
-        for (int li = 0; li < static_cast<int>(model_.lias.size()); ++li)
-            if (!is_chain_link_[li]) compile_link(li);
-        // Hand links first: they have a short path of their own in the simulation.
-        std::stable_partition(c_.cross_links.begin(), c_.cross_links.end(),
-                              [](const CompiledCrossLink& l) { return l.hand >= 0; });
-        c_.hand_links = static_cast<int>(std::count_if(c_.cross_links.begin(), c_.cross_links.end(),
-                                                       [](const auto& l) { return l.hand >= 0; }));
-        for (auto& bow : c_.bows) {
-            bow.bow_point = c_.levels[bow.level].modal_point_of[bow.bow];
-            bow.string_point = c_.levels[bow.level].modal_point_of[bow.string];
-        }
-        compile_probes_and_outputs();
-        for (auto& lv : c_.levels) {
-            std::sort(lv.touched.begin(), lv.touched.end());
-            lv.touched.erase(std::unique(lv.touched.begin(), lv.touched.end()), lv.touched.end());
-            lv.watched_force.assign(lv.watched.size(), 0.0);
-        }
-        compile_controls();
-        return std::move(c_);
-    }
-
-  private:
-    // Rate levels that share a divider tick together: they compile into one level, so links
-    // between them are ordinary links rather than rate crossings. Fastest first.
-    void compile_levels() {
-        std::map<int, std::set<std::string>> by_divider;
-        for (const auto& r : model_.rates) by_divider[r.divider].insert(r.id);
-        for (const auto& [divider, ids] : by_divider) {
-            const int li = static_cast<int>(c_.levels.size());
-            CompiledLevel& lv = c_.levels.emplace_back();
-            for (const auto& r : model_.rates)  // named in the model's order
-                if (ids.count(r.id))
-                    level_index_[r.id] = li, lv.id += (lv.id.empty() ? "" : "+") + r.id;
-            lv.divider = divider;
-            lv.inverse_divider = 1.0 / divider;
-            lv.dt = divider / c_.sample_rate;
-            std::vector<int> chain_link_after;
-            const std::vector<int> order =
-                order_level(model_, ids, mat_index_, is_chain_link_, chain_link_after);
-            lv.size = static_cast<int>(order.size());
-            allocate_storage(lv);
-            for (int k = 0; k < lv.size; ++k)
-                place_mat(lv, li, k + 1, order[k], chain_link_after[k]);
-        }
-    }
-
-    static void allocate_storage(CompiledLevel& lv) {
-        const int storage = lv.size + 2;
-        for (auto& b : lv.buffer) b.assign(storage, 0.0);
-        for (auto* v : {&lv.coeff, &lv.mass, &lv.external, &lv.held, &lv.chain_k, &lv.chain_zdt,
-                        &lv.chain_length, &lv.chain_force})
-            v->assign(storage, 0.0);
-        for (auto* v : {&lv.chain_element, &lv.element_of, &lv.modal_point_of})
-            v->assign(storage, -1);
-    }
-
-    /// The MAT `element` at storage slot `s` of level `li`, and the chain link after it.
-    void place_mat(CompiledLevel& lv, int li, int s, int element, int link) {
-        const Mat& m = model_.mats[element];
-        c_.mat_slots[m.id] = {li, s};
-        lv.element_of[s] = element;
+// One compiled level's arrays, its MATs in `order` (chains consecutive), each chain link
+// stored with the MAT before it.
+void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<int>& order,
+                const std::vector<int>& chain_link_after) {
+    CompiledLevel& lv = c.levels[li];
+    lv.size = static_cast<int>(order.size());
+    const int storage = lv.size + 2;
+    for (auto& b : lv.buffer) b.assign(storage, 0.0);
+    lv.coeff.assign(storage, 0.0);
+    lv.mass.assign(storage, 0.0);
+    lv.external.assign(storage, 0.0);
+    lv.held.assign(storage, 0.0);
+    lv.chain_k.assign(storage, 0.0);
+    lv.chain_zdt.assign(storage, 0.0);
+    lv.chain_length.assign(storage, 0.0);
+    lv.chain_force.assign(storage, 0.0);
+    lv.chain_element.assign(storage, -1);
+    lv.element_of.assign(storage, -1);
+    lv.modal_point_of.assign(storage, -1);
+    for (int k = 0; k < lv.size; ++k) {
+        const int s = k + 1;
+        const Mat& m = model.mats[order[k]];
+        c.mat_slots[m.id] = {li, s};
+        lv.element_of[s] = order[k];
         const bool movable = m.kind == MatKind::Mass || m.kind == MatKind::Oscillator;
         lv.mass[s] = movable ? m.mass : 0.0;
         lv.coeff[s] = movable ? lv.dt * lv.dt / m.mass : 0.0;
@@ -156,171 +99,221 @@ class Compiler {
         lv.x()[s] = m.position;
         lv.x_prev()[s] = movable ? m.position - m.velocity * lv.dt : m.position;
         if (m.kind == MatKind::Oscillator)
-            lv.grounds.push_back({s, m.stiffness, m.damping / lv.dt, m.position, element});
+            lv.grounds.push_back({s, m.stiffness, m.damping / lv.dt, m.position, order[k]});
         if (m.kind == MatKind::Gesture) {
             lv.watched.push_back(s);
-            lv.gestures.push_back({s, m.axis, m.position_scale, m.force_scale, element,
+            lv.gestures.push_back({s, m.axis, m.position_scale, m.force_scale, order[k],
                                    static_cast<int>(lv.watched.size()) - 1});
         }
-        if (link < 0) return;
-        const Lia& l = model_.lias[link];
-        // The chain computes d = x[s] − x[s+1]; flip the sign when the link runs the other way
-        // so that its length keeps its meaning.
-        const bool forward = l.from == m.id;
-        lv.chain_k[s] = l.stiffness;
-        lv.chain_zdt[s] = l.damping / lv.dt;
-        lv.chain_length[s] = forward ? l.length : -l.length;
-        lv.has_chain_lengths = lv.has_chain_lengths || l.length != 0.0;
-        lv.chain_element[s] = link;
-    }
-
-    void compile_modal_points() {
-        for (const auto& m : model_.mats) {
-            if (m.kind != MatKind::ModalPoint) continue;
-            const MatSlot p = slot(m.id);
-            CompiledLevel& lv = c_.levels[p.level];
-            CompiledModalPoint point;
-            point.index = p.index;
-            point.weights = m.weights;
-            for (std::size_t k = 0; k < m.modes.size(); ++k) {
-                const int mode = slot(m.modes[k]).index;
-                point.modes.push_back(mode);
-                point.coeff += m.weights[k] * m.weights[k] * lv.coeff[mode];
-                lv.x()[p.index] += m.weights[k] * lv.x()[mode];
-                lv.x_prev()[p.index] += m.weights[k] * lv.x_prev()[mode];
-            }
-            lv.modal_point_of[p.index] = static_cast<int>(lv.modal_points.size());
-            lv.modal_points.push_back(std::move(point));
+        const int link = chain_link_after[k];
+        if (link >= 0) {
+            const Lia& l = model.lias[link];
+            // The chain computes d = x[s] − x[s+1]; flip the sign when the link runs the
+            // other way so that its length keeps its meaning.
+            const bool forward = l.from == m.id;
+            lv.chain_k[s] = l.stiffness;
+            lv.chain_zdt[s] = l.damping / lv.dt;
+            lv.chain_length[s] = forward ? l.length : -l.length;
+            lv.has_chain_lengths = lv.has_chain_lengths || l.length != 0.0;
+            lv.chain_element[s] = link;
         }
     }
+}
 
-    void compile_link(int li) {
-        const Lia& l = model_.lias[li];
-        const int level = level_index_.at(l.rate);
-        const double dt = c_.levels[level].dt;
-        if (l.kind == LiaKind::BowFriction) return compile_bow(li, level, dt);
+// Rate levels that share a divider tick together: they compile into one level, so links
+// between them are ordinary links rather than rate crossings. Fastest first.
+void compile_levels(CompiledModel& c, const Model& model, std::map<std::string, int>& level_index,
+                    std::vector<bool>& is_chain_link) {
+    std::map<std::string, int> mat_index;
+    for (int i = 0; i < static_cast<int>(model.mats.size()); ++i) mat_index[model.mats[i].id] = i;
+    std::map<int, std::set<std::string>> by_divider;
+    for (const auto& r : model.rates) by_divider[r.divider].insert(r.id);
+    for (const auto& [divider, ids] : by_divider) {
+        const int li = static_cast<int>(c.levels.size());
+        CompiledLevel& lv = c.levels.emplace_back();
+        for (const auto& r : model.rates)  // named in the model's order
+            if (ids.count(r.id)) level_index[r.id] = li, lv.id += (lv.id.empty() ? "" : "+") + r.id;
+        lv.divider = divider;
+        lv.inverse_divider = 1.0 / divider;
+        lv.dt = divider / c.sample_rate;
+        std::vector<int> chain_link_after;
+        const std::vector<int> order =
+            order_level(model, ids, mat_index, is_chain_link, chain_link_after);
+        fill_level(c, model, li, order, chain_link_after);
+    }
+}
+
+void compile_modal_points(CompiledModel& c, const Model& model) {
+    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
+    for (const auto& m : model.mats) {
+        if (m.kind != MatKind::ModalPoint) continue;
+        const MatSlot p = slot(m.id);
+        CompiledLevel& lv = c.levels[p.level];
+        CompiledModalPoint point;
+        point.index = p.index;
+        point.weights = m.weights;
+        for (std::size_t k = 0; k < m.modes.size(); ++k) {
+            const int mode = slot(m.modes[k]).index;
+            point.modes.push_back(mode);
+            point.coeff += m.weights[k] * m.weights[k] * lv.coeff[mode];
+            lv.x()[p.index] += m.weights[k] * lv.x()[mode];
+            lv.x_prev()[p.index] += m.weights[k] * lv.x_prev()[mode];
+        }
+        lv.modal_point_of[p.index] = static_cast<int>(lv.modal_points.size());
+        lv.modal_points.push_back(std::move(point));
+    }
+}
+
+int gesture_point(const CompiledModel& c, MatSlot s) {
+    const auto& gestures = c.levels[s.level].gestures;
+    for (int i = 0; i < static_cast<int>(gestures.size()); ++i)
+        if (gestures[i].index == s.index) return i;
+    return -1;
+}
+
+// A link between two compiled levels, weighted by their rates; a spring from a slower
+// gesture point is a hand link.
+CompiledCrossLink cross_link(const CompiledModel& c, int li, int level, MatSlot a, MatSlot b,
+                             double k, double zdt, double length, bool contact) {
+    CompiledCrossLink x;
+    x.level = level, x.a = a, x.b = b;
+    x.k = k, x.zdt = zdt, x.length = length, x.contact = contact;
+    x.element = li;
+    const int link_div = c.levels[level].divider;
+    const int a_div = c.levels[a.level].divider, b_div = c.levels[b.level].divider;
+    using R = CompiledCrossLink::EndRate;
+    auto rate = [&](int div) {
+        return div == link_div ? R::Same : div < link_div ? R::Faster : R::Slower;
+    };
+    x.a_rate = rate(a_div), x.b_rate = rate(b_div);
+    x.a_weight = x.a_rate == R::Slower ? static_cast<double>(link_div) / a_div : 1.0;
+    x.b_weight = x.b_rate == R::Slower ? static_cast<double>(link_div) / b_div : 1.0;
+    x.d_prev = c.levels[a.level].x()[a.index] - c.levels[b.level].x()[b.index];
+    const int hand_at_a = x.a_rate == R::Slower ? gesture_point(c, a) : -1;
+    const int hand_at_b = x.b_rate == R::Slower ? gesture_point(c, b) : -1;
+    if (!contact && hand_at_a >= 0 && x.b_rate == R::Same)
+        x.hand = hand_at_a, x.hand_is_a = true, x.hand_slot = a, x.end_slot = b;
+    if (!contact && hand_at_b >= 0 && x.a_rate == R::Same)
+        x.hand = hand_at_b, x.hand_is_a = false, x.hand_slot = b, x.end_slot = a;
+    x.hand_sign = x.hand_is_a ? 1.0 : -1.0;
+    return x;
+}
+
+CompiledBow compile_bow(const CompiledModel& c, const Lia& l, int li, int level, double dt) {
+    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
+    CompiledBow bow;
+    bow.level = level;
+    bow.bow = slot(l.bow()).index, bow.string = slot(l.bowed_string()).index;
+    bow.press = slot(l.press).index, bow.surface = slot(l.surface).index;
+    bow.kb = l.buffer_stiffness(), bow.zbdt = l.buffer_damping() / dt;
+    bow.mu_s = l.mu_static, bow.mu_d = l.mu_dynamic, bow.v0 = l.v0;
+    bow.element = li;
+    return bow;
+}
+
+// Every link not in a chain: bows, same-level links and links across levels.
+void compile_links(CompiledModel& c, const Model& model,
+                   const std::map<std::string, int>& level_index,
+                   const std::vector<bool>& is_chain_link) {
+    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
+    auto touch = [&](MatSlot s) { c.levels[s.level].touched.push_back(s.index); };
+    for (int li = 0; li < static_cast<int>(model.lias.size()); ++li) {
+        const Lia& l = model.lias[li];
+        if (is_chain_link[li]) continue;
+        const int level = level_index.at(l.rate);
+        const double dt = c.levels[level].dt;
+        if (l.kind == LiaKind::BowFriction) {
+            for (const auto* id : {&l.from, &l.to, &l.press, &l.surface}) touch(slot(*id));
+            c.levels[level].bows.push_back(static_cast<int>(c.bows.size()));
+            c.bows.push_back(compile_bow(c, l, li, level, dt));
+            continue;
+        }
         const bool contact = l.kind == LiaKind::Buffer;
         // A buffer with gap g acts while x(to) − x(from) < g, i.e. d − (−g) > 0.
         const double length = contact ? -l.length : l.length;
         const MatSlot a = slot(l.from), b = slot(l.to);
         touch(a), touch(b);
         if (a.level == level && b.level == level)  // same compiled level
-            c_.levels[level].links.push_back(
+            c.levels[level].links.push_back(
                 {a.index, b.index, l.stiffness, l.damping / dt, length, contact, li});
         else
-            compile_cross_link(li, level, a, b, length, contact);
+            c.cross_links.push_back(
+                cross_link(c, li, level, a, b, l.stiffness, l.damping / dt, length, contact));
     }
+    // Hand links first: they have a short path of their own in the simulation.
+    std::stable_partition(c.cross_links.begin(), c.cross_links.end(),
+                          [](const CompiledCrossLink& l) { return l.hand >= 0; });
+    c.hand_links = static_cast<int>(std::count_if(c.cross_links.begin(), c.cross_links.end(),
+                                                  [](const auto& l) { return l.hand >= 0; }));
+}
 
-    void compile_bow(int li, int level, double dt) {
-        const Lia& l = model_.lias[li];
-        CompiledBow bow;
-        bow.level = level;
-        bow.bow = slot(l.from).index, bow.string = slot(l.to).index;
-        bow.press = slot(l.press).index, bow.surface = slot(l.surface).index;
-        bow.kb = l.stiffness, bow.zbdt = l.damping / dt;
-        bow.mu_s = l.mu_static, bow.mu_d = l.mu_dynamic, bow.v0 = l.v0;
-        bow.element = li;
-        for (const auto* id : {&l.from, &l.to, &l.press, &l.surface}) touch(slot(*id));
-        c_.levels[level].bows.push_back(static_cast<int>(c_.bows.size()));
-        c_.bows.push_back(bow);
-    }
-
-    /// A link between MATs of different levels; one whose slower end is a gesture point and
-    /// whose other end runs at the link's own rate is a hand link.
-    void compile_cross_link(int li, int level, MatSlot a, MatSlot b, double length, bool contact) {
-        const Lia& l = model_.lias[li];
-        CompiledCrossLink x;
-        x.level = level, x.a = a, x.b = b;
-        x.k = l.stiffness, x.zdt = l.damping / c_.levels[level].dt, x.length = length;
-        x.contact = contact;
-        x.element = li;
-        const int link_div = c_.levels[level].divider;
-        const int a_div = c_.levels[a.level].divider, b_div = c_.levels[b.level].divider;
-        using R = CompiledCrossLink::EndRate;
-        auto rate = [&](int div) {
-            return div == link_div ? R::Same : div < link_div ? R::Faster : R::Slower;
-        };
-        x.a_rate = rate(a_div), x.b_rate = rate(b_div);
-        x.a_weight = x.a_rate == R::Slower ? static_cast<double>(link_div) / a_div : 1.0;
-        x.b_weight = x.b_rate == R::Slower ? static_cast<double>(link_div) / b_div : 1.0;
-        x.d_prev = c_.levels[a.level].x()[a.index] - c_.levels[b.level].x()[b.index];
-        const int hand_at_a = x.a_rate == R::Slower ? gesture_point(a) : -1;
-        const int hand_at_b = x.b_rate == R::Slower ? gesture_point(b) : -1;
-        if (!contact && hand_at_a >= 0 && x.b_rate == R::Same)
-            x.hand = hand_at_a, x.hand_is_a = true, x.hand_slot = a, x.end_slot = b;
-        if (!contact && hand_at_b >= 0 && x.a_rate == R::Same)
-            x.hand = hand_at_b, x.hand_is_a = false, x.hand_slot = b, x.end_slot = a;
-        x.hand_sign = x.hand_is_a ? 1.0 : -1.0;
-        c_.cross_links.push_back(x);
-    }
-
-    void compile_probes_and_outputs() {
-        for (const auto& p : model_.probes) {
-            CompiledProbe cp;
-            cp.id = p.id;
-            cp.kind = p.kind;
-            if (p.kind == ProbeKind::Position || p.kind == ProbeKind::Velocity ||
-                p.kind == ProbeKind::Force)
-                cp.mat = slot(p.element);
-            if (p.kind == ProbeKind::Force) cp.watched = watch(cp.mat);
-            if (p.kind == ProbeKind::NormalForce || p.kind == ProbeKind::FrictionForce ||
-                p.kind == ProbeKind::SlipVelocity)
-                for (int b = 0; b < static_cast<int>(c_.bows.size()); ++b)
-                    if (model_.lias[c_.bows[b].element].id == p.element) cp.bow = b;
-            c_.probes.push_back(cp);
-        }
-        for (const auto& o : model_.outputs) {
-            CompiledOutput co{slot(o.element), o.signal, o.gain, -1};
-            if (o.signal == Output::Signal::Force) co.watched = watch(co.mat);
-            c_.outputs.push_back(co);
-        }
-    }
-
-    void compile_controls() {
-        for (const auto& ctl : model_.controls) {
-            CompiledControl cc;
-            cc.source = ctl.source;
-            cc.level = level_index_.at(ctl.rate);
-            cc.envelope = ctl.envelope;
-            cc.axis = ctl.axis;
-            if (ctl.source == Control::Source::Position) cc.position_of = slot(ctl.element);
-            cc.gain = ctl.gain, cc.offset = ctl.offset, cc.minimum = ctl.minimum,
-            cc.maximum = ctl.maximum;
-            cc.target = c_.resolve_parameter(ctl.target_element, ctl.target_parameter);
-            c_.controls.push_back(cc);
-        }
-    }
-
-    MatSlot slot(const std::string& id) const { return c_.mat_slots.at(id); }
-    void touch(MatSlot s) { c_.levels[s.level].touched.push_back(s.index); }
-
-    int gesture_point(MatSlot s) const {
-        const auto& gestures = c_.levels[s.level].gestures;
-        for (int i = 0; i < static_cast<int>(gestures.size()); ++i)
-            if (gestures[i].index == s.index) return i;
-        return -1;
-    }
-
-    /// The MAT's slot in its level's watched list (whose forces are kept), added if new.
-    int watch(MatSlot s) {
-        auto& w = c_.levels[s.level].watched;
+// Probes and outputs, with the forces the levels must keep for them.
+void compile_readouts(CompiledModel& c, const Model& model) {
+    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
+    auto watch = [&](MatSlot s) {
+        auto& w = c.levels[s.level].watched;
         auto it = std::find(w.begin(), w.end(), s.index);
         if (it != w.end()) return static_cast<int>(it - w.begin());
         w.push_back(s.index);
         return static_cast<int>(w.size() - 1);
+    };
+    for (auto& bow : c.bows) {
+        bow.bow_point = c.levels[bow.level].modal_point_of[bow.bow];
+        bow.string_point = c.levels[bow.level].modal_point_of[bow.string];
     }
-
-    const Model& model_;
-    CompiledModel c_;
-    std::map<std::string, int> mat_index_;
-    std::map<std::string, int> level_index_;
-    std::vector<bool> is_chain_link_;
-};
+    for (const auto& p : model.probes) {
+        CompiledProbe cp;
+        cp.id = p.id;
+        cp.kind = p.kind;
+        if (p.kind == ProbeKind::Position || p.kind == ProbeKind::Velocity ||
+            p.kind == ProbeKind::Force)
+            cp.mat = slot(p.element);
+        if (p.kind == ProbeKind::Force) cp.watched = watch(cp.mat);
+        if (p.kind == ProbeKind::NormalForce || p.kind == ProbeKind::FrictionForce ||
+            p.kind == ProbeKind::SlipVelocity)
+            for (int b = 0; b < static_cast<int>(c.bows.size()); ++b)
+                if (model.lias[c.bows[b].element].id == p.element) cp.bow = b;
+        c.probes.push_back(cp);
+    }
+    for (const auto& o : model.outputs) {
+        CompiledOutput co{slot(o.element), o.signal, o.gain, -1};
+        if (o.signal == Output::Signal::Force) co.watched = watch(co.mat);
+        c.outputs.push_back(co);
+    }
+    for (auto& lv : c.levels) {
+        std::sort(lv.touched.begin(), lv.touched.end());
+        lv.touched.erase(std::unique(lv.touched.begin(), lv.touched.end()), lv.touched.end());
+        lv.watched_force.assign(lv.watched.size(), 0.0);
+    }
+}
 
 }  // namespace
 
 CompiledModel compile(const Model& model, double sample_rate) {
-    return Compiler(model, sample_rate).run();
+    CompiledModel c;
+    c.source = model;
+    c.sample_rate = sample_rate > 0 ? sample_rate : model.sample_rate;
+    c.output_gain = model.output_gain;
+    std::map<std::string, int> level_index;
+    std::vector<bool> is_chain_link(model.lias.size(), false);
+    compile_levels(c, model, level_index, is_chain_link);
+    compile_modal_points(c, model);
+    compile_links(c, model, level_index, is_chain_link);
+    compile_readouts(c, model);
+    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
+    for (const auto& ctl : model.controls) {
+        CompiledControl cc;
+        cc.source = ctl.source;
+        cc.level = level_index.at(ctl.rate);
+        cc.envelope = ctl.envelope;
+        cc.axis = ctl.axis;
+        if (ctl.source == Control::Source::Position) cc.position_of = slot(ctl.element);
+        cc.gain = ctl.gain, cc.offset = ctl.offset, cc.minimum = ctl.minimum,
+        cc.maximum = ctl.maximum;
+        cc.target = c.resolve_parameter(ctl.target);
+        c.controls.push_back(cc);
+    }
+    return c;
 }
 
 const CompiledLevel* hand_level(const CompiledModel& model) {
@@ -331,49 +324,42 @@ const CompiledLevel* hand_level(const CompiledModel& model) {
     return slowest;
 }
 
-ParameterSlot CompiledModel::resolve_parameter(const std::string& element,
-                                               const std::string& name) const {
+// The table (element_kinds.cpp) says which parameters a kind has and what each is to the
+// physics; here a role finds its slot in the arrays the element was compiled into.
+ParameterSlot CompiledModel::resolve_parameter(const ParameterName& name) const {
     using K = ParameterSlot::Kind;
-    const std::string where = element + "." + name;
-    if (const Mat* m = source.find_mat(element)) {
-        const MatSlot s = mat_slots.at(element);
+    using R = ParameterRole;
+    const std::string where = name.text();
+    const R role = parameter_role(source, name);  // throws for unknown elements and names
+    if (const Mat* m = source.find_mat(name.element)) {
+        const MatSlot s = mat_slots.at(name.element);
         const CompiledLevel& lv = levels[s.level];
         auto find_in = [&](const auto& list) {
             for (int i = 0; i < static_cast<int>(list.size()); ++i)
                 if (list[i].index == s.index) return i;
             return -1;
         };
-        if (name == "mass" && (m->kind == MatKind::Mass || m->kind == MatKind::Oscillator))
-            return {K::Mass, s.level, s.index};
-        if (m->kind == MatKind::Oscillator && (name == "stiffness" || name == "damping"))
-            return {name == "stiffness" ? K::GroundK : K::GroundZ, s.level, find_in(lv.grounds)};
-        if (m->kind == MatKind::Gesture && (name == "position_scale" || name == "force_scale"))
-            return {name == "position_scale" ? K::GesturePositionScale : K::GestureForceScale,
+        if (role == R::Mass) return {K::Mass, s.level, s.index};
+        if (role == R::Stiffness || role == R::Damping)  // an oscillator's, to ground
+            return {role == R::Stiffness ? K::GroundK : K::GroundZ, s.level, find_in(lv.grounds)};
+        if (role == R::PositionScale || role == R::ForceScale)
+            return {role == R::PositionScale ? K::GesturePositionScale : K::GestureForceScale,
                     s.level, find_in(lv.gestures)};
-        if (m->kind == MatKind::Fixed && name == "position")
+        if (m->kind == MatKind::Fixed && role == R::Position)
             return {K::FixedPosition, s.level, s.index};
-        if (name == "position" || name == "velocity")
-            throw InputError(where,
-                             "is an initial condition and cannot change while the model runs");
-        throw InputError(where, "is not a parameter of this mass");
+        throw InputError(where, "is an initial condition and cannot change while the model runs");
     }
-    const Lia* l = source.find_lia(element);
-    if (!l) throw InputError(where, "no mass or link has this id");
-    const int li = static_cast<int>(l - source.lias.data());
+    const int li = static_cast<int>(source.find_lia(name.element) - source.lias.data());
     for (int b = 0; b < static_cast<int>(bows.size()); ++b) {
         if (bows[b].element != li) continue;
-        const std::map<std::string, K> names{{"buffer_stiffness", K::BowKb},
-                                             {"buffer_damping", K::BowZb},
-                                             {"mu_s", K::BowMuS},
-                                             {"mu_d", K::BowMuD},
-                                             {"v0", K::BowV0}};
-        auto it = names.find(name);
-        if (it == names.end()) break;
-        return {it->second, bows[b].level, b};
+        const std::map<R, K> kinds{{R::Stiffness, K::BowKb},
+                                   {R::Damping, K::BowZb},
+                                   {R::MuStatic, K::BowMuS},
+                                   {R::MuDynamic, K::BowMuD},
+                                   {R::V0, K::BowV0}};
+        return {kinds.at(role), bows[b].level, b};
     }
-    const bool length = name == "length" || name == "gap";
-    const bool is_k = name == "stiffness", is_z = name == "damping";
-    if (!(length || is_k || is_z)) throw InputError(where, "is not a parameter of this link");
+    const bool is_k = role == R::Stiffness, is_z = role == R::Damping;
     for (int lv = 0; lv < static_cast<int>(levels.size()); ++lv) {
         const auto& level = levels[lv];
         for (int s = 0; s < static_cast<int>(level.chain_element.size()); ++s)

@@ -1,5 +1,5 @@
-// The scheme's energy books (what each damper and the bow took over a step, what is stored,
-// what the hands put in), and what probes and the output read: Simulation's members.
+// The scheme's energy books, Simulation's members: what each damper and the bow took over a
+// step, what is stored, and what the hands put in.
 #include "archet/physics/simulation.hpp"
 
 #include <algorithm>
@@ -94,64 +94,6 @@ double Simulation::stored_energy() const {
         if (!l.contact || d > 0) e -= 0.25 * l.zdt * (d - dp) * (d - dp);
     }
     return e;
-}
-
-GestureSample Simulation::device_force() const {
-    GestureSample f{};
-    for (const auto& lv : model_.levels)
-        for (const auto& g : lv.gestures)
-            (g.axis == GestureAxis::Slide ? f.slide : f.press) += g.force_scale * g.force;
-    return f;
-}
-
-double Simulation::power_in() const {
-    double p = 0;
-    for (const auto& lv : model_.levels)
-        for (const auto& g : lv.gestures) p += g.power;
-    return p;
-}
-
-double Simulation::probe(std::size_t i) const {
-    const CompiledProbe& p = model_.probes[i];
-    switch (p.kind) {
-        case ProbeKind::Position:
-            return position(p.mat);
-        case ProbeKind::Velocity:
-            return velocity(p.mat);
-        case ProbeKind::Force:
-            return model_.levels[p.mat.level].watched_force[p.watched];
-        case ProbeKind::NormalForce:
-            return model_.bows[p.bow].normal;
-        case ProbeKind::FrictionForce:
-            return model_.bows[p.bow].friction;
-        case ProbeKind::SlipVelocity:
-            return model_.bows[p.bow].slip_velocity;
-        case ProbeKind::Energy:
-            return stored_energy();
-        case ProbeKind::PowerIn:
-            return power_in();
-    }
-    return 0;
-}
-
-double Simulation::output() const {
-    double sum = 0;
-    for (const auto& o : model_.outputs) {
-        double v = 0;
-        switch (o.signal) {
-            case Output::Signal::Position:
-                v = position(o.mat);
-                break;
-            case Output::Signal::Velocity:
-                v = velocity(o.mat);
-                break;
-            case Output::Signal::Force:
-                v = model_.levels[o.mat.level].watched_force[o.watched];
-                break;
-        }
-        sum += o.gain * v;
-    }
-    return model_.output_gain * sum;
 }
 
 }  // namespace archet

@@ -6,14 +6,14 @@ namespace archet {
 
 void ParameterSmoother::glide(Simulation& sim, const ParameterSlot& slot, double target,
                               int samples) {
-    const double from = sim.parameter(slot);
+    const double from = sim.read_slot(slot);
     for (std::size_t i = 0; i < count_; ++i)
         if (same(glides_[i].slot, slot)) {
             glides_[i] = {slot, from, target, 0, std::max(samples, 1)};
             return;
         }
     if (count_ == kCapacity || samples <= 1) {
-        sim.set_parameter(slot, target);
+        sim.write_slot(slot, target);
         return;
     }
     glides_[count_++] = {slot, from, target, 0, samples};
@@ -24,7 +24,7 @@ void ParameterSmoother::advance(Simulation& sim) {
         Glide& g = glides_[i];
         ++g.done;
         const double u = static_cast<double>(g.done) / g.total;
-        sim.set_parameter(g.slot, g.done >= g.total ? g.to : g.from + u * (g.to - g.from));
+        sim.write_slot(g.slot, g.done >= g.total ? g.to : g.from + u * (g.to - g.from));
         if (g.done >= g.total)
             glides_[i] = glides_[--count_];  // finished: drop it
         else

@@ -108,7 +108,7 @@ void Simulation::apply_controls() {
                 signal = position(c.position_of);
                 break;
         }
-        set_parameter(c.target, std::clamp(c.offset + c.gain * signal, c.minimum, c.maximum));
+        write_slot(c.target, std::clamp(c.offset + c.gain * signal, c.minimum, c.maximum));
     }
 }
 
@@ -134,7 +134,6 @@ void Simulation::compute_link_forces(CompiledLevel& lv) {
         ext[bow.surface] += bow.normal;
     }
 }
-
 
 // Hand links: a spring-damper from a slower gesture point to a MAT at the link's rate, the
 // usual way to hold a bow. The link sees the hand move along its line and books the hand's
@@ -319,135 +318,6 @@ void Simulation::update_gesture_points(CompiledLevel& lv) {
         g.power = (work + g.faster_links_work) / lv.dt;
         g.faster_links_force = g.faster_links_work = 0.0;
     }
-}
-
-void Simulation::set_parameter(const ParameterSlot& s, double v) {
-    using K = ParameterSlot::Kind;
-    CompiledLevel& lv = model_.levels[s.level];
-    switch (s.kind) {
-        case K::Mass:
-            lv.mass[s.index] = v, lv.coeff[s.index] = lv.dt * lv.dt / v;
-            for (auto& point : lv.modal_points) {  // a point's response follows its modes'
-                point.coeff = 0;
-                for (std::size_t k = 0; k < point.modes.size(); ++k)
-                    point.coeff += point.weights[k] * point.weights[k] * lv.coeff[point.modes[k]];
-            }
-            break;
-        case K::ChainK:
-            lv.chain_k[s.index] = v;
-            break;
-        case K::ChainZ:
-            lv.chain_zdt[s.index] = v / lv.dt;
-            break;
-        case K::ChainLength: {
-            const Lia& l = model_.source.lias[lv.chain_element[s.index]];
-            const bool forward = model_.source.mats[lv.element_of[s.index]].id == l.from;
-            lv.chain_length[s.index] = forward ? v : -v;
-            lv.has_chain_lengths = lv.has_chain_lengths || v != 0.0;
-            break;
-        }
-        case K::LinkK:
-            lv.links[s.index].k = v;
-            break;
-        case K::LinkZ:
-            lv.links[s.index].zdt = v / lv.dt;
-            break;
-        case K::LinkLength:
-            lv.links[s.index].length = lv.links[s.index].contact ? -v : v;
-            break;
-        case K::GroundK:
-            lv.grounds[s.index].k = v;
-            break;
-        case K::GroundZ:
-            lv.grounds[s.index].zdt = v / lv.dt;
-            break;
-        case K::CrossK:
-            model_.cross_links[s.index].k = v;
-            break;
-        case K::CrossZ:
-            model_.cross_links[s.index].zdt = v / lv.dt;
-            break;
-        case K::CrossLength:
-            model_.cross_links[s.index].length = model_.cross_links[s.index].contact ? -v : v;
-            break;
-        case K::BowKb:
-            model_.bows[s.index].kb = v;
-            break;
-        case K::BowZb:
-            model_.bows[s.index].zbdt = v / lv.dt;
-            break;
-        case K::BowMuS:
-            model_.bows[s.index].mu_s = v;
-            break;
-        case K::BowMuD:
-            model_.bows[s.index].mu_d = v;
-            break;
-        case K::BowV0:
-            model_.bows[s.index].v0 = v;
-            break;
-        case K::GesturePositionScale:
-            lv.gestures[s.index].position_scale = v;
-            break;
-        case K::GestureForceScale:
-            lv.gestures[s.index].force_scale = v;
-            break;
-        case K::FixedPosition:
-            for (auto& b : lv.buffer) b[s.index] = v;
-            break;
-    }
-}
-
-double Simulation::parameter(const ParameterSlot& s) const {
-    using K = ParameterSlot::Kind;
-    const CompiledLevel& lv = model_.levels[s.level];
-    switch (s.kind) {
-        case K::Mass:
-            return lv.mass[s.index];
-        case K::ChainK:
-            return lv.chain_k[s.index];
-        case K::ChainZ:
-            return lv.chain_zdt[s.index] * lv.dt;
-        case K::ChainLength: {
-            const Lia& l = model_.source.lias[lv.chain_element[s.index]];
-            const bool forward = model_.source.mats[lv.element_of[s.index]].id == l.from;
-            return forward ? lv.chain_length[s.index] : -lv.chain_length[s.index];
-        }
-        case K::LinkK:
-            return lv.links[s.index].k;
-        case K::LinkZ:
-            return lv.links[s.index].zdt * lv.dt;
-        case K::LinkLength:
-            return lv.links[s.index].contact ? -lv.links[s.index].length : lv.links[s.index].length;
-        case K::GroundK:
-            return lv.grounds[s.index].k;
-        case K::GroundZ:
-            return lv.grounds[s.index].zdt * lv.dt;
-        case K::CrossK:
-            return model_.cross_links[s.index].k;
-        case K::CrossZ:
-            return model_.cross_links[s.index].zdt * lv.dt;
-        case K::CrossLength: {
-            const auto& l = model_.cross_links[s.index];
-            return l.contact ? -l.length : l.length;
-        }
-        case K::BowKb:
-            return model_.bows[s.index].kb;
-        case K::BowZb:
-            return model_.bows[s.index].zbdt * lv.dt;
-        case K::BowMuS:
-            return model_.bows[s.index].mu_s;
-        case K::BowMuD:
-            return model_.bows[s.index].mu_d;
-        case K::BowV0:
-            return model_.bows[s.index].v0;
-        case K::GesturePositionScale:
-            return lv.gestures[s.index].position_scale;
-        case K::GestureForceScale:
-            return lv.gestures[s.index].force_scale;
-        case K::FixedPosition:
-            return lv.x()[s.index];
-    }
-    return 0;
 }
 
 }  // namespace archet

@@ -94,8 +94,8 @@ CommandFrame command(Opcode op, const std::string& text = "", double value = 0) 
 std::uint32_t EngineLink::load_model(const std::string& path) {
     return send(command(Opcode::LoadModel, path));
 }
-std::uint32_t EngineLink::set_parameter(const std::string& name, double value) {
-    return send(command(Opcode::SetParameter, name, value));
+std::uint32_t EngineLink::send_parameter(const ParameterName& name, double value) {
+    return send(command(Opcode::SetParameter, name.text(), value));
 }
 std::uint32_t EngineLink::play() {
     return send(command(Opcode::Play));

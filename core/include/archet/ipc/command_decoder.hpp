@@ -7,13 +7,15 @@
 #include <variant>
 
 #include "archet/ipc/segment_layout.hpp"
+#include "archet/model/parameter_name.hpp"
 
 namespace archet::ipc {
 
 struct DecodedCommand {
     Opcode opcode = Opcode::Play;
     std::uint32_t sequence = 0;
-    std::string text;  ///< a model path, ELEMENT.PARAM or a take folder
+    std::string text;         ///< a model path, a take folder, or ELEMENT.PARAM as sent
+    ParameterName parameter;  ///< SetParameter: the parameter it sets
     double value = 0, slide = 0, press = 0;
 };
 

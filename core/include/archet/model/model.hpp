@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 #include "archet/model/gesture.hpp"
+#include "archet/model/parameter_name.hpp"
 
 namespace archet {
 
@@ -70,6 +71,14 @@ struct Lia {
     double mu_dynamic = 0.3;  ///< μd, limit when sliding fast
     double v0 = 0.1;          ///< m/s, velocity scale of the decay from μs to μd
     std::optional<std::pair<double, double>> display;
+
+    // The bow module's and the buffer's names for the shared fields (the parameter table,
+    // element_kinds.cpp, maps them the same way).
+    const std::string& bow() const { return from; }
+    const std::string& bowed_string() const { return to; }
+    double buffer_stiffness() const { return stiffness; }
+    double buffer_damping() const { return damping; }
+    double gap() const { return length; }
 };
 
 /// The paper's parameter control function: drives one element parameter from a signal.
@@ -78,8 +87,7 @@ struct Control {
     enum class Source { Envelope, Gesture, Position };
     std::string id;
     std::string rate = "audio";
-    std::string target_element;
-    std::string target_parameter;
+    ParameterName target;  ///< the element parameter it drives
     Source source = Source::Envelope;
     std::vector<std::pair<double, double>> envelope;  ///< (time s, value) keyframes
     GestureAxis axis = GestureAxis::Slide;            ///< Source::Gesture

@@ -1,21 +1,15 @@
 #pragma once
 // Element parameters by name ("s5.mass", "bow.mu_s"), for `--set`, controls, and the
-// inspector: each with its unit and the range it may take.
+// inspector, looked up in the table of element kinds (element_kinds.hpp).
 
 #include <string>
 #include <vector>
 
+#include "archet/model/element_kinds.hpp"
 #include "archet/model/model.hpp"
+#include "archet/model/parameter_name.hpp"
 
 namespace archet {
-
-struct ParameterInfo {
-    std::string name;
-    std::string unit;
-    double minimum;  ///< inclusive lower bound
-    bool strictly_positive;
-    double maximum;  ///< inclusive upper bound (see input_limits.hpp)
-};
 
 /// A parameter with the value it has in one element.
 struct ParameterValue {
@@ -34,10 +28,20 @@ std::string range_problem(const ParameterInfo& info, double value);
 /// The parameters an element of the model has (empty when no such element).
 std::vector<ParameterInfo> element_parameters(const Model& model, const std::string& element);
 
-double get_parameter(const Model& model, const std::string& element, const std::string& name);
+/// The table's row for a parameter with its role; throws InputError naming the element and
+/// its valid names.
+ParameterInfo parameter_info(const Model& model, const ParameterName& name);
+ParameterRole parameter_role(const Model& model, const ParameterName& name);
 
-/// Sets a parameter; throws InputError naming the element and the valid names or range.
-void set_parameter(Model& model, const std::string& element, const std::string& name, double value);
+double get_parameter(const Model& model, const ParameterName& name);
+
+/// Sets a parameter of the model; throws InputError naming the element and the valid names
+/// or range (the model is unchanged then).
+void set_parameter(Model& model, const ParameterName& name, double value);
+
+/// The field holding a parameter, for values already validated where they were entered (a
+/// model kept in step with one that checked them); throws only for an unknown name.
+double& parameter_field(Model& model, const ParameterName& name);
 
 /// Parses "ID.PARAM=VALUE" and applies it.
 void apply_assignment(Model& model, const std::string& assignment);

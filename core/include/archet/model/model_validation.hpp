@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "archet/model/model.hpp"
+#include "archet/model/parameter_name.hpp"
 
 namespace archet {
 
@@ -24,7 +25,6 @@ void validate_model(const Model& model);
 /// Sets one parameter and validates the whole model with it (its range, then the stability
 /// bound), in place: no copy of the model. When the value is refused the model is left as it
 /// was and InputError says why.
-void set_parameter_validated(Model& model, const std::string& element, const std::string& parameter,
-                             double value);
+void set_parameter_validated(Model& model, const ParameterName& name, double value);
 
 }  // namespace archet

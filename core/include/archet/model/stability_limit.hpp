@@ -7,6 +7,7 @@
 #include <string>
 
 #include "archet/model/model.hpp"
+#include "archet/model/parameter_name.hpp"
 
 namespace archet {
 
@@ -16,10 +17,12 @@ struct StabilityLimit {
     double current = 0;  ///< where the parameter is now
 };
 
-/// The limit of ELEMENT.PARAMETER (stiffness, damping or mass; relative precision 1e-6), or
-/// nothing when that parameter cannot make the scheme unstable (or the model is unstable
-/// already).
-std::optional<StabilityLimit> stability_limit(const Model& model, const std::string& element,
-                                              const std::string& parameter);
+/// The limit of ELEMENT.PARAMETER (a stability-relevant one of the parameter table: stiffness,
+/// damping or mass; relative precision 1e-6), or nothing when that parameter cannot make the
+/// scheme unstable (or the model is unstable already).
+/// Probes the values in `model` itself and puts the parameter back: no copy of the model.
+std::optional<StabilityLimit> stability_limit(Model& model, const ParameterName& name);
+/// The same on a copy of `model`.
+std::optional<StabilityLimit> stability_limit(const Model& model, const ParameterName& name);
 
 }  // namespace archet

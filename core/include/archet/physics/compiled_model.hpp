@@ -199,7 +199,7 @@ struct CompiledModel {
 
     /// Resolves ELEMENT.PARAMETER to an array slot; throws InputError when it cannot be
     /// changed while running (initial conditions, unknown names).
-    ParameterSlot resolve_parameter(const std::string& element, const std::string& name) const;
+    ParameterSlot resolve_parameter(const ParameterName& name) const;
 };
 
 /// The level the hand is read at: the slowest level with gesture points (null without any).

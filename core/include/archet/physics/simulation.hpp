@@ -29,10 +29,11 @@ class Simulation {
     /// Advances one tick of the master clock.
     void step();
 
-    /// Sets a parameter while running (controls, the studio, --set on a compiled model).
-    void set_parameter(const ParameterSlot& slot, double value);
-    /// The parameter's current value, in the model file's units.
-    double parameter(const ParameterSlot& slot) const;
+    /// Writes a parameter's compiled slot while running (controls, the smoother, the engine):
+    /// no check, the value was validated against the model before it was resolved.
+    void write_slot(const ParameterSlot& slot, double value);
+    /// The slot's current value, in the model file's units.
+    double read_slot(const ParameterSlot& slot) const;
 
     /// The whole state of a running model (positions, link and bow states, parameters, the
     /// clock) as plain numbers: enough to resume it exactly, e.g. to re-render a take started

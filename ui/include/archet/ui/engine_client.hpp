@@ -16,6 +16,7 @@
 
 #include "archet/link/engine_link.hpp"
 #include "archet/model/model.hpp"
+#include "archet/model/parameter_name.hpp"
 #include "archet/ui/probe_history.hpp"
 
 namespace archet::ui {
@@ -70,7 +71,7 @@ class EngineClient : public QObject {
     /// Glides a parameter of the playing model to `value` (already validated by the caller;
     /// the engine checks it again). Remembered for a restarted engine, without a copy of the
     /// model or a file written per edit.
-    void set_parameter(const QString& element_dot_parameter, double value);
+    void send_parameter(const ParameterName& name, double value);
     void gesture(double slide, double press);
     /// Where takes go: an engine running with another take folder is restarted with this one
     /// (same model and state), since it records only inside the folder it was started with.
@@ -100,7 +101,7 @@ class EngineClient : public QObject {
 
     struct SentParameter {
         std::uint32_t sequence;
-        std::string element, parameter;
+        ParameterName name;
         double before;  ///< the value the engine plays if it refuses this one
     };
     std::deque<SentParameter> sent_parameters_;

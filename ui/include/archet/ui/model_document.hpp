@@ -12,6 +12,8 @@
 #include <QUndoStack>
 
 #include "archet/model/model.hpp"
+#include "archet/model/parameter_name.hpp"
+#include "archet/model/stability_limit.hpp"
 
 namespace archet::ui {
 
@@ -46,7 +48,7 @@ class ModelDocument : public QObject {
     /// Throws InputError (with the reason) for an unknown name, a value out of range, or one
     /// that makes the model fail validation (e.g. the scheme's stability bound). A parameter
     /// change keeps a valid model valid: listeners need not check it again.
-    void set_parameter(const QString& id, const QString& name, double value);
+    void edit_parameter(const ParameterName& name, double value);
     void set_rate(const QString& id, const QString& rate);
 
     /// The selected MATs and the links among them, as model JSON (for the clipboard).
@@ -65,6 +67,9 @@ class ModelDocument : public QObject {
     /// Validates the model as it would run: at the running rate when there is one. Throws
     /// InputError for the first problem.
     void validate();
+    /// How far a parameter may go before the scheme turns unstable (stability_limit.hpp),
+    /// probed in the document's model and put back: no copy per field the inspector shows.
+    std::optional<StabilityLimit> stability_limit(const ParameterName& name);
 
   signals:
     /// After every change, undo and redo included. For a parameter, `element` and `name`
@@ -79,7 +84,7 @@ class ModelDocument : public QObject {
     friend class ModelEdit;
     friend class ParameterEdit;
     void apply(const Model& model, Change change, const QString& element, const QString& name);
-    void apply_parameter(const QString& element, const QString& name, double value, Change change);
+    void apply_parameter(const ParameterName& name, double value, Change change);
     void push(const QString& text, Model after, Change change, const QString& element = {},
               const QString& name = {}, int merge = -1);
     QString fresh_id(const QString& stem) const;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "archet/ipc/shared_segment.hpp"
+#include "archet/model/parameter_name.hpp"
 
 namespace archet::ipc {
 
@@ -46,7 +47,7 @@ class EngineLink {
 
     /// Command helpers; each returns its sequence number (0 when the ring was full).
     std::uint32_t load_model(const std::string& path);
-    std::uint32_t set_parameter(const std::string& element_dot_parameter, double value);
+    std::uint32_t send_parameter(const ParameterName& name, double value);
     std::uint32_t play();
     std::uint32_t stop();
     std::uint32_t gesture(double slide, double press);
