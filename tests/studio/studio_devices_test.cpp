@@ -6,6 +6,7 @@
 
 #include <QComboBox>
 
+#include "archet/audio_output.hpp"
 #include "archet/haptic_choice.hpp"
 #include "archet/ui/settings_dialog.hpp"
 #include "virtual_joystick.hpp"
@@ -49,6 +50,37 @@ TEST(SettingsDevices, TheChoicesAreTheOnesArchetDevicesLists) {
     for (const HapticDeviceInfo& d : list_haptic_choices()) listed << QString::fromStdString(d.id);
     offered.sort(), listed.sort();
     EXPECT_EQ(offered, listed);
+}
+
+// Audio: each API's default, then every output device `archet devices` lists, each carrying
+// the --audio and --device the engine takes; a saved device that is gone falls back to its
+// API's default.
+TEST(SettingsDevices, EveryAudioChoiceCarriesTheApiAndDeviceTheEngineTakes) {
+    SettingsDialog dialog(EngineClientOptions{});
+    auto* audio = dialog.findChild<QComboBox*>("audio");
+    ASSERT_NE(audio, nullptr);
+    auto choice = [&](int i) {
+        audio->setCurrentIndex(i);
+        const EngineClientOptions o = dialog.options();
+        return o.audio.toStdString() + " " + std::to_string(o.audio_device);
+    };
+    std::vector<std::string> offered;
+    for (int i = 0; i < audio->count(); ++i) offered.push_back(choice(i));
+    const std::vector<std::string> defaults{"auto -1", "jack -1", "pulse -1", "alsa -1", "null -1"};
+    ASSERT_GE(offered.size(), defaults.size());
+    EXPECT_EQ(std::vector<std::string>(offered.begin(), offered.begin() + 5), defaults);
+    std::vector<std::string> listed;
+    for (const AudioApiDevices& api : list_audio_devices())
+        for (const AudioDeviceInfo& d : api.devices)
+            if (d.api != "null") listed.push_back(d.api + " " + std::to_string(d.index));
+    EXPECT_EQ(std::vector<std::string>(offered.begin() + 5, offered.end()), listed);
+
+    EngineClientOptions gone;
+    gone.audio = "alsa";
+    gone.audio_device = 9999;
+    SettingsDialog reopened(gone);
+    EXPECT_EQ(reopened.options().audio.toStdString(), "alsa");
+    EXPECT_EQ(reopened.options().audio_device, -1) << "a device that is gone: the API's default";
 }
 
 }  // namespace

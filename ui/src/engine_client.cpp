@@ -33,6 +33,7 @@ void EngineClient::launch() {
     ipc::EngineLinkOptions o;
     o.archet_binary = options_.archet_binary.toStdString();
     o.audio = options_.audio.toStdString();
+    o.audio_device = options_.audio_device;
     o.block_frames = options_.buffer_frames;
     o.haptic = options_.haptic.toStdString();
     o.sample_rate = options_.sample_rate;

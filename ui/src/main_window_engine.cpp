@@ -129,9 +129,8 @@ void MainWindow::show_status() {
     const EngineStatus& s = engine_->status();
     QString state = tr("engine: %1").arg(s.state);
     if (s.state == "running" && s.sample_rate > 0)
-        state += tr(" at %1 kHz, %2 frames a block")
-                     .arg(s.sample_rate / 1000, 0, 'g', 4)
-                     .arg(s.block_frames);
+        state +=
+            tr(" at %1 kHz").arg(s.sample_rate / 1000, 0, 'g', 4);  // the device says its block
     engine_state_->setText(state);
     QString device = s.device;
     if (s.restarts > 0)

@@ -6,6 +6,7 @@
 #include <QLabel>
 #include <QSpinBox>
 
+#include "archet/audio_output.hpp"
 #include "archet/haptic_choice.hpp"
 
 namespace archet::ui {
@@ -14,12 +15,8 @@ SettingsDialog::SettingsDialog(const EngineClientOptions& current, QWidget* pare
     : QDialog(parent), current_(current) {
     setWindowTitle(tr("Audio and devices"));
     audio_ = new QComboBox;
-    audio_->addItem(tr("First that opens (JACK, PulseAudio, ALSA)"), "auto");
-    audio_->addItem(tr("JACK"), "jack");
-    audio_->addItem(tr("PulseAudio"), "pulse");
-    audio_->addItem(tr("ALSA"), "alsa");
-    audio_->addItem(tr("None (a silent clock)"), "null");
-    audio_->setCurrentIndex(std::max(0, audio_->findData(current.audio)));
+    audio_->setObjectName("audio");
+    add_audio_choices(current);
     buffer_ = new QSpinBox;
     buffer_->setRange(16, 4096);
     buffer_->setSuffix(tr(" frames"));
@@ -61,9 +58,32 @@ SettingsDialog::SettingsDialog(const EngineClientOptions& current, QWidget* pare
     form->addRow(buttons);
 }
 
+// Each API's default output, then every output device the APIs list now, each carrying what
+// the engine's --audio and --device take.
+void SettingsDialog::add_audio_choices(const EngineClientOptions& current) {
+    int chosen = -1;
+    auto add = [&](const QString& label, const QString& api, int device) {
+        audio_->addItem(label, api);
+        audio_->setItemData(audio_->count() - 1, device, kDeviceRole);
+        if (api == current.audio && device == current.audio_device) chosen = audio_->count() - 1;
+    };
+    add(tr("First that opens (JACK, PulseAudio, ALSA)"), "auto", -1);
+    add(tr("JACK"), "jack", -1);
+    add(tr("PulseAudio"), "pulse", -1);
+    add(tr("ALSA"), "alsa", -1);
+    add(tr("None (a silent clock)"), "null", -1);
+    for (const AudioApiDevices& api : list_audio_devices())
+        for (const AudioDeviceInfo& d : api.devices)
+            if (d.api != "null")  // the silent clock is offered above
+                add(QString::fromStdString(describe(d)), QString::fromStdString(d.api), d.index);
+    // A device that is gone: its API's default output.
+    audio_->setCurrentIndex(chosen >= 0 ? chosen : std::max(0, audio_->findData(current.audio)));
+}
+
 EngineClientOptions SettingsDialog::options() const {
     EngineClientOptions o = current_;
     o.audio = audio_->currentData().toString();
+    o.audio_device = audio_->currentData(kDeviceRole).toInt();
     o.buffer_frames = buffer_->value();
     o.sample_rate = rate_->currentData().toDouble();
     o.haptic = haptic_->currentData().toString();

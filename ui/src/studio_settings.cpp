@@ -9,6 +9,7 @@ EngineClientOptions restore_engine_options(EngineClientOptions o) {
     QSettings s;
     s.beginGroup("engine");
     o.audio = s.value("audio", o.audio).toString();
+    o.audio_device = s.value("audio_device", o.audio_device).toInt();
     o.buffer_frames = s.value("buffer_frames", o.buffer_frames).toInt();
     o.sample_rate = s.value("sample_rate", o.sample_rate).toDouble();
     o.haptic = s.value("haptic", o.haptic).toString();
@@ -19,6 +20,7 @@ void save_engine_options(const EngineClientOptions& o) {
     QSettings s;
     s.beginGroup("engine");
     s.setValue("audio", o.audio);
+    s.setValue("audio_device", o.audio_device);
     s.setValue("buffer_frames", o.buffer_frames);
     s.setValue("sample_rate", o.sample_rate);
     s.setValue("haptic", o.haptic);

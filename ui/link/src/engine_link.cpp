@@ -57,6 +57,8 @@ void EngineLink::start() {
                                   options_.haptic,
                                   "--audio",
                                   options_.audio,
+                                  "--device",
+                                  std::to_string(options_.audio_device),
                                   "--rate",
                                   rate.str(),
                                   "--studio-pid",

@@ -24,6 +24,7 @@ namespace archet::ui {
 struct EngineClientOptions {
     QString archet_binary;  ///< the `archet` executable (beside the studio's)
     QString audio = "auto";
+    int audio_device = -1;  ///< a device index of that API (see archet devices); −1: its default
     int buffer_frames = 128;
     /// sim: the pad moves a simulated hand (mass and damping) that holds the bow, so the
     /// mouse's coarse steps reach the string smoothly; or a joystick (evdev:PATH, sdl:N).

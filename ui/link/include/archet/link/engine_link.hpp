@@ -18,6 +18,7 @@ struct EngineLinkOptions {
     std::string archet_binary;    ///< the `archet` executable
     int block_frames = 64;        ///< passed to the engine's --buffer (a device may differ)
     std::string audio = "null";   ///< passed to the engine's --audio (auto: the first that opens)
+    int audio_device = -1;        ///< passed to the engine's --device (−1: the API's default)
     std::string haptic = "none";  ///< passed to the engine's --haptic
     double sample_rate = 48000;   ///< Hz, passed to the engine's --rate (a device may differ)
     std::uint32_t probe_capacity = 1u << 16;
