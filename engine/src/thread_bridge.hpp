@@ -1,7 +1,9 @@
 #pragma once
 // All that the engine's control thread and its real-time thread share: lock-free rings local
-// to the process and atomics, each written by one thread only (once the device has stopped,
-// the control thread has both ends). Nothing here blocks.
+// to the process, and atomics that one thread publishes and the other takes (a model offered
+// or handed back is exchanged for null by the side that takes it; a flag is set by one side
+// and cleared by the other). Once the device has stopped, the control thread has both ends.
+// Nothing here blocks.
 
 #include <atomic>
 #include <cstdint>

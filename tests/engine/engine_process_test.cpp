@@ -29,6 +29,9 @@ extern char** environ;
 namespace archet::ipc {
 namespace {
 
+using link::EngineLink;
+using link::EngineLinkOptions;
+
 using namespace std::chrono_literals;
 
 EngineLinkOptions options() {

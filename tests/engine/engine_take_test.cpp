@@ -24,6 +24,9 @@
 namespace archet::ipc {
 namespace {
 
+using link::EngineLink;
+using link::EngineLinkOptions;
+
 using test::read_json;
 using test::samples_of;
 using test::size_of;

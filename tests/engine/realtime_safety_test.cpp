@@ -361,7 +361,7 @@ class EngineSession {
         return exit_status_;
     }
 
-    ipc::EngineLink& link() { return link_; }
+    link::EngineLink& link() { return link_; }
 
     // Reads everything the engine published, says the studio is alive, and tells whether `done`.
     bool pump(const std::function<bool()>& done = [] { return false; }) {
@@ -421,13 +421,13 @@ class EngineSession {
     double normal_ = 0, friction_ = 0, hand_force_ = 0, slide_ = 0;
 
   private:
-    static ipc::EngineLinkOptions link_options() {
-        ipc::EngineLinkOptions o;
+    static link::EngineLinkOptions link_options() {
+        link::EngineLinkOptions o;
         o.archet_binary = ARCHET_BINARY;  // not started: the engine runs in this process
         return o;
     }
 
-    ipc::EngineLink link_;
+    link::EngineLink link_;
     ipc::SpscRing<ipc::StatusFrame> status_ = link_.status();
     ipc::SpscRing<ipc::ProbeFrame> probes_ = link_.probes();
     std::thread engine_;

@@ -1,7 +1,8 @@
 // The house rules that keep the code readable, checked on the sources: no file over 500 lines
 // and no function over 80 lines in core/, engine/ and ui/, except where a comment says why
 // ("house: long file because …" anywhere in the file, "house: long function because …" in the
-// three lines above the function); and core/ has no Qt.
+// three lines above the function); core/ has no Qt; and every #include follows the arrows of
+// docs/architecture.md (down or across, never up).
 //
 // Functions are found by a brace scanner, not a compiler: comments, strings and characters
 // are blanked, then a `{` directly inside namespaces and classes whose head has a `)` opens a
@@ -12,7 +13,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -168,6 +171,78 @@ TEST(House, NoFileOver500LinesAndNoFunctionOver80LinesInCoreEngineAndUi) {
     for (const auto& p : problems) all += "\n  " + p;
     EXPECT_TRUE(problems.empty()) << "split these into named parts, or say why in a comment:"
                                   << all;
+}
+
+/// The folder a source or header belongs to, as the arrows name it: core/PART, ui/link, or a
+/// top-level folder.
+std::string room_of(const std::filesystem::path& relative) {
+    const auto first = *relative.begin();
+    auto part = std::next(relative.begin());
+    if (first == "core" && part != relative.end() && std::next(part) != relative.end()) {
+        ++part;  // core/src/PART or core/include/archet/PART
+        if (*part == "archet") ++part;
+        return "core/" + part->string();
+    }
+    if (first == "ui" && part != relative.end() && *part == "link") return "ui/link";
+    return first.string();
+}
+
+/// Every header a folder offers, by its include path ("archet/model/model.hpp"), to its room.
+std::map<std::string, std::string> header_rooms() {
+    std::map<std::string, std::string> rooms;
+    for (const char* folder : {"core", "audio", "haptics", "engine", "ui"})
+        for (const auto& e :
+             std::filesystem::recursive_directory_iterator(test::source_dir() / folder)) {
+            const auto relative = std::filesystem::relative(e.path(), test::source_dir());
+            const std::string path = relative.string();
+            const auto at = path.find("/include/");
+            if (e.path().extension() == ".hpp" && at != std::string::npos)
+                rooms[path.substr(at + 9)] = room_of(relative);
+        }
+    return rooms;
+}
+
+TEST(House, EveryIncludeFollowsTheArrows) {
+    // What each room may use besides itself: docs/architecture.md's diagram, as data.
+    const std::map<std::string, std::set<std::string>> may_use{
+        {"core/common", {}},
+        {"core/model", {"core/common"}},
+        {"core/files", {"core/model", "core/common"}},
+        {"core/physics", {"core/model", "core/common"}},
+        {"core/analysis", {"core/physics", "core/model", "core/common"}},
+        {"core/builders", {"core/analysis", "core/physics", "core/model", "core/common"}},
+        {"core/ipc", {"core/model", "core/common"}},
+    };
+    const std::set<std::string> core{"core/common",   "core/model",    "core/files", "core/physics",
+                                     "core/analysis", "core/builders", "core/ipc"};
+    auto allowed = [&](const std::string& room, const std::string& used) {
+        if (room == used) return true;
+        if (auto it = may_use.find(room); it != may_use.end()) return it->second.count(used) > 0;
+        const bool in_core = core.count(used) > 0;
+        if (room == "audio" || room == "haptics" || room == "ui/link") return in_core;
+        if (room == "engine") return in_core || used == "audio" || used == "haptics";
+        if (room == "ui")
+            return in_core || used == "audio" || used == "haptics" || used == "ui/link";
+        return false;
+    };
+    const auto rooms = header_rooms();
+    const std::regex include(R"re(#include\s+"(archet/[^"]+)")re");
+    std::vector<std::string> problems;
+    for (const auto& file : sources_in({"core", "audio", "haptics", "engine", "ui"})) {
+        const auto relative = std::filesystem::relative(file, test::source_dir());
+        const std::string room = room_of(relative), text = test::read_file(file);
+        for (std::sregex_iterator m(text.begin(), text.end(), include), end; m != end; ++m) {
+            const auto it = rooms.find((*m)[1]);
+            if (it == rooms.end())
+                problems.push_back(relative.string() + " includes " + (*m)[1].str() +
+                                   ", which no folder offers");
+            else if (!allowed(room, it->second))
+                problems.push_back(relative.string() + " (" + room + ") uses " + it->second);
+        }
+    }
+    std::string all;
+    for (const auto& p : problems) all += "\n  " + p;
+    EXPECT_TRUE(problems.empty()) << "an arrow points up:" << all;
 }
 
 TEST(House, CoreHasNoQt) {

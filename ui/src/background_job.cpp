@@ -8,7 +8,7 @@ void BackgroundJob::Control::progress(std::size_t done, std::size_t total) {
     done_.store(done, std::memory_order_relaxed);
     total_.store(total, std::memory_order_relaxed);
     // One queued call at a time: a computation on every core may report thousands per second.
-    if (!progress_queued_.exchange(true))
+    if (!progress_queued_.exchange(true, std::memory_order_acq_rel))
         QMetaObject::invokeMethod(
             &job_, [job = &job_] { job->deliver_progress(); }, Qt::QueuedConnection);
 }
@@ -59,7 +59,8 @@ bool BackgroundJob::run(std::function<Delivery(Control&)> work,
 }
 
 void BackgroundJob::deliver_progress() {
-    control_->progress_queued_.store(false);
+    // Acquires the worker's newest report: its counts are seen, or it queues another call.
+    control_->progress_queued_.exchange(false, std::memory_order_acq_rel);
     emit progressed(control_->done_.load(), control_->total_.load());
 }
 

@@ -111,22 +111,28 @@ void CompareView::render() {
     message_->setText(tr("rendering…"));
     struct Rendered {
         std::vector<ComparisonRun> runs;
-        bool cancelled = false;
+        QString stopped;  ///< why it stopped before the last variant (cancelled, an error)
     };
     job_.start(
         [model = model_, gesture = gesture_, variation](BackgroundJob::Control& control) {
             Rendered rendered;
             for (double v : variation.second) {
-                if ((rendered.cancelled = control.cancelled())) break;
-                rendered.runs.push_back(
-                    compare_variant(model, gesture, variation.first, v, gesture.duration()));
+                if (control.cancelled()) {
+                    rendered.stopped = tr("cancelled");
+                    break;
+                }
+                try {  // the variants rendered before a failure are still shown
+                    rendered.runs.push_back(
+                        compare_variant(model, gesture, variation.first, v, gesture.duration()));
+                } catch (const std::exception& e) {
+                    rendered.stopped = QString::fromUtf8(e.what());
+                    break;
+                }
                 control.progress(rendered.runs.size(), variation.second.size());
             }
             return rendered;
         },
-        [this](Rendered r) {
-            finish(std::move(r.runs), r.cancelled ? tr("cancelled") : QString());
-        },
+        [this](Rendered r) { finish(std::move(r.runs), r.stopped); },
         [this](const QString& error) { finish({}, error); });
 }
 

@@ -30,7 +30,7 @@ void EngineClient::start() {
 }
 
 void EngineClient::launch() {
-    ipc::EngineLinkOptions o;
+    link::EngineLinkOptions o;
     o.archet_binary = options_.archet_binary.toStdString();
     o.audio = options_.audio.toStdString();
     o.audio_device = options_.audio_device;
@@ -39,7 +39,7 @@ void EngineClient::launch() {
     o.sample_rate = options_.sample_rate;
     o.takes = options_.takes.toStdString();
     try {
-        link_ = std::make_unique<ipc::EngineLink>(o);
+        link_ = std::make_unique<link::EngineLink>(o);
         link_->start();
     } catch (const std::exception& e) {  // no engine binary, no shared memory: say so, stay up
         link_.reset();
@@ -163,10 +163,10 @@ void EngineClient::poll() {
         shape_.assign(shape.positions,
                       shape.positions + std::min<std::uint32_t>(shape.count, ipc::kMaxShapePoints));
     switch (link_->liveness()) {
-        case ipc::EngineLink::Liveness::Exited:
+        case link::EngineLink::Liveness::Exited:
             return restart("the engine exited (status " + QString::number(link_->exit_status()) +
                            "); restarted with the same model");
-        case ipc::EngineLink::Liveness::Unresponsive: {
+        case link::EngineLink::Liveness::Unresponsive: {
             const auto now = std::chrono::steady_clock::now();
             if (unresponsive_since_ == std::chrono::steady_clock::time_point{}) {
                 unresponsive_since_ = now;
@@ -178,14 +178,14 @@ void EngineClient::poll() {
             }
             return;
         }
-        case ipc::EngineLink::Liveness::Running:
+        case link::EngineLink::Liveness::Running:
             unresponsive_since_ = {};
             if (status_.state != "running") {
                 status_.state = "running";
                 emit status_changed();
             }
             return;
-        case ipc::EngineLink::Liveness::Starting:
+        case link::EngineLink::Liveness::Starting:
             return;
     }
 }
@@ -209,7 +209,7 @@ void EngineClient::read_status() {
         status_.xruns = f.xruns, status_.dropped = f.dropped, status_.load = f.load;
         status_.worst_load = f.worst_load;
         // The header holds what the device runs at (written before the engine's first frame).
-        status_.sample_rate = link_->sample_rate(), status_.block_frames = link_->block_frames();
+        status_.sample_rate = link_->sample_rate();
         status_.energy = f.energy, status_.realtime_allocations = f.realtime_allocations;
         changed = true;
         switch (static_cast<ipc::StatusKind>(f.kind)) {

@@ -2,8 +2,8 @@
 // Proof that real-time threads do not allocate: every operator new and operator delete in the
 // process (all forms: plain, array, sized, aligned, nothrow) checks whether its thread has
 // declared itself real-time, and counts it if so. The engine reports the count in its status
-// frames; the tests expect zero. (tests/realtime_interposer.hpp counts the C allocator, locks
-// and I/O on the same marked threads.) The replacement is its own library,
+// frames; the tests expect zero. (tests/support/realtime_interposer.hpp counts the C allocator,
+// locks and I/O on the same marked threads.) The replacement is its own library,
 // archet_realtime_allocations, linked by the engine and the `archet` command only: the studio
 // keeps the standard allocator.
 

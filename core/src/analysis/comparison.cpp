@@ -36,7 +36,7 @@ ComparisonRun compare_variant(const Model& model, const Gesture& gesture,
     sim.set_gesture_track(&gesture);
     sim.enable_accounting(true);
     run.sample_rate = sim.sample_rate();
-    const MatSlot bowed = sim.model().mat_slots.at(bow->to);
+    const MatSlot bowed = sim.model().mat_slots.at(bow->bowed_string());
     const auto frames = static_cast<std::size_t>(seconds * sim.sample_rate());
     std::vector<int> links;
     for (const auto& id : string_links(variant))

@@ -289,6 +289,10 @@ class Checker {
         if (c.minimum < info.minimum || (info.strictly_positive && c.minimum <= info.minimum))
             add(where, "range minimum " + format_number(c.minimum) + " is outside what " +
                            c.target.parameter + " accepts");
+        if (c.maximum > info.maximum)
+            add(where, "range maximum " + format_number(c.maximum) + " is outside what " +
+                           c.target.parameter + " accepts (at most " + format_number(info.maximum) +
+                           (info.unit.empty() ? "" : " ") + info.unit + ")");
         if (c.source == Control::Source::Envelope) {
             if (c.envelope.empty()) add(where, "an envelope needs at least one point");
             for (std::size_t i = 1; i < c.envelope.size(); ++i)

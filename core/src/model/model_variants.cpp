@@ -67,14 +67,12 @@ void set_variant_parameter(Model& model, const std::string& name, double value) 
             throw InputError(name, "needs a bowed chain of masses s1…sN (a built bowed string)");
         const int n = static_cast<int>(masses.size());
         const int index = std::clamp(static_cast<int>(std::lround(value * (n + 1))), 1, n);
-        const std::string old = bow->to, bowed = masses[index - 1];
-        bow->to = bowed;
+        const std::string old = bow->bowed_string(), bowed = masses[index - 1];
+        bow->to = bowed;  // the bowed string mass (see Lia::bowed_string)
         for (auto& p : model.probes)
             if (p.element == old) p.element = bowed;
         return;
     }
-    if (name.find('.') == std::string::npos)
-        throw InputError(name, "expected ELEMENT.PARAM, string.damping or bow.position");
     set_parameter(model, ParameterName::parse(name), value);
 }
 

@@ -9,8 +9,8 @@ std::vector<std::string> string_points(const Model& model) {
     std::set<std::string> bow_parts, bowed;
     for (const auto& l : model.lias)
         if (l.kind == LiaKind::BowFriction) {
-            bow_parts.insert({l.from, l.press, l.surface});
-            bowed.insert(l.to);
+            bow_parts.insert({l.bow(), l.press, l.surface});
+            bowed.insert(l.bowed_string());
         }
     std::set<std::string> reached;
     if (bowed.empty()) {

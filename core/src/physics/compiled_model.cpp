@@ -230,7 +230,7 @@ void compile_links(CompiledModel& c, const Model& model,
         }
         const bool contact = l.kind == LiaKind::Buffer;
         // A buffer with gap g acts while x(to) − x(from) < g, i.e. d − (−g) > 0.
-        const double length = contact ? -l.length : l.length;
+        const double length = contact ? -l.gap() : l.length;
         const MatSlot a = slot(l.from), b = slot(l.to);
         touch(a), touch(b);
         if (a.level == level && b.level == level)  // same compiled level

@@ -14,7 +14,11 @@
 
 extern char** environ;
 
-namespace archet::ipc {
+namespace archet::link {
+
+using ipc::kTextSize;
+using ipc::Opcode;
+using ipc::plan_layout;
 
 namespace {
 constexpr std::uint32_t kCommandCapacity = 256, kShapeCapacity = 64, kStatusCapacity = 256;
@@ -43,7 +47,7 @@ EngineLink::~EngineLink() {
 }
 
 void EngineLink::start() {
-    reclaim_stale_segments();
+    ipc::reclaim_stale_segments();
     const std::string block = std::to_string(options_.block_frames);
     std::ostringstream rate;
     rate << options_.sample_rate;
@@ -157,4 +161,4 @@ const char* to_string(EngineLink::Liveness l) {
     return "?";
 }
 
-}  // namespace archet::ipc
+}  // namespace archet::link

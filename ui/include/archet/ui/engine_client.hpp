@@ -43,8 +43,7 @@ struct EngineStatus {
     double load = 0;         ///< share of the real-time budget used lately (1: all of it)
     double worst_load = 0;   ///< the longest block so far, as a fraction of a block's period
     double sample_rate = 0;  ///< Hz the engine runs at (0 until it says)
-    std::uint32_t block_frames = 0;  ///< frames per block it runs at (0 until it says)
-    double energy = 0;               ///< J stored in the string
+    double energy = 0;       ///< J stored in the string
     int restarts = 0;
     QString last_restart;  ///< why and when the engine was last restarted, in words
 };
@@ -107,7 +106,7 @@ class EngineClient : public QObject {
     };
     std::deque<SentParameter> sent_parameters_;
     EngineClientOptions options_;
-    std::unique_ptr<ipc::EngineLink> link_;
+    std::unique_ptr<link::EngineLink> link_;
     QTimer timer_;
     QTemporaryDir session_;
     std::optional<Model> model_;

@@ -12,7 +12,16 @@
 #include "archet/ipc/shared_segment.hpp"
 #include "archet/model/parameter_name.hpp"
 
-namespace archet::ipc {
+namespace archet::link {
+
+// The shared-memory protocol this link speaks (core/ipc).
+using ipc::CommandFrame;
+using ipc::ProbeFrame;
+using ipc::SegmentHeader;
+using ipc::ShapeFrame;
+using ipc::SharedSegment;
+using ipc::SpscRing;
+using ipc::StatusFrame;
 
 struct EngineLinkOptions {
     std::string archet_binary;    ///< the `archet` executable
@@ -92,4 +101,4 @@ class EngineLink {
 
 const char* to_string(EngineLink::Liveness);
 
-}  // namespace archet::ipc
+}  // namespace archet::link
