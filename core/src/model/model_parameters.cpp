@@ -105,7 +105,7 @@ double& parameter_field(Model& model, const ParameterName& name) {
 void apply_assignment(Model& model, const std::string& assignment) {
     const auto eq = assignment.find('=');
     if (eq == std::string::npos)
-        throw InputError("--set " + assignment, "expected ID.PARAM=VALUE, e.g. bow.mu_s=0.7");
+        throw InputError("--set " + assignment, "expected ID.PARAM=VALUE, e.g. friction.mu_s=0.7");
     const auto name = ParameterName::parse(assignment.substr(0, eq), "--set " + assignment);
     const std::string text = assignment.substr(eq + 1);
     char* end = nullptr;

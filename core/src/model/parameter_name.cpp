@@ -20,7 +20,7 @@ ParameterName ParameterName::parse(std::string_view text, const std::string& whe
         missing = "names no parameter after the '.'";
     if (missing)
         throw InputError(at, (where.empty() ? "" : quoted_text(whole) + " ") + missing +
-                                 "; expected ELEMENT.PARAMETER, e.g. bow.mu_s");
+                                 "; expected ELEMENT.PARAMETER, e.g. friction.mu_s");
     return {whole.substr(0, dot), whole.substr(dot + 1)};
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// Element parameters by name ("s5.mass", "bow.mu_s"), for `--set`, controls, and the
+// Element parameters by name ("s5.mass", "friction.mu_s"), for `--set`, controls, and the
 // inspector, looked up in the table of element kinds (element_kinds.hpp).
 
 #include <string>
