@@ -286,13 +286,10 @@ class Checker {
                 return;
             }
         if (!(c.minimum <= c.maximum)) add(where, "range minimum must not exceed its maximum");
-        if (c.minimum < info.minimum || (info.strictly_positive && c.minimum <= info.minimum))
-            add(where, "range minimum " + format_number(c.minimum) + " is outside what " +
-                           c.target.parameter + " accepts");
-        if (c.maximum > info.maximum)
-            add(where, "range maximum " + format_number(c.maximum) + " is outside what " +
-                           c.target.parameter + " accepts (at most " + format_number(info.maximum) +
-                           (info.unit.empty() ? "" : " ") + info.unit + ")");
+        // Both ends within what the target accepts: the control sets values up to them.
+        for (const auto& [end, value] : {std::pair{"minimum", c.minimum}, {"maximum", c.maximum}})
+            if (const std::string problem = range_problem(info, value); !problem.empty())
+                add(where, std::string("range ") + end + ": " + problem);
         if (c.source == Control::Source::Envelope) {
             if (c.envelope.empty()) add(where, "an envelope needs at least one point");
             for (std::size_t i = 1; i < c.envelope.size(); ++i)
