@@ -10,6 +10,10 @@ namespace archet {
 
 namespace {
 
+MatSlot slot_of(const CompiledModel& c, const std::string& id) {
+    return c.mat_slots.at(id);
+}
+
 bool chainable(LiaKind k) {
     return k == LiaKind::Spring || k == LiaKind::Damper || k == LiaKind::SpringDamper;
 }
@@ -144,16 +148,15 @@ void compile_levels(CompiledModel& c, const Model& model, std::map<std::string, 
 }
 
 void compile_modal_points(CompiledModel& c, const Model& model) {
-    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
     for (const auto& m : model.mats) {
         if (m.kind != MatKind::ModalPoint) continue;
-        const MatSlot p = slot(m.id);
+        const MatSlot p = slot_of(c, m.id);
         CompiledLevel& lv = c.levels[p.level];
         CompiledModalPoint point;
         point.index = p.index;
         point.weights = m.weights;
         for (std::size_t k = 0; k < m.modes.size(); ++k) {
-            const int mode = slot(m.modes[k]).index;
+            const int mode = slot_of(c, m.modes[k]).index;
             point.modes.push_back(mode);
             point.coeff += m.weights[k] * m.weights[k] * lv.coeff[mode];
             lv.x()[p.index] += m.weights[k] * lv.x()[mode];
@@ -200,11 +203,10 @@ CompiledCrossLink cross_link(const CompiledModel& c, int li, int level, MatSlot 
 }
 
 CompiledBow compile_bow(const CompiledModel& c, const Lia& l, int li, int level, double dt) {
-    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
     CompiledBow bow;
     bow.level = level;
-    bow.bow = slot(l.bow()).index, bow.string = slot(l.bowed_string()).index;
-    bow.press = slot(l.press).index, bow.surface = slot(l.surface).index;
+    bow.bow = slot_of(c, l.bow()).index, bow.string = slot_of(c, l.bowed_string()).index;
+    bow.press = slot_of(c, l.press).index, bow.surface = slot_of(c, l.surface).index;
     bow.kb = l.buffer_stiffness(), bow.zbdt = l.buffer_damping() / dt;
     bow.mu_s = l.mu_static, bow.mu_d = l.mu_dynamic, bow.v0 = l.v0;
     bow.element = li;
@@ -215,7 +217,6 @@ CompiledBow compile_bow(const CompiledModel& c, const Lia& l, int li, int level,
 void compile_links(CompiledModel& c, const Model& model,
                    const std::map<std::string, int>& level_index,
                    const std::vector<bool>& is_chain_link) {
-    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
     auto touch = [&](MatSlot s) { c.levels[s.level].touched.push_back(s.index); };
     for (int li = 0; li < static_cast<int>(model.lias.size()); ++li) {
         const Lia& l = model.lias[li];
@@ -223,7 +224,7 @@ void compile_links(CompiledModel& c, const Model& model,
         const int level = level_index.at(l.rate);
         const double dt = c.levels[level].dt;
         if (l.kind == LiaKind::BowFriction) {
-            for (const auto* id : {&l.from, &l.to, &l.press, &l.surface}) touch(slot(*id));
+            for (const auto* id : {&l.from, &l.to, &l.press, &l.surface}) touch(slot_of(c, *id));
             c.levels[level].bows.push_back(static_cast<int>(c.bows.size()));
             c.bows.push_back(compile_bow(c, l, li, level, dt));
             continue;
@@ -231,7 +232,7 @@ void compile_links(CompiledModel& c, const Model& model,
         const bool contact = l.kind == LiaKind::Buffer;
         // A buffer with gap g acts while x(to) − x(from) < g, i.e. d − (−g) > 0.
         const double length = contact ? -l.gap() : l.length;
-        const MatSlot a = slot(l.from), b = slot(l.to);
+        const MatSlot a = slot_of(c, l.from), b = slot_of(c, l.to);
         touch(a), touch(b);
         if (a.level == level && b.level == level)  // same compiled level
             c.levels[level].links.push_back(
@@ -249,7 +250,6 @@ void compile_links(CompiledModel& c, const Model& model,
 
 // Probes and outputs, with the forces the levels must keep for them.
 void compile_readouts(CompiledModel& c, const Model& model) {
-    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
     auto watch = [&](MatSlot s) {
         auto& w = c.levels[s.level].watched;
         auto it = std::find(w.begin(), w.end(), s.index);
@@ -267,7 +267,7 @@ void compile_readouts(CompiledModel& c, const Model& model) {
         cp.kind = p.kind;
         if (p.kind == ProbeKind::Position || p.kind == ProbeKind::Velocity ||
             p.kind == ProbeKind::Force)
-            cp.mat = slot(p.element);
+            cp.mat = slot_of(c, p.element);
         if (p.kind == ProbeKind::Force) cp.watched = watch(cp.mat);
         if (p.kind == ProbeKind::NormalForce || p.kind == ProbeKind::FrictionForce ||
             p.kind == ProbeKind::SlipVelocity)
@@ -276,7 +276,7 @@ void compile_readouts(CompiledModel& c, const Model& model) {
         c.probes.push_back(cp);
     }
     for (const auto& o : model.outputs) {
-        CompiledOutput co{slot(o.element), o.signal, o.gain, -1};
+        CompiledOutput co{slot_of(c, o.element), o.signal, o.gain, -1};
         if (o.signal == Output::Signal::Force) co.watched = watch(co.mat);
         c.outputs.push_back(co);
     }
@@ -300,14 +300,13 @@ CompiledModel compile(const Model& model, double sample_rate) {
     compile_modal_points(c, model);
     compile_links(c, model, level_index, is_chain_link);
     compile_readouts(c, model);
-    auto slot = [&](const std::string& id) { return c.mat_slots.at(id); };
     for (const auto& ctl : model.controls) {
         CompiledControl cc;
         cc.source = ctl.source;
         cc.level = level_index.at(ctl.rate);
         cc.envelope = ctl.envelope;
         cc.axis = ctl.axis;
-        if (ctl.source == Control::Source::Position) cc.position_of = slot(ctl.element);
+        if (ctl.source == Control::Source::Position) cc.position_of = slot_of(c, ctl.element);
         cc.gain = ctl.gain, cc.offset = ctl.offset, cc.minimum = ctl.minimum,
         cc.maximum = ctl.maximum;
         cc.target = c.resolve_parameter(ctl.target);
