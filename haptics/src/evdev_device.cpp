@@ -150,15 +150,14 @@ std::vector<HapticDeviceInfo> list_evdev_devices() {
                 int axes = 0;
                 for (unsigned code = 0; code <= ABS_MAX; ++code)
                     axes += libevdev_has_event_code(dev, EV_ABS, code);
-                found.push_back(
-                    {"evdev", path, "evdev:" + path, libevdev_get_name(dev), axes, true});
+                found.push_back({"evdev", path, libevdev_get_name(dev), axes, true});
             }
             libevdev_free(dev);
         }
         ::close(fd);
     }
     std::sort(found.begin(), found.end(),
-              [](const HapticDeviceInfo& a, const HapticDeviceInfo& b) { return a.id < b.id; });
+              [](const HapticDeviceInfo& a, const HapticDeviceInfo& b) { return a.id() < b.id(); });
     return found;
 }
 

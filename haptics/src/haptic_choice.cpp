@@ -40,7 +40,7 @@ HapticChoice open_haptic_device(const std::string& name) {
 std::vector<HapticDeviceInfo> list_haptic_choices() {
     std::vector<HapticDeviceInfo> choices = list_evdev_devices();
     for (HapticDeviceInfo& joystick : list_sdl_joysticks()) choices.push_back(std::move(joystick));
-    choices.push_back({"sim", "", "sim", "simulated hand", 2, true});
+    choices.push_back({"sim", "", "simulated hand", 2, true});
     return choices;
 }
 

@@ -163,7 +163,7 @@ std::vector<HapticDeviceInfo> list_sdl_joysticks() {
             }
             const char* name = SDL_JoystickName(joystick);
             const std::string index = std::to_string(i);
-            found.push_back({"sdl", index, "sdl:" + index, name ? name : "joystick", axes, force});
+            found.push_back({"sdl", index, name ? name : "joystick", axes, force});
         }
         SDL_JoystickClose(joystick);
     }

@@ -195,7 +195,7 @@ TEST(Haptics, AForceFeedbackJoystickAnswersThroughEvdev) {
     const auto devices = list_evdev_devices();
     if (devices.empty())
         GTEST_SKIP() << "no force-feedback joystick in /dev/input (needs hardware)";
-    EXPECT_EQ(devices.front().id, "evdev:" + devices.front().address);
+    EXPECT_EQ(devices.front().id(), "evdev:" + devices.front().address);
     EvdevDevice device(devices.front().address);
     EXPECT_FALSE(device.capabilities().name.empty());
     device.write(0.1, 0.0, 0.0);  // a gentle push, then let go
@@ -215,20 +215,21 @@ TEST(Haptics, EveryListedChoiceCarriesTheIdThatOpensIt) {
     const HapticDeviceInfo& sim = choices.back();
     EXPECT_EQ(sim.backend, "sim");
     EXPECT_EQ(describe(sim), "sim: simulated hand (always available)");
-    const HapticChoice opened = open_haptic_device(sim.id);
-    EXPECT_NE(opened.hand, nullptr) << "\"" << sim.id << "\" opens the simulated hand";
+    const HapticChoice opened = open_haptic_device(sim.id());
+    EXPECT_NE(opened.hand, nullptr) << "\"" << sim.id() << "\" opens the simulated hand";
     for (const HapticDeviceInfo& d : choices) {
         if (d.backend == "sim") continue;
-        EXPECT_EQ(d.id, d.backend + ":" + d.address);
+        EXPECT_EQ(d.id(), d.backend + ":" + d.address);
         EXPECT_EQ(describe(d).rfind(d.backend + " " + d.address + ": " + d.name, 0), 0u)
             << describe(d);
-        EXPECT_GE(d.axes, 2) << d.id;
+        EXPECT_GE(d.axes, 2) << d.id();
     }
-    const HapticDeviceInfo joystick{"sdl", "3", "sdl:3", "Pad", 2, false};
+    const HapticDeviceInfo joystick{"sdl", "3", "Pad", 2, false};
     EXPECT_EQ(describe(joystick), "sdl 3: Pad (positions only)");
-    const HapticDeviceInfo evdev{
-        "evdev", "/dev/input/event7", "evdev:/dev/input/event7", "Wheel", 3, true};
+    EXPECT_EQ(joystick.id(), "sdl:3");
+    const HapticDeviceInfo evdev{"evdev", "/dev/input/event7", "Wheel", 3, true};
     EXPECT_EQ(describe(evdev), "evdev /dev/input/event7: Wheel (force feedback)");
+    EXPECT_EQ(evdev.id(), "evdev:/dev/input/event7");
 }
 
 // The engine swaps models under a device that goes on: the hand's clock is the device's, not

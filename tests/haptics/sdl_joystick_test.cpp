@@ -90,7 +90,7 @@ TEST(SdlJoystick, DevicesListsIt) {
     const auto found = list_sdl_joysticks();
     ASSERT_FALSE(found.empty());
     const HapticDeviceInfo& listed = found.back();
-    EXPECT_EQ(listed.id, "sdl:" + std::to_string(stick.index()));
+    EXPECT_EQ(listed.id(), "sdl:" + std::to_string(stick.index()));
     EXPECT_FALSE(listed.force_feedback);
     EXPECT_EQ(listed.axes, 2);
     EXPECT_NE(describe(listed).find("(positions only)"), std::string::npos) << describe(listed);
@@ -98,10 +98,10 @@ TEST(SdlJoystick, DevicesListsIt) {
         << describe(listed);
     const auto choices = list_haptic_choices();
     EXPECT_TRUE(std::any_of(choices.begin(), choices.end(), [&](const HapticDeviceInfo& d) {
-        return d.id == listed.id;
+        return d.id() == listed.id();
     })) << "among the choices the studio offers";
-    const HapticChoice opened = open_haptic_device(listed.id);
-    ASSERT_NE(opened.device, nullptr) << "--haptic " << listed.id << " opens it";
+    const HapticChoice opened = open_haptic_device(listed.id());
+    ASSERT_NE(opened.device, nullptr) << "--haptic " << listed.id() << " opens it";
     EXPECT_NE(opened.note.find("no force feedback"), std::string::npos) << opened.note;
 }
 

@@ -47,7 +47,8 @@ TEST(SettingsDevices, TheChoicesAreTheOnesArchetDevicesLists) {
     QStringList offered;
     for (int i = 0; i < haptic->count(); ++i) offered << haptic->itemData(i).toString();
     QStringList listed{"none"};
-    for (const HapticDeviceInfo& d : list_haptic_choices()) listed << QString::fromStdString(d.id);
+    for (const HapticDeviceInfo& d : list_haptic_choices())
+        listed << QString::fromStdString(d.id());
     offered.sort(), listed.sort();
     EXPECT_EQ(offered, listed);
 }

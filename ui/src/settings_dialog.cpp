@@ -37,7 +37,7 @@ SettingsDialog::SettingsDialog(const EngineClientOptions& current, QWidget* pare
         haptic_->insertItem(
             sim ? 0 : haptic_->count(),
             sim ? tr("The pad moves a simulated hand") : QString::fromStdString(describe(d)),
-            QString::fromStdString(d.id));
+            QString::fromStdString(d.id()));
     }
     haptic_->insertItem(1, tr("The pad sets the bow's position directly"), "none");
     haptic_->setCurrentIndex(std::max(0, haptic_->findData(current.haptic)));

@@ -18,10 +18,12 @@ struct HapticCapabilities {
 struct HapticDeviceInfo {
     std::string backend;  ///< evdev, sdl or sim
     std::string address;  ///< /dev/input/eventN for evdev, the joystick index for sdl; sim: ""
-    std::string id;       ///< what --haptic takes: evdev:/dev/input/eventN, sdl:N, sim
     std::string name;     ///< the device's own name
     int axes = 0;         ///< absolute axes it reports (two are used)
     bool force_feedback = false;
+
+    /// What --haptic takes: evdev:/dev/input/eventN, sdl:N, sim.
+    std::string id() const { return address.empty() ? backend : backend + ":" + address; }
 };
 
 struct HapticReading {
