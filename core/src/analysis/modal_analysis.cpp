@@ -54,11 +54,15 @@ ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
     result.rate = sys.rate;
     result.sample_rate = 1.0 / dt;
     result.dofs = sys.dofs;
-    // Supports are oscillators standing on their own (bridges); the oscillators a modal point
-    // reads are the string's modes.
+    // Supports are oscillators standing on their own (bridges) or read by a body's bridge point;
+    // the string's modes are those its bowed point reads (any modal point's when nothing bows).
+    std::set<std::string> bowed;
+    for (const auto& l : model.lias)
+        if (l.kind == LiaKind::BowFriction) bowed.insert(l.to);
     std::set<std::string> string_modes;
     for (const auto& m : model.mats)
-        if (m.kind == MatKind::ModalPoint) string_modes.insert(m.modes.begin(), m.modes.end());
+        if (m.kind == MatKind::ModalPoint && (bowed.empty() || bowed.count(m.id)))
+            string_modes.insert(m.modes.begin(), m.modes.end());
     for (const auto& m : model.mats) {
         if (m.kind != MatKind::ModalPoint) continue;
         std::vector<std::pair<int, double>> reads;
