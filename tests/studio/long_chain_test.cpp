@@ -46,7 +46,7 @@ Model long_string(int n) {
     Mat mass = *shipped.find_mat("s1");
     mass.mass *= static_cast<double>(n0) / n;
     Lia spring = *shipped.find_lia("k0");
-    spring.stiffness *= 0.8 * n / n0;
+    spring.stiffness *= 0.7 * n / n0;
     const double shift = 40.0 * (std::stoi(bowed.substr(1)) - 7);  // the bow follows its point
     std::vector<std::string> ids{"bridge"};
     model.mats.push_back(*shipped.find_mat("bridge"));
@@ -216,6 +216,8 @@ TEST(LongChainStudio, OpensWithEveryMassInTheEditorAndItsModesListed) {
         EXPECT_TRUE(window.graph().viewport()->rect().contains(window.graph().mapFromScene(
             window.graph().node_position(QString::fromStdString(m.id)))))
             << m.id;
+    // The modes come from the background: the editor was usable meanwhile.
+    ASSERT_TRUE(test::wait_until([&] { return !window.modes().computing(); }, 30000));
     EXPECT_GT(window.modes().mode_count(), 0);
     EXPECT_GT(window.modes().fundamental(), 90);
     EXPECT_LT(window.modes().fundamental(), 110);
