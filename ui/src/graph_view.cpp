@@ -176,9 +176,8 @@ void GraphView::rebuild() {
     graph_bounds_ = QRectF();
     for (QGraphicsItem* item : scene_.items())
         if (!item->parentItem()) graph_bounds_ |= item->sceneBoundingRect();
-    // Room to scroll to whatever was added beyond the fitted graph.
-    const double margin = 40 / std::max(zoom(), 1e-6);
-    setSceneRect(sceneRect().united(graph_bounds_.adjusted(-margin, -margin, margin, margin)));
+    // Room to scroll to whatever was added; a fitted view keeps the extent it fitted.
+    if (!fitting_) fit_scene_rect();
     select(keep);
     apply_zoom();
 }

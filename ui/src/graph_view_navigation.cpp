@@ -64,8 +64,17 @@ void GraphView::zoom_about(double scale, QPoint view_point) {
     const QPointF anchor = mapToScene(view_point);
     const double limited = zoom_limited(scale);
     setTransform(QTransform::fromScale(limited, limited));
+    fit_scene_rect();
     centerOn(anchor + QPointF(viewport()->rect().center() - view_point) / limited);
     apply_zoom();
+}
+
+// The scene reaches kMarginPixels beyond the graph at the present scale: zoomed in, the
+// scroll bars go no further than that into empty space (a fitted margin would be hundreds of
+// scene units across a long chain's thin graph).
+void GraphView::fit_scene_rect() {
+    const double margin = kMarginPixels / std::max(zoom(), 1e-9);
+    setSceneRect(graph_bounds_.adjusted(-margin, -margin, margin, margin));
 }
 
 void GraphView::zoom_in() {

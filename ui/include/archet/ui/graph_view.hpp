@@ -68,6 +68,7 @@ class GraphView : public QGraphicsView {
     void rebuild();
     void apply_zoom();
     void zoom_about(double scale, QPoint view_point);
+    void fit_scene_rect();
     void thin_labels();
     void scale_nodes();
     void pan_by(QPoint pixels);
