@@ -198,9 +198,7 @@ TEST_F(LongChain, DraggingTheBackgroundPansAndShiftDragSelects) {
 }
 
 TEST(LongChainStudio, OpensWithEveryMassInTheEditorAndItsModesListed) {
-    EngineClientOptions no_engine;
-    no_engine.archet_binary = "/nonexistent/archet";  // the editor alone
-    MainWindow window(no_engine);
+    MainWindow window(test::editor_alone());
     window.resize(1400, 900);
     window.show();
     ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));

@@ -221,9 +221,7 @@ TEST(PasteTest, PastedElementsLandNextToTheOriginalsAndNotOnAnEarlierPaste) {
 // A view that fits itself must settle: scroll bars that appeared and vanished as it refitted
 // resized its viewport again and again (the studio froze for seconds on the 440 Hz string).
 TEST(GraphLabelsTest, FittingAModelSettlesAtOnce) {
-    EngineClientOptions no_engine;
-    no_engine.archet_binary = "/nonexistent/archet";  // the editor alone
-    MainWindow window(no_engine);
+    MainWindow window(test::editor_alone());
     window.resize(1400, 900);
     window.show();
     ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
