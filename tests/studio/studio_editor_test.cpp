@@ -221,9 +221,7 @@ TEST(PasteTest, PastedElementsLandNextToTheOriginalsAndNotOnAnEarlierPaste) {
 // A view that fits itself must settle: scroll bars that appeared and vanished as it refitted
 // resized its viewport again and again (the studio froze for seconds on the 440 Hz string).
 TEST(GraphLabelsTest, FittingAModelSettlesAtOnce) {
-    EngineClientOptions no_engine;
-    no_engine.archet_binary = "/nonexistent/archet";  // the editor alone
-    MainWindow window(no_engine);
+    MainWindow window(test::editor_alone());
     window.resize(1400, 900);
     window.show();
     ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
@@ -411,6 +409,7 @@ TEST(ModesPanelTest, FindsTheStringsFundamental) {
     ModelDocument document;
     ModesPanel panel(document);
     document.reset(load_model_file(test::resource("models/bowed-string-220-harmonic.json")));
+    ASSERT_TRUE(test::wait_until([&] { return !panel.computing(); }, 30000));
     EXPECT_NEAR(panel.fundamental(), 220.0, 1e-6);
     EXPECT_GT(panel.mode_count(), 20);
 }
@@ -428,6 +427,7 @@ TEST(ModesPanelTest, ShowsHertzToOneDecimalAndACentsChartScaledToTheData) {
     for (const char* shipped :
          {"models/bowed-string-220.json", "models/bowed-string-220-harmonic.json"}) {
         document.reset(load_model_file(test::resource(shipped)));
+        ASSERT_TRUE(test::wait_until([&] { return !panel.computing(); }, 30000));
         ASSERT_GT(table->rowCount(), 10) << shipped;
         double lowest = 0, highest = 0;
         bool fundamental_seen = false;

@@ -5,7 +5,16 @@
 #include <QTest>
 #include <functional>
 
+#include "archet/ui/engine_client.hpp"
+
 namespace archet::test {
+
+/// A studio with no engine to start: the editor and panels alone.
+inline ui::EngineClientOptions editor_alone() {
+    ui::EngineClientOptions options;
+    options.archet_binary = "/nonexistent/archet";
+    return options;
+}
 
 /// Runs the event loop until `done` holds or `ms` pass; returns its last answer.
 inline bool wait_until(const std::function<bool()>& done, int ms) {

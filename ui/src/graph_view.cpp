@@ -5,10 +5,7 @@
 #include <QGraphicsSimpleTextItem>
 #include <QKeyEvent>
 #include <QMouseEvent>
-#include <QScrollBar>
-#include <QWheelEvent>
 #include <algorithm>
-#include <cmath>
 #include <map>
 
 #include "archet/ui/model_document.hpp"
@@ -18,6 +15,10 @@ namespace archet::ui {
 namespace {
 
 constexpr double kRadius = 9;
+// On a long chain zoomed out, nodes would shrink to specks: each keeps this radius on screen,
+// and a click this near a node or link picks it.
+constexpr double kMinNodePixels = 3.5;
+constexpr double kPickPixels = 8;
 constexpr int kIdRole = 0;  // QGraphicsItem::data key holding the element id
 // Labels keep their size on screen whatever the zoom; where they would overlap, some are
 // hidden (the tooltip and the selection still show every id).
@@ -83,10 +84,9 @@ GraphView::GraphView(ModelDocument& document, QWidget* parent)
     setDragMode(QGraphicsView::RubberBandDrag);
     setTransformationAnchor(QGraphicsView::AnchorUnderMouse);
     setMinimumHeight(160);
-    // The middle button pans and the wheel zooms. Scroll bars that came and went as the view
-    // fits itself would resize the viewport, which refits it, and so on for seconds.
-    setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-    setVerticalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+    // Scroll bars show once zoomed in; fit() keeps the scene to what a fitted view shows.
+    setHorizontalScrollBarPolicy(Qt::ScrollBarAsNeeded);
+    setVerticalScrollBarPolicy(Qt::ScrollBarAsNeeded);
     connect(&document_, &ModelDocument::changed, this, [this] { rebuild(); });
     connect(&document_, &ModelDocument::replaced, this, [this] {
         fitting_ = true;
@@ -114,7 +114,7 @@ void GraphView::rebuild() {
     const QStringList keep = selected_ids();
     const QSignalBlocker quiet(&scene_);
     scene_.clear();
-    labels_.clear(), badges_.clear();
+    labels_.clear(), badges_.clear(), nodes_.clear();
     rubber_line_ = nullptr;
     const Model& model = document_.model();
     std::map<std::string, QPointF> at;
@@ -133,10 +133,12 @@ void GraphView::rebuild() {
                         .addLine(QLineF(centre, at[*end]),
                                  QPen(QColor(180, 60, 40), 1.2, Qt::DashDotLine))
                         ->setZValue(-1);
-            QPolygonF diamond({centre + QPointF(0, -8), centre + QPointF(8, 0),
-                               centre + QPointF(0, 8), centre + QPointF(-8, 0)});
+            // Drawn about its own origin, so that it keeps its least size about its centre.
+            QPolygonF diamond({{0, -8}, {8, 0}, {0, 8}, {-8, 0}});
             auto* item =
                 scene_.addPolygon(diamond, QPen(QColor(180, 60, 40)), QColor(240, 180, 160));
+            item->setPos(centre);
+            nodes_.push_back(item);
             item->setData(kIdRole, QString::fromStdString(l.id));
             item->setFlag(QGraphicsItem::ItemIsSelectable);
             item->setToolTip(tr("%1: bow–string module").arg(QString::fromStdString(l.id)));
@@ -159,6 +161,7 @@ void GraphView::rebuild() {
         node->setBrush(colour_of(m.kind));
         node->setPen(QPen(palette().color(QPalette::Base), 1.5));
         node->setPos(at[m.id]);
+        nodes_.push_back(node);
         node->setData(kIdRole, QString::fromStdString(m.id));
         node->setFlags(QGraphicsItem::ItemIsSelectable | QGraphicsItem::ItemIsMovable);
         node->setToolTip(tr("%1: %2 at rate %3")
@@ -170,27 +173,18 @@ void GraphView::rebuild() {
         if (!badge.isEmpty())
             badges_.push_back(add_label(node, badge, kBadgePixels, QColor(230, 140, 30), -kRadius));
     }
+    graph_bounds_ = QRectF();
+    for (QGraphicsItem* item : scene_.items())
+        if (!item->parentItem()) graph_bounds_ |= item->sceneBoundingRect();
+    // Room to scroll to whatever was added; a fitted view keeps the extent it fitted.
+    if (!fitting_) fit_scene_rect();
     select(keep);
-    thin_labels();
+    apply_zoom();
 }
 
-void GraphView::zoom_to(double scale) {
-    if (!(scale > 0)) return;
-    fitting_ = false;
-    const QPointF centre = mapToScene(viewport()->rect().center());
-    setTransform(QTransform::fromScale(scale, scale));
-    centerOn(centre);
-    thin_labels();
-}
-
-void GraphView::fit() {
-    // Labels keep their screen size, so the margin that leaves room for them is in pixels.
-    constexpr double kMarginPixels = 40;
-    const QRectF graph = scene_.itemsBoundingRect();
-    fitInView(graph, Qt::KeepAspectRatio);
-    const double margin = kMarginPixels / std::max(transform().m11(), 1e-9);
-    fitInView(graph.adjusted(-margin, -margin, margin, margin), Qt::KeepAspectRatio);
-    thin_labels();
+void GraphView::scale_nodes() {
+    const double least = std::max(1.0, kMinNodePixels / (kRadius * zoom()));
+    for (QGraphicsItem* node : nodes_) node->setScale(least);
 }
 
 // Shows the labels that fit on screen without overlapping: the selected nodes' ids first, then
@@ -240,6 +234,54 @@ QPointF GraphView::node_position(const QString& id) const {
     return {};
 }
 
+// The node or link nearest `view_point` within kPickPixels on screen, nodes first on a tie.
+QGraphicsItem* GraphView::nearest_item(QPoint view_point) const {
+    const QRect around(view_point - QPoint(kPickPixels, kPickPixels),
+                       QSize(2 * kPickPixels + 1, 2 * kPickPixels + 1));
+    QGraphicsItem* best = nullptr;
+    double best_distance = kPickPixels + 1;
+    const QPointF p(view_point);
+    for (QGraphicsItem* item : items(around)) {
+        if (!(item->flags() & QGraphicsItem::ItemIsSelectable)) continue;
+        double distance = 0;
+        if (const auto* line = qgraphicsitem_cast<QGraphicsLineItem*>(item)) {
+            const QLineF on_screen(mapFromScene(line->line().p1()),
+                                   mapFromScene(line->line().p2()));
+            const QPointF d = on_screen.p2() - on_screen.p1();
+            const double t = std::clamp(QPointF::dotProduct(p - on_screen.p1(), d) /
+                                            std::max(QPointF::dotProduct(d, d), 1e-9),
+                                        0.0, 1.0);
+            distance = QLineF(p, on_screen.pointAt(t)).length() + 2;
+        } else {
+            distance = QLineF(p, mapFromScene(item->scenePos())).length() -
+                       kRadius * item->scale() * zoom();
+        }
+        if (distance < best_distance) best = item, best_distance = distance;
+    }
+    return best;
+}
+
+// A left press in the select tool that is not plainly on one element: near one, it picks it
+// (Ctrl toggles); on the background it starts panning, or with Shift the rubber band. Returns
+// whether it took the press.
+bool GraphView::background_press(QMouseEvent* e) {
+    const QPoint at = e->position().toPoint();
+    QGraphicsItem* hit = itemAt(at);
+    QGraphicsItem* near = nearest_item(at);
+    // Zoomed out, nodes overlap: the one whose centre is nearest wins over the topmost.
+    if (hit && (hit->flags() & QGraphicsItem::ItemIsSelectable) && (!near || near == hit))
+        return false;
+    const bool ctrl = e->modifiers() & Qt::ControlModifier;
+    if (near) {
+        if (!ctrl) scene_.clearSelection();
+        near->setSelected(!(ctrl && near->isSelected()));
+        return true;
+    }
+    if (e->modifiers() & (Qt::ShiftModifier | Qt::ControlModifier)) return false;
+    panning_ = true, panned_ = false, pan_last_ = at;
+    return true;
+}
+
 QString GraphView::mat_at(QPointF p) const {
     for (QGraphicsItem* item : scene_.items(p)) {
         QGraphicsItem* node = item->parentItem() ? item->parentItem() : item;
@@ -252,10 +294,11 @@ QString GraphView::mat_at(QPointF p) const {
 void GraphView::mousePressEvent(QMouseEvent* e) {
     const QPointF p = mapToScene(e->position().toPoint());
     if (e->button() == Qt::MiddleButton) {
-        panning_ = true, pan_last_ = e->position().toPoint(), fitting_ = false;
+        panning_ = true, panned_ = false, pan_last_ = e->position().toPoint();
         return;
     }
     if (e->button() != Qt::LeftButton) return QGraphicsView::mousePressEvent(e);
+    if (tool_ == Tool::Select && background_press(e)) return;
     if (tool_ == Tool::AddMat) {
         const QString id = document_.add_mat(mat_kind_, p);
         select({id});
@@ -276,8 +319,8 @@ void GraphView::mouseMoveEvent(QMouseEvent* e) {
     if (panning_) {
         const QPoint d = e->position().toPoint() - pan_last_;
         pan_last_ = e->position().toPoint();
-        horizontalScrollBar()->setValue(horizontalScrollBar()->value() - d.x());
-        verticalScrollBar()->setValue(verticalScrollBar()->value() - d.y());
+        if (!d.isNull()) panned_ = true, fitting_ = false;
+        pan_by(d);
         return;
     }
     if (rubber_line_) {
@@ -293,6 +336,8 @@ void GraphView::mouseReleaseEvent(QMouseEvent* e) {
     const QPointF p = mapToScene(e->position().toPoint());
     if (panning_) {
         panning_ = false;
+        // A click on the background, not a drag: it clears the selection, as before.
+        if (!panned_ && e->button() == Qt::LeftButton) scene_.clearSelection();
         return;
     }
     if (tool_ == Tool::Connect && rubber_line_) {
@@ -320,21 +365,9 @@ void GraphView::mouseReleaseEvent(QMouseEvent* e) {
     drag_start_.reset();
 }
 
-void GraphView::wheelEvent(QWheelEvent* e) {
-    const double factor = std::pow(1.0015, e->angleDelta().y());
-    scale(factor, factor);
-    fitting_ = false;
-    thin_labels();
-}
-
 void GraphView::changeEvent(QEvent* e) {
     QGraphicsView::changeEvent(e);
     if (e->type() == QEvent::PaletteChange) rebuild();  // labels and links in the new colours
-}
-
-void GraphView::resizeEvent(QResizeEvent* e) {
-    QGraphicsView::resizeEvent(e);
-    if (fitting_) fit();
 }
 
 void GraphView::keyPressEvent(QKeyEvent* e) {
@@ -347,6 +380,7 @@ void GraphView::keyPressEvent(QKeyEvent* e) {
         set_tool(Tool::Select);
         return;
     }
+    if (zoom_key(e)) return;
     QGraphicsView::keyPressEvent(e);
 }
 

@@ -100,6 +100,11 @@ void MainWindow::build_view_menu() {
     QMenu* view = menuBar()->addMenu(tr("&View"));
     add_action(view, tr("&Fit the graph"), QKeySequence(Qt::CTRL | Qt::Key_0),
                [this] { graph_->fit(); });
+    // Ctrl+= as well as Ctrl++: on most keyboards + needs Shift.
+    add_action(view, tr("Zoom &in"), QKeySequence::ZoomIn, [this] {
+        graph_->zoom_in();
+    })->setShortcuts({QKeySequence::ZoomIn, QKeySequence(Qt::CTRL | Qt::Key_Equal)});
+    add_action(view, tr("Zoom &out"), QKeySequence::ZoomOut, [this] { graph_->zoom_out(); });
     add_action(view, tr("F&reeze scopes"), QKeySequence(Qt::Key_F),
                [this] { scopes_->set_frozen(!scopes_->frozen()); });
     add_action(view, tr("&Export scopes…"), QKeySequence(Qt::CTRL | Qt::Key_E), [this] {
@@ -189,9 +194,10 @@ QToolBar* MainWindow::build_palette() {
         return a;
     };
     using Tool = GraphView::Tool;
-    tool(tr("Select"), tr("Select, drag to move, rubber band for several (Esc)"), [this] {
-        graph_->set_tool(Tool::Select);
-    })->setChecked(true);
+    tool(tr("Select"),
+         tr("Select, drag to move, drag the background to pan, Shift+drag for several (Esc)"),
+         [this] { graph_->set_tool(Tool::Select); })
+        ->setChecked(true);
     bar->addSeparator();
     tool(tr("Mass"), tr("Click the canvas to place a mass"),
          [this] { graph_->set_tool(Tool::AddMat, MatKind::Mass); });

@@ -55,6 +55,9 @@ ModesPanel::ModesPanel(ModelDocument& document, QWidget* parent)
     connect(&document_, &ModelDocument::changed, this, [this](ModelDocument::Change change) {
         if (change != ModelDocument::Change::Layout) refresh();
     });
+    connect(&job_, &BackgroundJob::finished, this, [this] {
+        if (stale_) stale_ = false, refresh();
+    });
     refresh();
 }
 
@@ -62,19 +65,30 @@ int ModesPanel::mode_count() const {
     return table_->rowCount();
 }
 
+// One analysis at a time, on a copy of the model; edits made meanwhile start the next.
 void ModesPanel::refresh() {
+    if (job_.busy()) {
+        stale_ = true;
+        return;
+    }
+    job_.start(
+        [model = document_.model()](BackgroundJob::Control&) { return analyse_modes(model); },
+        [this](const ModalAnalysis& modes) { show_modes(modes); },
+        [this](const QString& message) { show_failure(message); });
+}
+
+void ModesPanel::show_failure(const QString& message) {
+    table_->setRowCount(0);
+    static_cast<QCPBars*>(cents_->plottable(0))->data()->clear();
+    fundamental_ = 0;
+    summary_->setText(tr("No modes: %1").arg(message));
+    cents_->replot();
+}
+
+void ModesPanel::show_modes(const ModalAnalysis& modes) {
     table_->setRowCount(0);
     auto* bars = static_cast<QCPBars*>(cents_->plottable(0));
     bars->data()->clear();
-    fundamental_ = 0;
-    ModalAnalysis modes;
-    try {
-        modes = analyse_modes(document_.model());
-    } catch (const std::exception& e) {
-        summary_->setText(tr("No modes: %1").arg(QString::fromUtf8(e.what())));
-        cents_->replot();
-        return;
-    }
     fundamental_ = modes.fundamental;
     summary_->setText(
         tr("%1 at rate %2; f1 = %3")

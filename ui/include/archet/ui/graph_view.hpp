@@ -2,8 +2,10 @@
 // The mass-interaction graph on a canvas (QGraphicsView): MATs as nodes, LIAs as edges, the
 // bow module as a diamond joining its four MATs; each shows its rate level. A tool chooses
 // what a click does: select (rubber band, drag to move), place a MAT, or drag from one MAT
-// to another to connect them. Zoom with the wheel, pan with the middle button. Every edit
-// goes through the ModelDocument, so it can be undone.
+// to another to connect them. The wheel (or Ctrl+wheel, Ctrl+= / Ctrl+-) zooms, Ctrl+0 fits;
+// dragging the background (or with the middle button) pans, Shift+drag draws the rubber
+// band. Long chains stay editable: nodes keep a least size on screen and a click picks the
+// nearest one. Every edit goes through the ModelDocument, so it can be undone.
 
 #include <QGraphicsView>
 #include <QStringList>
@@ -31,9 +33,12 @@ class GraphView : public QGraphicsView {
     Tool tool() const { return tool_; }
     QStringList selected_ids() const;
     void select(const QStringList& ids);
-    /// Fits the whole graph in view. It does so by itself on a new model and, until the
-    /// user zooms or pans, when resized.
+    /// Fits the whole graph in view, and follows the view's size again until the user zooms
+    /// or pans. It does so by itself on a new model.
     void fit();
+    /// One zoom step in or out about the centre (Ctrl+= and Ctrl+-).
+    void zoom_in();
+    void zoom_out();
     /// Zooms to `scale` (view pixels per scene unit) about the centre, as if the user had: the
     /// view no longer refits itself when resized.
     void zoom_to(double scale);
@@ -61,7 +66,17 @@ class GraphView : public QGraphicsView {
 
   private:
     void rebuild();
+    void apply_zoom();
+    void zoom_about(double scale, QPoint view_point);
+    void fit_scene_rect();
     void thin_labels();
+    void scale_nodes();
+    void pan_by(QPoint pixels);
+    QRectF fitted_rect() const;
+    double zoom_limited(double scale) const;
+    QGraphicsItem* nearest_item(QPoint view_point) const;
+    bool background_press(QMouseEvent* e);
+    bool zoom_key(QKeyEvent* e);
     QString mat_at(QPointF scene_point) const;
 
     ModelDocument& document_;
@@ -73,9 +88,12 @@ class GraphView : public QGraphicsView {
     QGraphicsLineItem* rubber_line_ = nullptr;
     std::optional<QPointF> drag_start_;
     bool panning_ = false;
+    bool panned_ = false;  ///< the background drag moved the view (else it was a click)
     bool fitting_ = true;  ///< follows the view's size until the user zooms or pans
     std::vector<QGraphicsSimpleTextItem*> labels_;  ///< the MATs' ids
     std::vector<QGraphicsSimpleTextItem*> badges_;  ///< their rate levels, where not audio
+    std::vector<QGraphicsItem*> nodes_;  ///< MATs and bow modules, kept a least size on screen
+    QRectF graph_bounds_;                ///< the nodes and links, labels left out
     QPoint pan_last_;
 };
 

@@ -1,12 +1,19 @@
 #pragma once
 // The model's modes from modal analysis (exact for the scheme): frequency, decay, and each
-// partial against the harmonic series in cents, in a table and a plot.
+// partial against the harmonic series in cents, in a table and a plot. The analysis runs off
+// the GUI thread: on a 220-mass string it takes about half a second, at every edit.
 
 #include <QWidget>
+
+#include "archet/ui/background_job.hpp"
 
 class QCustomPlot;
 class QLabel;
 class QTableWidget;
+
+namespace archet {
+struct ModalAnalysis;
+}
 
 namespace archet::ui {
 
@@ -22,15 +29,21 @@ class ModesPanel : public QWidget {
     explicit ModesPanel(ModelDocument& document, QWidget* parent = nullptr);
     int mode_count() const;
     double fundamental() const { return fundamental_; }
+    /// Whether an analysis is under way (the table shows the previous model's until it ends).
+    bool computing() const { return job_.busy(); }
 
   private:
     void refresh();
+    void show_modes(const ModalAnalysis& modes);
+    void show_failure(const QString& message);
 
     ModelDocument& document_;
     QLabel* summary_;
     QTableWidget* table_;
     QCustomPlot* cents_;
     double fundamental_ = 0;
+    bool stale_ = false;  ///< the model changed while the analysis ran: run it again
+    BackgroundJob job_;   ///< last: it joins its worker before the rest goes
 };
 
 }  // namespace archet::ui
