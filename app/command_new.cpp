@@ -1,9 +1,11 @@
-// `archet new bowed-string`: builds the paper's bowed string and writes it as a model file.
+// `archet new bowed-string`: builds a bowed string (full bandwidth, two-parameter losses, a
+// stroke in its Helmholtz band; or the paper's chaplet) and writes it as a model file.
 
 #include <iostream>
 #include <memory>
 
 #include "archet/builders/bowed_string.hpp"
+#include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
 #include "commands.hpp"
 #include "option_checks.hpp"
@@ -33,19 +35,43 @@ void add_new_command(CLI::App& app, Action& action) {
                      "oscillator per mode)")
         ->check(CLI::IsMember({"chain", "modal"}))
         ->capture_default_str();
-    bowed->add_option("--masses", o->masses, "Masses in the chaplet, 25-60 (0 = largest stable)")
-        ->capture_default_str();
+    bowed->add_flag("--paper", o->paper,
+                    "The paper's chaplet: 25-60 masses, link damping alone, no body");
     bowed
-        ->add_option("--bow-position", o->bow_position,
-                     "Beta: bow distance from the bridge / string length")
+        ->add_option("--masses", o->masses,
+                     "Masses in the chaplet, up to what the scheme allows at the pitch (0 = full "
+                     "bandwidth; with --paper 25-60, 0 = largest stable)")
         ->capture_default_str();
+    auto* position = bowed
+                         ->add_option("--bow-position", o->bow_position,
+                                      "Beta: bow distance from the bridge / string length")
+                         ->capture_default_str();
     bowed
         ->add_option("--string-damping", o->string_damping,
-                     "Damping of each string link (N·s/m); negative = from --string-t60")
+                     "Damping of each string link (N·s/m), set by hand; negative = from the decays")
         ->capture_default_str();
     bowed
         ->add_option("--string-t60", o->string_t60,
-                     "First-mode decay from string damping alone (s)")
+                     "60 dB decay of the first mode, all losses included (s; 0 = a violin A "
+                     "string's at the pitch; --paper: 4 s from link damping)")
+        ->capture_default_str();
+    bowed
+        ->add_option("--string-t60-high", o->string_t60_high,
+                     "60 dB decay at --string-t60-high-hz (s; 0 = a violin A string's)")
+        ->capture_default_str();
+    bowed
+        ->add_option("--string-t60-high-hz", o->string_t60_high_hz,
+                     "Frequency of --string-t60-high (Hz; 0 = 2000, or twice a pitch above 1 kHz)")
+        ->capture_default_str();
+    auto* body =
+        bowed
+            ->add_option(
+                "--body", o->body,
+                "A body at the bridge, its radiated sound the output: a preset name or none")
+            ->capture_default_str();
+    bowed->add_flag("--point-bow", o->point_bow,
+                    "The bow rubs one mass (the paper's) instead of a hair-wide contact point");
+    bowed->add_option("--stroke-speed", o->stroke_speed, "Bow speed of the embedded stroke (m/s)")
         ->capture_default_str();
     bowed->add_option("--sample-rate", o->sample_rate, "Audio rate level (Hz)")
         ->capture_default_str()
@@ -66,12 +92,20 @@ void add_new_command(CLI::App& app, Action& action) {
         ->add_option("--buffer-stiffness", o->buffer_stiffness,
                      "Bow-string contact stiffness (N/m)")
         ->capture_default_str();
-    bowed->add_option("--output-gain", o->output_gain, "Bridge force to full scale (1/N)")
+    bowed
+        ->add_option("--output-gain", o->output_gain,
+                     "Output to full scale (0 = the embedded stroke peaks at -6 dBFS; the "
+                     "paper's strings 1.5 per N of bridge force)")
         ->capture_default_str();
-    bowed->add_flag("--no-gesture", *no_gesture, "Do not embed the steady-bow gesture");
+    bowed->add_flag("--no-gesture", *no_gesture,
+                    "Do not embed a stroke (else a steady one in the string's Helmholtz band)");
     bowed->add_option("-o,--output", *output, "Model file to write (.json)")->required();
-    bowed->callback([&action, o, output, no_gesture, tuning, structure] {
-        action = [o, output, no_gesture, tuning, structure] {
+    bowed->callback([&action, o, output, no_gesture, tuning, structure, body, position] {
+        const bool body_given = body->count() > 0;
+        o->bow_position_fixed = position->count() > 0;
+        action = [o, output, no_gesture, tuning, structure, body_given] {
+            if (o->paper && body_given)
+                throw InputError("--body", "the paper's strings have no body; leave out --paper");
             o->structure = *structure == "modal" ? Structure::Modal : Structure::Chain;
             o->with_gesture = !*no_gesture;
             o->tuning = *tuning == "harmonic" ? Tuning::Harmonic : Tuning::Homogeneous;

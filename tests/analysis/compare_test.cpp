@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "archet/analysis/playability.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_variants.hpp"
@@ -17,7 +18,7 @@ namespace {
 TEST(Compare, MoreStringDampingDissipatesMorePerPeriod) {
     const auto dir = test::temp_dir("compare");
     const auto r =
-        test::run_archet({"compare", test::resource("models/bowed-string-220.json").string(),
+        test::run_archet({"compare", test::resource("models/bowed-string-220-paper.json").string(),
                           "--vary", "string.damping=0.0005,0.005", "-o", (dir / "out").string()});
     ASSERT_EQ(r.status, 0) << r.err;
     const auto summary = nlohmann::json::parse(test::read_file(dir / "out" / "comparison.json"));
@@ -50,8 +51,21 @@ TEST(Compare, ABadVariationIsRefusedBeforeAnythingIsWritten) {
     }
 }
 
-TEST(Compare, BowPositionMovesTheBowAndItsProbes) {
+TEST(Compare, BowPositionMovesAHairWideBowsContactPoint) {
     Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    int n = 0;
+    while (model.find_mat("s" + std::to_string(n + 1))) ++n;
+    set_variant_parameter(model, "bow.position", 0.2);
+    const Mat* contact = model.find_mat(model.find_lia("friction")->bowed_string());
+    const int centre = static_cast<int>(std::lround(0.2 * (n + 1)));
+    EXPECT_EQ(contact->modes, (std::vector<std::string>{"s" + std::to_string(centre - 1),
+                                                        "s" + std::to_string(centre),
+                                                        "s" + std::to_string(centre + 1)}));
+    EXPECT_NEAR(bow_position(model), 0.2, 0.5 / (n + 1));
+}
+
+TEST(Compare, BowPositionMovesTheBowAndItsProbes) {
+    Model model = load_model_file(test::resource("models/bowed-string-220-paper.json"));
     set_variant_parameter(model, "bow.position", 0.2);
     const Lia* bow = model.find_lia("friction");
     EXPECT_EQ(bow->to, "s12") << "round(0.2 · 61)";

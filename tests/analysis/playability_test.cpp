@@ -67,7 +67,7 @@ TEST(Classifier, NamesEachRegimeOfConstructedSignals) {
 }
 
 TEST(PlayabilityMap, TheShippedStringShowsSchellengsPicture) {
-    const Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    const Model model = load_model_file(test::resource("models/bowed-string-220-paper.json"));
     MapGrid grid;
     grid.force_min = 0.002, grid.force_max = 2.0, grid.force_steps = 10;
     grid.position_min = 0.08, grid.position_max = 0.2, grid.position_steps = 3;

@@ -49,8 +49,8 @@ TEST(HarmonicChain, InverseProblemRecoversTheSpectrum) {
 class HarmonicString : public ::testing::TestWithParam<int> {};
 
 TEST_P(HarmonicString, SimulatedPartialsAreHarmonicWithinACent) {
-    BowedStringOptions o;
-    o.pitch = GetParam(), o.tuning = Tuning::Harmonic;
+    BowedStringOptions o;  // full bandwidth; a body would pull the partials near its modes
+    o.pitch = GetParam(), o.tuning = Tuning::Harmonic, o.body = "none", o.with_gesture = false;
     const Model model = build_bowed_string(o);
     validate_model(model);
     const ModalAnalysis modes = analyse_modes(model);
@@ -58,15 +58,17 @@ TEST_P(HarmonicString, SimulatedPartialsAreHarmonicWithinACent) {
     for (const auto& m : modes.modes) {
         if (m.support) continue;
         ++partials;
-        EXPECT_LT(std::abs(1200 * std::log2(m.frequency / (m.partial * o.pitch))), 1.0)
+        // Tuned undamped; the losses then pull the highest partials by a cent or so.
+        EXPECT_LT(std::abs(1200 * std::log2(m.frequency / (m.partial * o.pitch))),
+                  m.partial <= 20 ? 0.1 : 2.0)
             << "partial " << m.partial;
     }
     int masses = 0;
     for (const auto& m : model.mats)
-        masses += m.kind == MatKind::Mass && m.id[0] == 's' && std::isdigit(m.id[1]);
+        masses += m.kind != MatKind::ModalPoint && m.id[0] == 's' && std::isdigit(m.id[1]);
     EXPECT_EQ(partials, masses) << "every partial of the chaplet";
     EXPECT_LT(masses * o.pitch, o.sample_rate / 2);
-    EXPECT_GE(masses, 25);
+    EXPECT_GE(masses, 0.8 * max_harmonic_masses(o.pitch, o.sample_rate)) << "full bandwidth";
 }
 
 TEST_P(HarmonicString, ShippedVariantIsWhatTheBuilderMakes) {
@@ -97,7 +99,9 @@ TEST(HarmonicString, RefusesPartialsAtOrAboveHalfTheSampleRate) {
 // Time from first contact to steady Helmholtz motion with the steady-bow gesture.
 AttackAnalysis attack_of(const std::string& file) {
     const Model model = load_model_file(test::resource("models/" + file));
+    const Gesture steady = load_gesture_file(test::resource("gestures/steady-bow.json"));
     Simulation sim(compile(model));
+    sim.set_gesture_track(&steady);
     std::vector<double> slip, normal;
     for (int i = 0; i < 2.7 * 48000; ++i) {
         sim.step();
@@ -111,8 +115,9 @@ class Attack : public ::testing::TestWithParam<int> {};
 
 TEST_P(Attack, HarmonicStringReachesHelmholtzMotionSooner) {
     const std::string pitch = std::to_string(GetParam());
-    const AttackAnalysis homogeneous = attack_of("bowed-string-" + pitch + ".json");
-    const AttackAnalysis harmonic = attack_of("bowed-string-" + pitch + "-harmonic.json");
+    // The paper's claim, on its strings with the shipped steady stroke.
+    const AttackAnalysis homogeneous = attack_of("bowed-string-" + pitch + "-paper.json");
+    const AttackAnalysis harmonic = attack_of("bowed-string-" + pitch + "-harmonic-paper.json");
     ASSERT_TRUE(homogeneous.reached());
     ASSERT_TRUE(harmonic.reached());
     EXPECT_LT(harmonic.attack(), 0.8 * homogeneous.attack())

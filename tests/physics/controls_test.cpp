@@ -60,7 +60,10 @@ TEST(Controls, AGestureAxisDrivesAParameterWithinItsRange) {
     const auto slot = sim.model().resolve_parameter({"osc", "stiffness"});
     const Gesture g("press", {{0, 0, 0}, {1, 0, 0.001}, {2, 0, 0.01}});
     sim.set_gesture_track(&g);
-    auto stiffness = [&] { return sim.model().levels[slot.level].grounds[slot.index].k; };
+    auto stiffness = [&] {
+        const auto& lv = sim.model().levels[slot.level];
+        return lv.ground_k[lv.grounds[slot.index].index];
+    };
     for (int i = 0; i < 24000; ++i) sim.step();
     // The last control update read the gesture at the start of step 23999.
     EXPECT_NEAR(stiffness(), 1000 + 1e6 * 0.001 * 23999 / 48000, 1e-6);

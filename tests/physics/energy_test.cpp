@@ -129,9 +129,8 @@ TEST(Energy, MultiRateBowingNeverAddsEnergyOverAnyHapticPeriod) {
 Model string_with_body(Structure structure, int haptic_divider) {
     BowedStringOptions options;
     options.pitch = 220, options.structure = structure, options.haptic_divider = haptic_divider;
-    Model model = build_bowed_string(options);
-    attach_body(model, find_body_preset("violin"));
-    return model;
+    options.body = "violin";
+    return build_bowed_string(options);
 }
 
 class EnergyWithBody : public ::testing::TestWithParam<Structure> {};

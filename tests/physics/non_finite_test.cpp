@@ -13,6 +13,7 @@
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/renderer.hpp"
 #include "archet/physics/simulation.hpp"
+#include "test_support.hpp"
 
 namespace archet {
 namespace {
@@ -41,7 +42,7 @@ std::string render_until_blow_up(Simulation& sim, std::uint64_t frames, std::siz
 
 TEST(NonFinite, ANanPositionStopsTheRenderNamingTheMass) {
     // Compiled without validation, as a corrupted state or a future bug would leave it.
-    Model model = build_bowed_string(BowedStringOptions{});
+    Model model = build_bowed_string(test::paper_string_options());
     model.find_mat("s12")->position = std::numeric_limits<double>::quiet_NaN();
     Simulation sim(compile(model));
     std::size_t sunk = 0;
@@ -54,7 +55,7 @@ TEST(NonFinite, ANanPositionStopsTheRenderNamingTheMass) {
 
 TEST(NonFinite, AHugeVelocityOverflowsTheEnergyAndStopsTheRender) {
     // 1e300 m/s: the energy (m·v²/2) is infinite from the first sample.
-    Model model = build_bowed_string(BowedStringOptions{});
+    Model model = build_bowed_string(test::paper_string_options());
     model.find_mat("s5")->velocity = 1e300;
     Simulation sim(compile(model));
     std::size_t sunk = 0;
@@ -64,7 +65,7 @@ TEST(NonFinite, AHugeVelocityOverflowsTheEnergyAndStopsTheRender) {
 }
 
 TEST(NonFinite, AFiniteRenderRunsToTheEndAndIsReportedFinite) {
-    Simulation sim(compile(build_bowed_string(BowedStringOptions{})));
+    Simulation sim(compile(build_bowed_string(test::paper_string_options())));
     std::size_t sunk = 0;
     EXPECT_EQ(render_until_blow_up(sim, 4800, &sunk), "");
     EXPECT_EQ(sunk, 4800u);
@@ -73,7 +74,7 @@ TEST(NonFinite, AFiniteRenderRunsToTheEndAndIsReportedFinite) {
 }
 
 TEST(NonFinite, TheBlownUpElementIsNamedByItsId) {
-    Model model = build_bowed_string(BowedStringOptions{});
+    Model model = build_bowed_string(test::paper_string_options());
     model.find_mat("s7")->position = std::numeric_limits<double>::infinity();
     Simulation sim(compile(model));
     const auto element = find_blown_up_element(sim);

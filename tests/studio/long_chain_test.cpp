@@ -36,7 +36,7 @@ bool is_chain_mass(const std::string& id) {
 // bowed-string` lays them out: the same total mass, springs n/60 times as stiff (a little
 // softer, so that 220 masses stay stable at 48 kHz), the bow at the same point of the string.
 Model long_string(int n) {
-    const Model shipped = load_model_file(test::resource("models/bowed-string-110.json"));
+    const Model shipped = load_model_file(test::resource("models/bowed-string-110-paper.json"));
     int n0 = 0;
     for (const Mat& m : shipped.mats) n0 += is_chain_mass(m.id);
     const std::string bowed = "s" + std::to_string(7 * (n + 1) / (n0 + 1));

@@ -247,7 +247,7 @@ TEST(GraphLabelsTest, ALongStringFitsWithReadableLabelsAndZoomingInShowsThemAll)
     GraphView view(document);
     view.resize(800, 400);
     view.show();
-    document.reset(load_model_file(test::resource("models/bowed-string-110.json")));
+    document.reset(load_model_file(test::resource("models/bowed-string-110-paper.json")));
     view.fit();
     ASSERT_GT(document.model().mats.size(), 60u);
     ASSERT_EQ(view.labels().size(), document.model().mats.size());
@@ -337,7 +337,7 @@ TEST_F(Editor, TheInspectorRefusesAnUnstableValueAndSaysWhy) {
 }
 
 TEST(CompareViewTest, RendersTwoDampingsSideBySide) {
-    CompareView view(load_model_file(test::resource("models/bowed-string-220.json")));
+    CompareView view(load_model_file(test::resource("models/bowed-string-220-paper.json")));
     view.resize(1200, 800);
     view.show();
     view.set_variation("string.damping", "0.0005, 0.005");

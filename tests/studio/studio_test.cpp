@@ -19,6 +19,7 @@
 #include <QWheelEvent>
 
 #include "archet/files/model_file.hpp"
+#include "archet/model/string_points.hpp"
 #include "archet/ui/elided_label.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
@@ -84,7 +85,9 @@ TEST(Studio, PlaysTheShippedStringAndTheScopesFollowTheBow) {
     EXPECT_GT(h.frames_received(), 40000u) << "the probe stream runs at the audio rate";
     EXPECT_GT(std::abs(h.latest(h.channel("friction_force"))), 1e-3) << "the pad bows the string";
     EXPECT_GT(window.scopes().drawn_samples(), 900) << "20 ms of the string at 48 kHz";
-    EXPECT_EQ(window.engine().shape().size(), 62u) << "the string's bridges and masses";
+    EXPECT_EQ(window.engine().shape().size(),
+              string_points(load_model_file(test::resource("models/bowed-string-220.json"))).size())
+        << "the string's bridge, masses and nut";
     EXPECT_EQ(window.engine().status().realtime_allocations, 0u);
     save_screenshot(window, "studio-bowing.png");
     machine.stop();
@@ -269,7 +272,7 @@ TEST(Studio, WithoutAnEngineBinaryItSaysSoAndStaysUp) {
 TEST(Studio, TheLibraryListsTheShippedStrings) {
     MainWindow window(engine_options());
     window.set_resources_folder(QString::fromStdString(test::resource("").string()));
-    EXPECT_EQ(window.library().shipped_count(), 8);
+    EXPECT_EQ(window.library().shipped_count(), 16) << "8 full-bandwidth strings and the paper's 8";
 }
 
 TEST(Studio, SoundExamplesRenderWithProgressAndCancel) {

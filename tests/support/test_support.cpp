@@ -12,6 +12,12 @@
 
 namespace archet::test {
 
+BowedStringOptions paper_string_options() {
+    BowedStringOptions o;
+    o.pitch = 220, o.paper = true;
+    return o;
+}
+
 std::filesystem::path source_dir() {
     return ARCHET_SOURCE_DIR;
 }

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "archet/builders/bowed_string.hpp"
 #include "archet/model/model.hpp"
 #include "archet/physics/simulation.hpp"
 
@@ -41,6 +42,9 @@ double zero_crossing_frequency(const std::vector<double>& signal, double fs);
 /// Frequency (Hz) of a pure sampled sinusoid from its recurrence x[n+1] + x[n−1] = 2cos(ΩT)x[n],
 /// by least squares: exact to round-off at any number of samples per period.
 double sinusoid_frequency(const std::vector<double>& signal, double fs);
+
+/// The paper's 60-mass 220 Hz string: a small, quick model for tests about something else.
+BowedStringOptions paper_string_options();
 
 /// A MAT or LIA in one line.
 Mat mass(const std::string& id, double m, double position = 0, const std::string& rate = "audio");

@@ -1,5 +1,6 @@
 #include "archet/ui/main_window.hpp"
 
+#include <QApplication>
 #include <QDir>
 #include <QFileDialog>
 #include <QFileInfo>
@@ -99,9 +100,18 @@ void MainWindow::new_string() {
     if (!may_drop_edits()) return;
     NewStringDialog dialog(this);
     if (dialog.exec() != QDialog::Accepted) return;
+    // Building tunes the string and plays strokes to find its Helmholtz band: a second or two.
+    QApplication::setOverrideCursor(Qt::WaitCursor);
+    statusBar()->showMessage(tr("Building the string and finding its Helmholtz band…"));
+    QApplication::processEvents();
     try {
-        open_model(build_bowed_string(dialog.options()));
+        Model model = build_bowed_string(dialog.options());
+        QApplication::restoreOverrideCursor();
+        statusBar()->clearMessage();
+        open_model(std::move(model));
     } catch (const std::exception& e) {
+        QApplication::restoreOverrideCursor();
+        statusBar()->clearMessage();
         QMessageBox::warning(this, tr("Cannot build that string"), QString::fromUtf8(e.what()));
     }
 }

@@ -1,10 +1,13 @@
 #include "archet/ui/new_string_dialog.hpp"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QSpinBox>
+
+#include "archet/builders/string_body.hpp"
 
 namespace archet::ui {
 
@@ -23,21 +26,67 @@ NewStringDialog::NewStringDialog(QWidget* parent) : QDialog(parent) {
     structure_ = new QComboBox;
     structure_->addItem(tr("Chain of masses and links"), static_cast<int>(Structure::Chain));
     structure_->addItem(tr("Modal (one oscillator per mode)"), static_cast<int>(Structure::Modal));
+    paper_ = new QCheckBox(tr("The paper's chaplet (25–60 masses, link damping, no body)"));
     masses_ = new QSpinBox;
-    masses_->setRange(24, 60);  // 24 stands for "the largest stable count" (its special text)
-    masses_->setSpecialValueText(tr("largest stable"));
-    masses_->setValue(24);
+    masses_->setRange(3, 20000);  // 3 stands for "as many as the scheme allows" (special text)
+    masses_->setSpecialValueText(tr("full bandwidth"));
+    masses_->setValue(3);
+    masses_->setToolTip(
+        tr("Full bandwidth: as many masses as the scheme allows at the pitch "
+           "(with the paper's chaplet: the largest stable count up to 60)"));
+    body_ = new QComboBox;
+    for (const auto& preset : body_presets())
+        body_->addItem(QString::fromStdString(preset.instrument),
+                       QString::fromStdString(preset.name));
+    body_->addItem(tr("None (heavy damped bridges, sound from the bridge force)"), "none");
+    body_->setCurrentIndex(body_->findData(QString::fromStdString(defaults.body)));
     bow_position_ = new QDoubleSpinBox;
     bow_position_->setRange(0.02, 0.48);
     bow_position_->setSingleStep(0.01);
     bow_position_->setDecimals(3);
     bow_position_->setValue(defaults.bow_position);
     bow_position_->setToolTip(tr("β: distance of the bow from the bridge over the string length"));
-    t60_ = new QDoubleSpinBox;
-    t60_->setRange(0.05, 60);
-    t60_->setSuffix(tr(" s"));
-    t60_->setValue(defaults.string_t60);
-    t60_->setToolTip(tr("How long the first mode takes to decay by 60 dB from string damping"));
+    make_loss_fields();
+    lay_out();
+}
+
+void NewStringDialog::lay_out() {
+    auto* form = new QFormLayout(this);
+    form->addRow(tr("Pitch (first mode)"), pitch_);
+    form->addRow(tr("Tuning"), tuning_);
+    form->addRow(tr("Structure"), structure_);
+    form->addRow(QString(), paper_);
+    form->addRow(tr("Masses"), masses_);
+    form->addRow(tr("Body"), body_);
+    form->addRow(tr("Bow position β"), bow_position_);
+    form->addRow(tr("Decay T60 at the pitch"), t60_);
+    form->addRow(tr("Decay T60 high"), t60_high_);
+    form->addRow(tr("… at"), t60_high_hz_);
+    form->addRow(tr("String damping"), damping_);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
+    connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+    form->addRow(buttons);
+}
+
+// Decays (0: a violin A string's own losses), hand-set damping, and what the paper's chaplet
+// leaves out.
+void NewStringDialog::make_loss_fields() {
+    auto decay = [this](const QString& tip) {
+        auto* box = new QDoubleSpinBox;
+        box->setRange(0, 600);  // 0 stands for the default (its special text)
+        box->setDecimals(3);
+        box->setSuffix(tr(" s"));
+        box->setSpecialValueText(tr("a violin A string's"));
+        box->setToolTip(tip);
+        return box;
+    };
+    t60_ = decay(tr("How long the first mode takes to decay by 60 dB, every loss included"));
+    t60_high_ = decay(tr("How long the partial near the frequency below takes to decay by 60 dB"));
+    t60_high_hz_ = new QDoubleSpinBox;
+    t60_high_hz_->setRange(0, 20000);
+    t60_high_hz_->setSuffix(tr(" Hz"));
+    t60_high_hz_->setSpecialValueText(tr("2000 Hz"));
 
     damping_ = new QDoubleSpinBox;
     damping_->setRange(0, 10);
@@ -51,19 +100,13 @@ NewStringDialog::NewStringDialog(QWidget* parent) : QDialog(parent) {
            "from T60"));
     connect(damping_, &QDoubleSpinBox::valueChanged, this,
             [this](double v) { t60_->setEnabled(v == 0); });
-
-    auto* form = new QFormLayout(this);
-    form->addRow(tr("Pitch (first mode)"), pitch_);
-    form->addRow(tr("Tuning"), tuning_);
-    form->addRow(tr("Structure"), structure_);
-    form->addRow(tr("Masses (25–60)"), masses_);
-    form->addRow(tr("Bow position β"), bow_position_);
-    form->addRow(tr("String decay T60"), t60_);
-    form->addRow(tr("String damping"), damping_);
-    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
-    connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
-    connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
-    form->addRow(buttons);
+    // The paper's strings have link damping alone (one decay) and no body.
+    connect(paper_, &QCheckBox::toggled, this, [this](bool paper) {
+        body_->setEnabled(!paper);
+        t60_high_->setEnabled(!paper);
+        t60_high_hz_->setEnabled(!paper);
+        masses_->setSpecialValueText(paper ? tr("largest stable") : tr("full bandwidth"));
+    });
 }
 
 BowedStringOptions NewStringDialog::options() const {
@@ -71,9 +114,14 @@ BowedStringOptions NewStringDialog::options() const {
     o.pitch = pitch_->value();
     o.tuning = static_cast<Tuning>(tuning_->currentData().toInt());
     o.structure = static_cast<Structure>(structure_->currentData().toInt());
+    o.paper = paper_->isChecked();
     o.masses = masses_->value() == masses_->minimum() ? 0 : masses_->value();
+    o.body = body_->currentData().toString().toStdString();
     o.bow_position = bow_position_->value();
+    o.bow_position_fixed = o.bow_position != BowedStringOptions{}.bow_position;
     o.string_t60 = t60_->value();
+    o.string_t60_high = t60_high_->value();
+    o.string_t60_high_hz = t60_high_hz_->value();
     if (damping_->value() > 0) o.string_damping = damping_->value();
     return o;
 }

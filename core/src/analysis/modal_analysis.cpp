@@ -28,6 +28,48 @@ bool ModalAnalysis::has_shape_at(const std::string& id) const {
     return points.count(id) || std::find(dofs.begin(), dofs.end(), id) != dofs.end();
 }
 
+namespace {
+
+// What each modal point reads: (DOF, weight) pairs.
+std::map<std::string, std::vector<std::pair<int, double>>> modal_point_reads(
+    const LinearSystem& sys, const Model& model) {
+    std::map<std::string, std::vector<std::pair<int, double>>> points;
+    for (const auto& m : model.mats) {
+        if (m.kind != MatKind::ModalPoint) continue;
+        std::vector<std::pair<int, double>> reads;
+        for (std::size_t k = 0; k < m.modes.size() && k < m.weights.size(); ++k) {
+            const auto it = std::find(sys.dofs.begin(), sys.dofs.end(), m.modes[k]);
+            if (it != sys.dofs.end())
+                reads.emplace_back(static_cast<int>(it - sys.dofs.begin()), m.weights[k]);
+        }
+        if (!reads.empty()) points[m.id] = std::move(reads);
+    }
+    return points;
+}
+
+// Supports are oscillators standing on their own (bridges) or read by a body's bridge point;
+// the string's modes are those its bowed point reads (any modal point's when nothing bows).
+// A support has a spring to ground; a string mass with only a damper to its rest point (σ0
+// losses) is still the string.
+std::vector<bool> support_dofs(const LinearSystem& sys, const Model& model) {
+    std::set<std::string> bowed;
+    for (const auto& l : model.lias)
+        if (l.kind == LiaKind::BowFriction) bowed.insert(l.to);
+    std::set<std::string> string_modes;
+    for (const auto& m : model.mats)
+        if (m.kind == MatKind::ModalPoint && (bowed.empty() || bowed.count(m.id)))
+            string_modes.insert(m.modes.begin(), m.modes.end());
+    std::vector<bool> support(sys.size(), false);
+    for (int i = 0; i < sys.size(); ++i) {
+        const Mat* m = model.find_mat(sys.dofs[i]);
+        support[i] =
+            m && m->kind == MatKind::Oscillator && m->stiffness > 0 && !string_modes.count(m->id);
+    }
+    return support;
+}
+
+}  // namespace
+
 ModalAnalysis analyse_modes(const Model& model) {
     return analyse_modes(sounding_part(model), model);
 }
@@ -54,30 +96,8 @@ ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
     result.rate = sys.rate;
     result.sample_rate = 1.0 / dt;
     result.dofs = sys.dofs;
-    // Supports are oscillators standing on their own (bridges) or read by a body's bridge point;
-    // the string's modes are those its bowed point reads (any modal point's when nothing bows).
-    std::set<std::string> bowed;
-    for (const auto& l : model.lias)
-        if (l.kind == LiaKind::BowFriction) bowed.insert(l.to);
-    std::set<std::string> string_modes;
-    for (const auto& m : model.mats)
-        if (m.kind == MatKind::ModalPoint && (bowed.empty() || bowed.count(m.id)))
-            string_modes.insert(m.modes.begin(), m.modes.end());
-    for (const auto& m : model.mats) {
-        if (m.kind != MatKind::ModalPoint) continue;
-        std::vector<std::pair<int, double>> reads;
-        for (std::size_t k = 0; k < m.modes.size() && k < m.weights.size(); ++k) {
-            const auto it = std::find(sys.dofs.begin(), sys.dofs.end(), m.modes[k]);
-            if (it != sys.dofs.end())
-                reads.emplace_back(static_cast<int>(it - sys.dofs.begin()), m.weights[k]);
-        }
-        if (!reads.empty()) result.points[m.id] = std::move(reads);
-    }
-    std::vector<bool> is_oscillator(n, false);
-    for (int i = 0; i < n; ++i) {
-        const Mat* m = model.find_mat(sys.dofs[i]);
-        is_oscillator[i] = m && m->kind == MatKind::Oscillator && !string_modes.count(m->id);
-    }
+    result.points = modal_point_reads(sys, model);
+    const std::vector<bool> is_oscillator = support_dofs(sys, model);
     for (int r = 0; r < 2 * n; ++r) {
         const std::complex<double> root = solver.eigenvalues()[r];
         if (root.imag() <= 0.0) continue;  // one of each conjugate pair; real roots do not ring

@@ -16,6 +16,7 @@
 #include "archet/common/input_error.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/model/model_variants.hpp"
+#include "archet/model/string_points.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
 
@@ -275,19 +276,19 @@ double bow_position(const Model& model) {
     int n = 0, bowed = 0;
     for (int i = 1; model.find_mat("s" + std::to_string(i)); ++i) {
         n = i;
-        if (bow.bowed_string() == "s" + std::to_string(i)) bowed = i;
+        if (bowed_centre(model, bow) == "s" + std::to_string(i)) bowed = i;
     }
     return n > 0 && bowed > 0 ? static_cast<double>(bowed) / (n + 1) : 0.0;
 }
 
 SchellengBounds schelleng_bounds(const Model& model, double position, double speed) {
     const Lia& bow = bow_module(model);
-    const Mat* bowed = model.find_mat(bow.bowed_string());
+    const std::string centre = bowed_centre(model, bow);
+    const Mat* bowed = model.find_mat(centre);
     double k = 0;
     for (const auto& id : string_links(model)) {
         const Lia* l = model.find_lia(id);
-        if (l->from == bow.bowed_string() || l->to == bow.bowed_string())
-            k = std::max(k, l->stiffness);
+        if (l->from == centre || l->to == centre) k = std::max(k, l->stiffness);
     }
     const ModalAnalysis modes = analyse_modes(model);
     double t60 = 0;

@@ -1,16 +1,14 @@
 #include "archet/builders/bowed_string.hpp"
 
-#include <Eigen/Dense>
 #include <cctype>
 #include <cmath>
 #include <numbers>
 #include <sstream>
 
-#include "archet/analysis/discrete_modes.hpp"
-#include "archet/analysis/modal_analysis.hpp"
-#include "archet/builders/harmonic_chain.hpp"
+#include "archet/builders/string_body.hpp"
+#include "archet/builders/string_chain.hpp"
+#include "archet/builders/stroke_in_band.hpp"
 #include "archet/common/input_error.hpp"
-#include "archet/model/linear_system.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/model/stability.hpp"
 
@@ -18,9 +16,14 @@ namespace archet {
 
 namespace {
 
-constexpr int kMinMasses = 25;
-constexpr int kMaxMasses = 60;
-constexpr double kPreferredMargin = 0.05;  // keep 5 % of the stability bound in reserve
+constexpr int kPaperMinMasses = 25;
+constexpr int kPaperMaxMasses = 60;
+constexpr int kMinMasses = 4;
+// The part of the stability bound kept in reserve: the paper's 5 %; 2 % for a full string,
+// whose highest mode then reaches 91 % of fs/2.
+constexpr double kPaperMargin = 0.05, kFullMargin = 0.02;
+constexpr double kPaperOutputGain = 1.5;  // 1/N of bridge force
+constexpr double kStrokePeak = 0.5;       // −6 dBFS
 
 std::string fmt(double x) {
     std::ostringstream s;
@@ -32,127 +35,26 @@ std::string mass_id(int i) {
     return "s" + std::to_string(i);
 }
 
-double string_length(const BowedStringOptions& o) {
-    return std::sqrt(o.tension / o.linear_density) / (2.0 * o.pitch);
+bool wide_bow(const BowedStringOptions& o) {
+    return !o.paper && !o.point_bow;
 }
 
-// The string alone: bridges and the chain of `profile`, each link damped in proportion to its
-// stiffness (z = ratio·k) so that damping stays proportional and the modes keep their shapes.
-Model string_model(const BowedStringOptions& o, const ChainProfile& profile, double damping_ratio) {
-    const int n = static_cast<int>(profile.masses.size());
-    const double string_mass = o.linear_density * string_length(o);
-    const double bridge_mass = o.bridge_mass_ratio * string_mass;
-    const double omega_b = 2.0 * std::numbers::pi * o.bridge_frequency;
-    Model model;
-    model.sample_rate = o.sample_rate;
-    model.rates = {{"audio", 1}, {"haptic", o.haptic_divider}};
-    auto bridge = [&](const std::string& id, double x) {
-        Mat b;
-        b.id = id, b.kind = MatKind::Oscillator, b.rate = "audio";
-        b.mass = bridge_mass;
-        b.stiffness = bridge_mass * omega_b * omega_b;
-        b.damping = 2.0 * o.bridge_damping_ratio * bridge_mass * omega_b;
-        b.display = {{x, 0.0}};
-        return b;
-    };
-    model.mats.push_back(bridge("bridge", 0.0));
-    for (int i = 1; i <= n; ++i) {
-        Mat s;
-        s.id = mass_id(i), s.kind = MatKind::Mass, s.rate = "audio", s.mass = profile.masses[i - 1];
-        s.display = {{40.0 * i, 0.0}};
-        model.mats.push_back(s);
-    }
-    model.mats.push_back(bridge("nut", 40.0 * (n + 1)));
-    for (int i = 0; i <= n; ++i) {
-        Lia l;
-        l.id = "k" + std::to_string(i);
-        l.kind = damping_ratio > 0 ? LiaKind::SpringDamper : LiaKind::Spring;
-        l.rate = "audio";
-        l.from = i == 0 ? "bridge" : mass_id(i);
-        l.to = i == n ? "nut" : mass_id(i + 1);
-        l.stiffness = profile.springs[i];
-        l.damping = damping_ratio * profile.springs[i];
-        model.lias.push_back(l);
-    }
-    return model;
-}
-
-// z/k for the string's links: from --string-damping (per link, or its mean for a
-// non-homogeneous chain), else so that the first mode alone decays in string_t60, since
-// stiffness-proportional damping makes mode 1 decay at σ = (z/2k)·ω1².
-double damping_ratio(const BowedStringOptions& o, const ChainProfile& profile) {
-    double mean_k = 0;
-    for (double k : profile.springs) mean_k += k / profile.springs.size();
-    if (o.string_damping >= 0.0) return o.string_damping / mean_k;
-    const double omega = 2.0 * std::numbers::pi * o.pitch;
-    return 2.0 * std::log(1000.0) / (o.string_t60 * omega * omega);
-}
-
-// Homogeneous chaplet: equal masses and links, link stiffness refined until the string's
-// first mode (the one nearest the pitch: the bridges add their own far below) is the pitch.
-Model homogeneous_string(const BowedStringOptions& o, int n) {
-    const double m = o.linear_density * string_length(o) / n;
-    const double dt = 1.0 / o.sample_rate;
-    // Fixed–fixed discrete chain: sin(Ω1·T/2) = √(K·T²/m)·sin(π/(2(N+1))).
-    const double ratio =
-        std::sin(std::numbers::pi * o.pitch * dt) / std::sin(std::numbers::pi / (2.0 * (n + 1)));
-    ChainProfile profile{std::vector<double>(n, m),
-                         std::vector<double>(n + 1, m / (dt * dt) * ratio * ratio)};
-    Model model = string_model(o, profile, damping_ratio(o, profile));
-    for (int iteration = 0; iteration < 30; ++iteration) {
-        double f = 0;
-        for (const auto& mode : discrete_modes(assemble_linear_system(model, "audio")))
-            if (std::abs(mode.frequency - o.pitch) < std::abs(f - o.pitch)) f = mode.frequency;
-        if (f <= 0.0 || std::abs(f / o.pitch - 1.0) < 1e-13) break;
-        for (double& k : profile.springs) k *= (o.pitch / f) * (o.pitch / f);
-        model = string_model(o, profile, damping_ratio(o, profile));
-    }
-    return model;
-}
-
-// Harmonic chaplet: masses and links from the inverse eigenvalue problem so that its first
-// n partials fall on k·f0. The targets are corrected for what the fixed-end solution leaves
-// out (heavy but movable bridges, damping) until the simulated partials are harmonic.
-Model harmonic_string(const BowedStringOptions& o, int n) {
-    const double string_mass = o.linear_density * string_length(o);
-    std::vector<double> targets;
-    for (int k = 1; k <= n; ++k) targets.push_back(k * o.pitch);
-    Model model;
-    for (int iteration = 0; iteration < 40; ++iteration) {
-        ChainProfile profile;
-        try {
-            profile =
-                chain_with_eigenvalues(prewarped_eigenvalues(targets, o.sample_rate), string_mass);
-        } catch (const std::domain_error& e) {
-            throw InputError("--tuning", std::string("no harmonic chaplet found (") + e.what() +
-                                             "); try fewer masses");
-        }
-        model = string_model(o, profile, damping_ratio(o, profile));
-        const ModalAnalysis modes = analyse_modes(assemble_linear_system(model, "audio"), model);
-        double worst = 0;
-        int k = 0;
-        for (const auto& mode : modes.modes) {
-            if (mode.support || k >= n) continue;
-            const double wanted = (k + 1) * o.pitch;
-            worst = std::max(worst, std::abs(1200.0 * std::log2(mode.frequency / wanted)));
-            targets[k] *= wanted / mode.frequency;
-            ++k;
-        }
-        if (k < n)
-            throw InputError("--tuning", "the harmonic chaplet lost partials; try fewer masses");
-        if (worst < 1e-4) break;
-        if (targets.back() >= o.sample_rate / 2) break;  // the stability check below says why
-    }
-    return model;
-}
-
-int bowed_mass(const BowedStringOptions& o, int n) {
-    return std::clamp(static_cast<int>(std::lround(o.bow_position * (n + 1))), 1, n / 2);
+// The contact point of a bow with a width: ¼, ½, ¼ of the bowed mass and its neighbours (in
+// the modal structure the bowed point's mode shapes are mixed the same way, make_modal).
+std::string add_contact(Model& model, const BowedStringOptions& o, int bowed) {
+    if (!wide_bow(o) || o.structure == Structure::Modal) return mass_id(bowed);
+    Mat contact;
+    contact.id = "bow_contact", contact.kind = MatKind::ModalPoint, contact.rate = "audio";
+    contact.modes = {mass_id(bowed - 1), mass_id(bowed), mass_id(bowed + 1)};
+    contact.weights = {0.25, 0.5, 0.25};
+    contact.display = {{40.0 * bowed, -30.0}};
+    model.mats.push_back(contact);
+    return contact.id;
 }
 
 void add_bow(Model& model, const BowedStringOptions& o, int n) {
     const int bowed = bowed_mass(o, n);
-    const std::string string_mass = mass_id(bowed);
+    const std::string string_mass = add_contact(model, o, bowed);
     add_bow_module(model, o, string_mass);
     const double bx = 40.0 * bowed;  // editor layout: the bow above its string mass
     for (auto& m : model.mats) {
@@ -176,80 +78,80 @@ void add_bow(Model& model, const BowedStringOptions& o, int n) {
         {"energy", ProbeKind::Energy, ""},
         {"power_in", ProbeKind::PowerIn, ""},
     };
-    model.outputs = {{"bridge", Output::Signal::Force, 1.0}};
-    model.output_gain = o.output_gain;
+    model.output_gain = o.output_gain > 0 ? o.output_gain : kPaperOutputGain;
 }
 
-// The chaplet's exact modal equivalent. The free chain (masses s1..sN and the links between
-// them) decomposes into modes φ_k with M⁻¹K·φ_k = λ_k·φ_k; its damping is proportional to its
-// stiffness, so each mode is an independent damped oscillator (modal mass φᵀMφ, stiffness
-// λ·φᵀMφ, damping ratio·λ·φᵀMφ) under the same scheme, and x = Σ φ_k·q_k holds exactly. The
-// end links to the bridges and the bow act on modal points that read x at s1, sN and the
-// bowing mass.
-void make_modal(Model& model, int n, int bowed, double ratio) {
-    Eigen::VectorXd mass(n);
-    Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
-    for (int i = 0; i < n; ++i) mass[i] = model.find_mat(mass_id(i + 1))->mass;
-    for (int i = 1; i < n; ++i) {  // link k_i joins s_i and s_(i+1)
-        const double ki = model.find_lia("k" + std::to_string(i))->stiffness;
-        k(i - 1, i - 1) += ki, k(i, i) += ki, k(i - 1, i) -= ki, k(i, i - 1) -= ki;
+// The paper's losses are link damping set while tuning; the full string's are solved on the
+// tuned chain with its bridges and body, so the decays asked for are the ones heard.
+StringLosses string_losses(const BowedStringOptions& o, Model& model, int n) {
+    const StringElements elements = string_elements(n);
+    if (o.paper || o.string_damping >= 0) {
+        const Lia& link = *model.find_lia("k0");
+        return {0.0, 0.5 * link.damping / link.stiffness};
     }
-    const Eigen::VectorXd scale = mass.cwiseSqrt().cwiseInverse();
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(scale.asDiagonal() * k *
-                                                          scale.asDiagonal());
+    const StringDecays d = string_decays(o);
+    const StringLosses losses =
+        solve_string_losses(model, elements, {d.low_hz, d.low_t60, "--string-t60"},
+                            {d.high_hz, d.high_t60, "--string-t60-high"});
+    apply_string_losses(model, elements, losses);
+    return losses;
+}
 
-    const Mat nut = *model.find_mat("nut");
-    const Lia end_a = *model.find_lia("k0"), end_b = *model.find_lia("k" + std::to_string(n));
-    std::vector<Mat> mats{*model.find_mat("bridge")};
-    std::vector<std::vector<double>> shapes(n);
-    for (int mode = 0; mode < n; ++mode) {
-        Eigen::VectorXd phi = scale.asDiagonal() * solver.eigenvectors().col(mode);
-        phi /= phi.cwiseAbs().maxCoeff();
-        const double modal_mass = phi.dot(mass.asDiagonal() * phi);
-        const double lambda = std::max(0.0, solver.eigenvalues()[mode]);  // the rigid mode: 0
-        Mat m;
-        m.id = "mode" + std::to_string(mode + 1), m.kind = MatKind::Oscillator, m.rate = "audio";
-        m.mass = modal_mass, m.stiffness = lambda * modal_mass,
-        m.damping = ratio * lambda * modal_mass;
-        m.display = {{40.0 * (mode + 1), 120.0}};
-        mats.push_back(m);
-        for (int i = 0; i < n; ++i) shapes[i].push_back(phi[i]);
+// The decays the built string has, every loss included, at the two frequencies.
+std::string decays_text(const Model& model, const BowedStringOptions& o, int n) {
+    const StringDecays d = string_decays(o);
+    std::ostringstream text;
+    text.precision(3);
+    const char* between = "T60 ";
+    for (double f : {d.low_hz, d.high_hz}) {
+        const ModeDecay m = string_mode_decay(model, string_elements(n), f);
+        text << between << std::log(1000.0) / m.rate << " s at " << m.frequency << " Hz";
+        between = ", ";
     }
-    for (int i : {1, bowed, n}) {
-        Mat p;
-        p.id = mass_id(i), p.kind = MatKind::ModalPoint, p.rate = "audio";
-        for (int mode = 0; mode < n; ++mode) p.modes.push_back("mode" + std::to_string(mode + 1));
-        p.weights = shapes[i - 1];
-        p.display = {{40.0 * i, 0.0}};
-        mats.push_back(p);
+    return text.str();
+}
+
+Model with_bow(Model model, const BowedStringOptions& o, int n) {
+    add_bow(model, o, n);
+    return model;
+}
+
+void describe(Model& model, const BowedStringOptions& o, int n, const StringLosses& losses,
+              const std::string& decays) {
+    const int bowed = bowed_mass(o, n);
+    std::ostringstream name, text;
+    const bool harmonic = o.tuning == Tuning::Harmonic, modal = o.structure == Structure::Modal;
+    name << "bowed-string-" << fmt(o.pitch) << (harmonic ? "-harmonic" : "")
+         << (modal ? "-modal" : "") << (o.paper ? "-paper" : "");
+    if (modal) text << "Modal model (" << n << " modes) of the ";
+    text << (harmonic ? "harmonic" : "homogeneous") << " chaplet of " << n << " masses tuned to "
+         << fmt(o.pitch) << " Hz, bowed at mass " << bowed
+         << " (beta = " << fmt(static_cast<double>(bowed) / (n + 1)) << "), ";
+    if (o.paper) {
+        text << "the paper's link damping, heavy damped bridges, sound from the bridge force.";
+    } else {
+        text << "losses sigma0 = " << fmt(losses.sigma0)
+             << " 1/s and sigma1 = " << fmt(losses.sigma1) << " s (" << decays << "), "
+             << (o.body == "none" ? "heavy damped bridges, sound from the bridge force."
+                                  : o.body + " body at the bridge, sound radiated by the body.");
     }
-    mats.push_back(nut);
-    model.mats = mats;
-    model.lias = {end_a, end_b};
+    std::string description = text.str();
+    description[0] = static_cast<char>(std::toupper(description[0]));
+    model.name = name.str();
+    model.description = description;
 }
 
 Model assemble(const BowedStringOptions& o, int n) {
-    Model model = o.tuning == Tuning::Harmonic ? harmonic_string(o, n) : homogeneous_string(o, n);
-    const int bowed = bowed_mass(o, n);
-    if (o.structure == Structure::Modal) {
-        const Lia& link = *model.find_lia("k0");  // every link has damping = ratio·stiffness
-        make_modal(model, n, bowed, link.damping / link.stiffness);
-    }
+    Model model = tuned_string(o, n);  // with its body
+    const StringLosses losses = string_losses(o, model, n);
+    if (!o.paper && o.tuning == Tuning::Harmonic && o.string_damping < 0)
+        model = tuned_string(o, n, &losses);
+    if (!o.paper) retune_damped(model, o, n);
+    const std::string decays = o.paper ? "" : decays_text(model, o, n);  // before the bow
+    if (o.structure == Structure::Modal)
+        make_modal(model, n, bowed_mass(o, n), losses, wide_bow(o));
     add_bow(model, o, n);
-    std::ostringstream name, description;
-    const bool harmonic = o.tuning == Tuning::Harmonic, modal = o.structure == Structure::Modal;
-    name << "bowed-string-" << fmt(o.pitch) << (harmonic ? "-harmonic" : "")
-         << (modal ? "-modal" : "");
-    if (modal) description << "Modal model (" << n << " modes) of the ";
-    description << (harmonic ? "harmonic" : "homogeneous") << " chaplet of " << n
-                << " masses tuned to " << fmt(o.pitch) << " Hz, bowed at mass " << bowed
-                << " (beta = " << fmt(static_cast<double>(bowed) / (n + 1))
-                << "), heavy damped bridges, sound from the bridge force.";
-    std::string text = description.str();
-    text[0] = static_cast<char>(std::toupper(text[0]));
-    model.name = name.str();
-    model.description = text;
-    if (o.with_gesture) model.gesture = steady_bow_gesture();
+    describe(model, o, n, losses, decays);
     return model;
 }
 
@@ -268,65 +170,101 @@ void check_options(const BowedStringOptions& o) {
     require(o.sample_rate >= 1000 && o.sample_rate <= 1e6, "--sample-rate",
             "must be 1000 to 1000000 Hz");
     require(o.pitch < o.sample_rate / 4, "--pitch", "must be below a quarter of the sample rate");
-    require(o.masses == 0 || (o.masses >= kMinMasses && o.masses <= kMaxMasses), "--masses",
-            "must be " + std::to_string(kMinMasses) + " to " + std::to_string(kMaxMasses) +
-                " (the paper's chaplets)");
+    if (o.paper)
+        require(o.masses == 0 || (o.masses >= kPaperMinMasses && o.masses <= kPaperMaxMasses),
+                "--masses",
+                "must be " + std::to_string(kPaperMinMasses) + " to " +
+                    std::to_string(kPaperMaxMasses) +
+                    " with --paper (the paper's chaplets); leave out --paper for more");
+    else
+        require(o.masses == 0 || o.masses >= kMinMasses, "--masses",
+                "must be at least " + std::to_string(kMinMasses) + " (0: full bandwidth)");
     require(o.bow_position > 0 && o.bow_position < 0.5, "--bow-position",
             "beta must be in (0, 0.5)");
     require(std::isfinite(o.string_damping), "--string-damping",
             "must be a finite number of N·s/m");
-    require(o.string_t60 > 0, "--string-t60", "must be positive seconds");
+    require(std::isfinite(o.string_t60) && o.string_t60 >= 0 && o.string_t60 <= 600, "--string-t60",
+            "must be 0 (the default) to 600 seconds");
+    require(std::isfinite(o.string_t60_high) && o.string_t60_high >= 0 && o.string_t60_high <= 600,
+            "--string-t60-high", "must be 0 (the default) to 600 seconds");
+    require(std::isfinite(o.string_t60_high_hz) && o.string_t60_high_hz >= 0 &&
+                o.string_t60_high_hz < o.sample_rate / 2,
+            "--string-t60-high-hz", "must be 0 (the default) or a frequency below fs/2");
+    require(o.string_t60_high_hz == 0 || o.string_t60_high_hz > o.pitch, "--string-t60-high-hz",
+            "must be above the pitch (" + fmt(o.pitch) + " Hz)");
+    if (!o.paper && o.body != "none") find_body_preset(o.body);  // names the presets if unknown
     require(o.haptic_divider >= 1, "--haptic-divider", "must be at least 1");
     require(o.mu_s > 0 && o.mu_d >= 0 && o.mu_d <= o.mu_s, "--mu-s/--mu-d",
             "need 0 <= mu_d <= mu_s and mu_s > 0");
     require(o.v0 > 0, "--v0", "must be positive m/s");
+    require(std::isfinite(o.output_gain) && o.output_gain >= 0, "--output-gain",
+            "must be 0 (the default: the embedded stroke at -6 dBFS) or a positive gain");
+    require(std::isfinite(o.stroke_speed) && o.stroke_speed > 0 && o.stroke_speed <= 2,
+            "--stroke-speed", "must be above 0 and at most 2 m/s");
+}
+
+// The scheme's limit on N at this pitch and what it means, for messages.
+std::string size_limit_text(const BowedStringOptions& o, int limit) {
+    const bool harmonic = o.tuning == Tuning::Harmonic;
+    const std::string why =
+        harmonic ? " Hz needs its N-th partial N·" + fmt(o.pitch) +
+                       " Hz below fs/2 = " + fmt(o.sample_rate / 2) + " Hz"
+                 : " Hz puts its highest mode near (N+1)·" + fmt(o.pitch) +
+                       " Hz, and the explicit scheme needs every mode below fs/2 (ω·T < 2)";
+    return std::string("a ") + (harmonic ? "harmonic" : "homogeneous") +
+           " chain of N masses tuned to " + fmt(o.pitch) + why + "; at " + fmt(o.sample_rate) +
+           " Hz that allows at most " + std::to_string(limit) +
+           " masses. Lower the pitch or raise --sample-rate.";
+}
+
+// The string with its stroke. A short string has few masses to bow: where the default bow
+// position finds no Helmholtz band, the next mass or two may.
+Model finished(Model model, const BowedStringOptions& o, int n) {
+    validate_model(model);
+    if (!o.with_gesture) return model;
+    const int bowed = bowed_mass(o, n);
+    const std::vector<int> moves =
+        o.bow_position_fixed ? std::vector<int>{0} : std::vector<int>{0, 1, -1, 2};
+    for (std::size_t k = 0; k < moves.size(); ++k) {
+        BowedStringOptions moved = o;
+        moved.bow_position = static_cast<double>(bowed + moves[k]) / (n + 1);
+        if (bowed_mass(moved, n) != bowed + moves[k]) continue;  // off the string's bowable half
+        Model m = moves[k] == 0 ? model : assemble(moved, n);
+        try {
+            const HelmholtzBand band = helmholtz_band(m, o.stroke_speed);
+            m.gesture = stroke_in_band(m, band, o.stroke_speed);
+            if (!o.paper && !(o.output_gain > 0) && band.peak > 0)
+                m.output_gain *= kStrokePeak / band.peak;  // the stroke it carries at −6 dBFS
+            validate_model(m);
+            return m;
+        } catch (const InputError&) {
+            if (k + 1 == moves.size()) throw;
+        }
+    }
+    throw InputError("--bow-position", "no bow position near " + fmt(o.bow_position) +
+                                           " finds a Helmholtz band; try another");
 }
 
 }  // namespace
 
-void add_bow_module(Model& model, const BowedStringOptions& o, const std::string& string_mass) {
-    auto mat = [](const std::string& id, MatKind kind, const std::string& rate, double mass) {
-        Mat m;
-        m.id = id, m.kind = kind, m.rate = rate, m.mass = mass;
-        return m;
-    };
-    Mat hand_slide = mat("hand_slide", MatKind::Gesture, "haptic", 0);
-    hand_slide.axis = GestureAxis::Slide;
-    Mat hand_press = mat("hand_press", MatKind::Gesture, "haptic", 0);
-    hand_press.axis = GestureAxis::Press;
-    model.mats.push_back(mat("bow", MatKind::Mass, "audio", o.bow_mass));
-    model.mats.push_back(mat("bow_press", MatKind::Mass, "audio", o.press_mass));
-    model.mats.push_back(mat("surface", MatKind::Fixed, "audio", 0));
-    model.mats.push_back(hand_slide);
-    model.mats.push_back(hand_press);
-
-    // The hand's points tick at the haptic rate; the springs that hold the bow run at the
-    // bow's rate and see the hand's steps, so the coupling is exactly passive at every step
-    // (a spring at the haptic rate would hold its force, which is passive only on average).
-    auto hold = [](const std::string& id, const std::string& from, const std::string& to, double k,
-                   double z) {
-        Lia l;
-        l.id = id, l.kind = LiaKind::SpringDamper, l.rate = "audio";
-        l.from = from, l.to = to, l.stiffness = k, l.damping = z;
-        return l;
-    };
-    model.lias.push_back(hold("bow_hold", "hand_slide", "bow", o.bow_stiffness, o.bow_damping));
-    model.lias.push_back(
-        hold("press_hold", "hand_press", "bow_press", o.press_stiffness, o.press_damping));
-    Lia friction;
-    friction.id = "friction", friction.kind = LiaKind::BowFriction, friction.rate = "audio";
-    friction.from = "bow", friction.to = string_mass, friction.press = "bow_press",
-    friction.surface = "surface";
-    friction.stiffness = o.buffer_stiffness, friction.damping = o.buffer_damping;
-    friction.mu_static = o.mu_s, friction.mu_dynamic = o.mu_d, friction.v0 = o.v0;
-    model.lias.push_back(friction);
+StringDecays string_decays(const BowedStringOptions& o) {
+    StringDecays d;
+    d.low_hz = o.pitch;
+    d.high_hz =
+        o.string_t60_high_hz > 0 ? o.string_t60_high_hz : (o.pitch < 1000 ? 2000.0 : 2.0 * o.pitch);
+    if (o.paper) {
+        d.low_t60 = o.string_t60 > 0 ? o.string_t60 : 4.0;
+        return d;
+    }
+    d.low_t60 = o.string_t60;
+    d.high_t60 = o.string_t60_high;
+    return d;
 }
 
 int max_stable_masses(double pitch, double sample_rate) {
-    // Highest chain mode ≈ (N+1)·f0·2/π·... ; exact: 4K_n·sin²(Nπ/(2(N+1))) < 4 with
-    // √K_n = sin(π f0 T)/sin(π/(2(N+1))).
+    // Highest chain mode: 4K_n·sin²(Nπ/(2(N+1))) < 4 with √K_n = sin(π f0 T)/sin(π/(2(N+1))).
     int best = 0;
-    for (int n = 1; n <= 10000; ++n) {
+    for (int n = 1; n <= 100000; ++n) {
         const double s = std::sin(std::numbers::pi * pitch / sample_rate) /
                          std::sin(std::numbers::pi / (2.0 * (n + 1)));
         const double top = std::sin(n * std::numbers::pi / (2.0 * (n + 1)));
@@ -344,27 +282,32 @@ int max_harmonic_masses(double pitch, double sample_rate) {
     return std::max(n, 0);
 }
 
+int full_bandwidth_masses(double pitch, double sample_rate, Tuning tuning, double margin) {
+    const double top = std::asin(std::sqrt(1.0 - margin)) / std::numbers::pi;  // × fs
+    if (tuning == Tuning::Harmonic)  // the N-th partial at N·f0
+        return std::min(max_harmonic_masses(pitch, sample_rate),
+                        static_cast<int>(std::floor(top * sample_rate / pitch)));
+    int best = 0;
+    for (int n = 1; n <= max_stable_masses(pitch, sample_rate); ++n) {
+        const double s = std::sin(std::numbers::pi * pitch / sample_rate) /
+                         std::sin(std::numbers::pi / (2.0 * (n + 1)));
+        if (s * std::sin(n * std::numbers::pi / (2.0 * (n + 1))) <= std::sqrt(1.0 - margin))
+            best = n;
+    }
+    return best;
+}
+
 Model build_bowed_string(const BowedStringOptions& o) {
     check_options(o);
     const bool harmonic = o.tuning == Tuning::Harmonic;
     const int limit = harmonic ? max_harmonic_masses(o.pitch, o.sample_rate)
                                : max_stable_masses(o.pitch, o.sample_rate);
-    auto explain = [&](const std::string& what) {
-        const std::string why =
-            harmonic ? " Hz needs its N-th partial N·" + fmt(o.pitch) +
-                           " Hz below fs/2 = " + fmt(o.sample_rate / 2) + " Hz"
-                     : " Hz puts its highest mode near (N+1)·" + fmt(o.pitch) +
-                           " Hz, and the explicit scheme needs every mode below fs/π (ω·T < 2)";
-        return what + ": a " + (harmonic ? "harmonic" : "homogeneous") +
-               " chain of N masses tuned to " + fmt(o.pitch) + why + "; at " + fmt(o.sample_rate) +
-               " Hz that allows at most " + std::to_string(limit) +
-               " masses. Lower the pitch or raise --sample-rate.";
-    };
     if (o.masses > 0) {
         if (o.masses > limit)
             throw InputError("--masses",
-                             explain(std::to_string(o.masses) + " masses at " + fmt(o.pitch) +
-                                     (harmonic ? " Hz reach fs/2" : " Hz are unstable")));
+                             std::to_string(o.masses) + " masses at " + fmt(o.pitch) +
+                                 (harmonic ? " Hz reach fs/2: " : " Hz are unstable: ") +
+                                 size_limit_text(o, limit));
         Model m = assemble(o, o.masses);
         if (stability_use(m) >= 1.0)
             throw InputError("--masses",
@@ -372,29 +315,39 @@ Model build_bowed_string(const BowedStringOptions& o) {
                                  " Hz are unstable once damped (largest normalised eigenvalue " +
                                  fmt(4 * stability_use(m)) +
                                  " of 4); use fewer masses or less damping");
-        validate_model(m);
-        return m;
+        return finished(m, o, o.masses);
     }
-    if (limit < kMinMasses)
-        throw InputError("--pitch", explain("no chaplet of " + std::to_string(kMinMasses) + "–" +
-                                            std::to_string(kMaxMasses) + " masses is stable at " +
-                                            fmt(o.pitch) + " Hz"));
+    const int low = o.paper ? kPaperMinMasses : kMinMasses;
+    const int high =
+        o.paper
+            ? std::min(kPaperMaxMasses, limit)
+            : std::max(low, full_bandwidth_masses(o.pitch, o.sample_rate, o.tuning, kFullMargin));
+    const double margin = o.paper ? kPaperMargin : kFullMargin;
+    if (limit < low)
+        throw InputError("--pitch", "no chaplet of " + std::to_string(low) +
+                                        " masses or more is stable at " + fmt(o.pitch) +
+                                        " Hz: " + size_limit_text(o, limit));
     // The largest count that keeps a reserve; the smallest stable one otherwise.
-    for (int n = std::min(kMaxMasses, limit); n >= kMinMasses; --n) {
+    for (int n = high; n >= low; --n) {
         Model m;
         try {
+            // The full string's losses and tuning cost seconds; its tuned chain with the bow
+            // tells first whether this count keeps the reserve (the light losses hardly move it).
+            if (!o.paper && n > low &&
+                stability_use(with_bow(tuned_string(o, n), o, n)) > 1.0 - margin)
+                continue;
             m = assemble(o, n);
-        } catch (const InputError&) {
-            if (n == kMinMasses) throw;
+        } catch (const InputError& e) {
+            if (n == low || e.where() != "--tuning") throw;
             continue;  // a harmonic chain this long cannot be tuned at this rate; try a shorter one
         }
-        if (stability_use(m) <= 1.0 - kPreferredMargin || n == kMinMasses) {
+        if (stability_use(m) <= 1.0 - margin || n == low) {
             if (stability_use(m) >= 1.0) break;
-            validate_model(m);
-            return m;
+            return finished(m, o, n);
         }
     }
-    throw InputError("--pitch", explain("no stable chaplet at " + fmt(o.pitch) + " Hz"));
+    throw InputError("--pitch",
+                     "no stable chaplet at " + fmt(o.pitch) + " Hz: " + size_limit_text(o, limit));
 }
 
 }  // namespace archet

@@ -27,9 +27,11 @@ std::string preset_names() {
 
 const std::vector<BodyPreset>& body_presets() {
     // The violin's four "signature modes", the body resonances below 600 Hz that dominate its
-    // bridge admittance and its low-frequency radiation. (The "bridge hill" near 2.3 kHz is left
-    // out: as one mode it needs ζ ≈ 0.25, where the scheme's backward-difference damper is 20 %
-    // off the continuous admittance at 48 kHz.)
+    // bridge admittance and its low-frequency radiation, and the "bridge hill" near 2–3 kHz as
+    // two modes of ζ = 0.1 (one mode would need ζ ≈ 0.25, where the scheme's backward-difference
+    // damper is 20 % off the continuous admittance at 48 kHz). Without the hill the string's
+    // upper partials hardly lose energy at the bridge, and a point-like bow finds almost no
+    // Helmholtz band (docs/physics.md, Body).
     // Frequencies: Woodhouse, Euphonics §5.3 (numbers from Bissinger's modal surveys). The
     // source gives no damping or effective masses: ζ and m are CHOSEN, not measured (Q ≈ 25–33
     // for the four modes; masses so that the admittance peaks 1/(2ζmω) are 0.1–0.3 s/kg).
@@ -49,6 +51,10 @@ const std::vector<BodyPreset>& body_presets() {
              {407.0, 0.020, 0.090, 0.2},  // CBR: centre-bout rotation, a weak radiator
              {462.0, 0.015, 0.036, 1.0},  // B1−: first corpus bending mode
              {551.0, 0.015, 0.030, 1.0},  // B1+: second corpus bending mode
+             // The "bridge hill": the bridge rocking on the body, a broad hump of admittance
+             // around 2–3 kHz. Two damped modes, ζ = 0.1, peaks 0.3 s/kg: CHOSEN.
+             {2200.0, 0.10, 0.0012, 0.5},
+             {2900.0, 0.10, 0.00091, 0.5},
          }},
     };
     return presets;

@@ -7,6 +7,7 @@
 
 #include "archet/common/input_error.hpp"
 #include "archet/model/model_parameters.hpp"
+#include "archet/model/string_points.hpp"
 
 namespace archet {
 
@@ -67,6 +68,15 @@ void set_variant_parameter(Model& model, const std::string& name, double value) 
             throw InputError(name, "needs a bowed chain of masses s1…sN (a built bowed string)");
         const int n = static_cast<int>(masses.size());
         const int index = std::clamp(static_cast<int>(std::lround(value * (n + 1))), 1, n);
+        Mat* contact = model.find_mat(bow->bowed_string());
+        if (contact && bowed_centre(model, *bow) != bow->bowed_string()) {
+            // A bow with a width: its contact point reads the masses around the new centre.
+            const int half = static_cast<int>(contact->modes.size()) / 2;
+            const int centre = std::clamp(index, 1 + half, n - half);
+            for (int k = 0; k < static_cast<int>(contact->modes.size()); ++k)
+                contact->modes[k] = masses[centre - half + k - 1];
+            return;
+        }
         const std::string old = bow->bowed_string(), bowed = masses[index - 1];
         bow->to = bowed;  // the bowed string mass (see Lia::bowed_string)
         for (auto& p : model.probes)

@@ -5,12 +5,35 @@
 
 namespace archet {
 
+namespace {
+// A contact point reads string masses (linked MATs); a modal string's point reads modes,
+// which no link touches.
+bool is_contact_point(const Model& model, const Mat& m) {
+    if (m.kind != MatKind::ModalPoint || m.modes.empty()) return false;
+    for (const auto& id : m.modes) {
+        bool linked = false;
+        for (const auto& l : model.lias) linked = linked || l.from == id || l.to == id;
+        if (!linked) return false;
+    }
+    return true;
+}
+}  // namespace
+
+std::string bowed_centre(const Model& model, const Lia& bow) {
+    const Mat* end = model.find_mat(bow.bowed_string());
+    if (!end || !is_contact_point(model, *end)) return bow.bowed_string();
+    std::size_t best = 0;
+    for (std::size_t k = 0; k < end->modes.size() && k < end->weights.size(); ++k)
+        if (end->weights[k] > end->weights[best]) best = k;
+    return end->modes[best];
+}
+
 std::vector<std::string> string_points(const Model& model) {
     std::set<std::string> bow_parts, bowed;
     for (const auto& l : model.lias)
         if (l.kind == LiaKind::BowFriction) {
             bow_parts.insert({l.bow(), l.press, l.surface});
-            bowed.insert(l.bowed_string());
+            bowed.insert(bowed_centre(model, l));
         }
     std::set<std::string> reached;
     if (bowed.empty()) {

@@ -85,6 +85,9 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
     lv.external.assign(storage, 0.0);
     lv.held.assign(storage, 0.0);
     lv.chain_k.assign(storage, 0.0);
+    lv.ground_k.assign(storage, 0.0);
+    lv.ground_zdt.assign(storage, 0.0);
+    lv.ground_rest.assign(storage, 0.0);
     lv.chain_zdt.assign(storage, 0.0);
     lv.chain_length.assign(storage, 0.0);
     lv.chain_force.assign(storage, 0.0);
@@ -102,8 +105,15 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
         // Initial state: x[0] = position, x[−1] = position − velocity·T.
         lv.x()[s] = m.position;
         lv.x_prev()[s] = movable ? m.position - m.velocity * lv.dt : m.position;
-        if (m.kind == MatKind::Oscillator)
-            lv.grounds.push_back({s, m.stiffness, m.damping / lv.dt, m.position, order[k]});
+        if (m.kind == MatKind::Oscillator) {
+            lv.grounds.push_back({s, order[k]});
+            lv.ground_k[s] = m.stiffness, lv.ground_zdt[s] = m.damping / lv.dt;
+            lv.ground_rest[s] = m.position;
+            if (lv.ground_runs.empty() || lv.ground_runs.back().end != s)
+                lv.ground_runs.push_back({s, s + 1});
+            else
+                ++lv.ground_runs.back().end;
+        }
         if (m.kind == MatKind::Gesture) {
             lv.watched.push_back(s);
             lv.gestures.push_back({s, m.axis, m.position_scale, m.force_scale, order[k],

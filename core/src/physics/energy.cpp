@@ -26,8 +26,8 @@ void Simulation::account(CompiledLevel& lv) {
         dissipated_[l.element] += taken(l.zdt, l.a, l.b);
     }
     for (const auto& g : lv.grounds)
-        dissipated_[lias + g.element] +=
-            0.25 * g.zdt * (xn[g.index] - xp[g.index]) * (xn[g.index] - xp[g.index]);
+        dissipated_[lias + g.element] += 0.25 * lv.ground_zdt[g.index] *
+                                         (xn[g.index] - xp[g.index]) * (xn[g.index] - xp[g.index]);
     for (int b : lv.bows) {
         const CompiledBow& bow = model_.bows[b];
         const double p = x[bow.press] - x[bow.surface];
@@ -76,8 +76,9 @@ double Simulation::stored_energy() const {
             if (!l.contact || d > 0) e -= in_flight(l.zdt, l.a, l.b);
         }
         for (const auto& g : lv.grounds) {
-            const double u = x[g.index] - xp[g.index];
-            e += 0.5 * g.k * (x[g.index] - g.rest) * (xp[g.index] - g.rest) - 0.25 * g.zdt * u * u;
+            const double u = x[g.index] - xp[g.index], rest = lv.ground_rest[g.index];
+            e += 0.5 * lv.ground_k[g.index] * (x[g.index] - rest) * (xp[g.index] - rest) -
+                 0.25 * lv.ground_zdt[g.index] * u * u;
         }
         for (int b : lv.bows) {
             const auto& bow = model_.bows[b];

@@ -248,11 +248,22 @@ ARCHET_AVX2_CLONES void integrate_chain(CompiledLevel& lv, double* xn) {
         chain_loops<false>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(), nullptr,
                            lv.coeff.data(), lv.chain_force.data());
 }
+
+// Oscillators' springs and dampers to ground, run by run of consecutive storage.
+ARCHET_AVX2_CLONES void integrate_grounds(CompiledLevel& lv, double* __restrict xn) {
+    const double* __restrict x = lv.x();
+    const double* __restrict xp = lv.x_prev();
+    const double* __restrict c = lv.coeff.data();
+    const double* __restrict k = lv.ground_k.data();
+    const double* __restrict z = lv.ground_zdt.data();
+    const double* __restrict rest = lv.ground_rest.data();
+    for (const auto& run : lv.ground_runs)
+        for (int s = run.first; s < run.end; ++s)
+            xn[s] -= c[s] * (k[s] * (x[s] - rest[s]) + z[s] * (x[s] - xp[s]));
+}
 }  // namespace
 
 void Simulation::integrate(CompiledLevel& lv) {
-    const double* x = lv.x();
-    const double* xp = lv.x_prev();
     double* xn = lv.x_next();
     const double* c = lv.coeff.data();
     const double* f = lv.chain_force.data();
@@ -263,9 +274,7 @@ void Simulation::integrate(CompiledLevel& lv) {
     const double* ext = lv.external.data();
     const double* held = lv.held.data();
     for (int s : lv.touched) xn[s] += c[s] * (ext[s] + held[s]);
-    for (const auto& g : lv.grounds)
-        xn[g.index] -=
-            c[g.index] * (g.k * (x[g.index] - g.rest) + g.zdt * (x[g.index] - xp[g.index]));
+    integrate_grounds(lv, xn);
     if (!lv.modal_points.empty()) {
         for (const auto& p : lv.modal_points) {
             const double force = ext[p.index] + held[p.index];

@@ -40,10 +40,10 @@ void Simulation::write_slot(const ParameterSlot& s, double v) {
             lv.links[s.index].length = lv.links[s.index].contact ? -v : v;
             break;
         case K::GroundK:
-            lv.grounds[s.index].k = v;
+            lv.ground_k[lv.grounds[s.index].index] = v;
             break;
         case K::GroundZ:
-            lv.grounds[s.index].zdt = v / lv.dt;
+            lv.ground_zdt[lv.grounds[s.index].index] = v / lv.dt;
             break;
         case K::CrossK:
             model_.cross_links[s.index].k = v;
@@ -103,9 +103,9 @@ double Simulation::read_slot(const ParameterSlot& s) const {
         case K::LinkLength:
             return lv.links[s.index].contact ? -lv.links[s.index].length : lv.links[s.index].length;
         case K::GroundK:
-            return lv.grounds[s.index].k;
+            return lv.ground_k[lv.grounds[s.index].index];
         case K::GroundZ:
-            return lv.grounds[s.index].zdt * lv.dt;
+            return lv.ground_zdt[lv.grounds[s.index].index] * lv.dt;
         case K::CrossK:
             return model_.cross_links[s.index].k;
         case K::CrossZ:

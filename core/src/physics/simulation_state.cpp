@@ -23,7 +23,9 @@ void Simulation::for_each_state(Self& self, Field&& field) {
         all(lv.chain_k), all(lv.chain_zdt), all(lv.chain_length), all(lv.chain_force);
         all(lv.watched_force);
         for (auto& l : lv.links) field(l.k), field(l.zdt), field(l.length);
-        for (auto& g : lv.grounds) field(g.k), field(g.zdt), field(g.rest);
+        for (const auto& g : lv.grounds)  // in the order of the grounds, as always
+            field(lv.ground_k[g.index]), field(lv.ground_zdt[g.index]),
+                field(lv.ground_rest[g.index]);
         for (auto& g : lv.gestures) {
             field(g.position_scale), field(g.force_scale), field(g.force), field(g.work);
             field(g.power), field(g.faster_links_force), field(g.faster_links_work);

@@ -1,8 +1,10 @@
 #pragma once
-// Builds the paper's bowed string: a homogeneous chaplet of masses between two heavy damped
-// bridges, tuned so its first mode is exactly the pitch under the discrete scheme; the bow
-// module (two bow masses linked visco-elastically to two gesture points at the haptic rate);
-// the friction module at the bowing point; sound from the bridge.
+// Builds the bowed string: a chaplet of masses between two heavy damped bridges, tuned so its
+// first mode is exactly the pitch under the discrete scheme, as many masses as the scheme
+// allows at that pitch (full bandwidth) or the paper's 25–60; two-parameter losses; an
+// optional body at the bridge; the bow module (two bow masses linked visco-elastically to two
+// gesture points at the haptic rate); the friction module at the bowing point; and a steady
+// stroke in the middle of the string's own Helmholtz band.
 
 #include <string>
 
@@ -24,10 +26,24 @@ struct BowedStringOptions {
     double pitch = 220.0;  ///< Hz, first mode of the string
     Tuning tuning = Tuning::Homogeneous;
     Structure structure = Structure::Chain;
-    int masses = 0;                   ///< 25–60; 0 picks the largest stable count
-    double bow_position = 0.12;       ///< β, bow distance from the bridge / string length
-    double string_damping = -1.0;     ///< N·s/m per string link; < 0 picks it from string_t60
-    double string_t60 = 4.0;          ///< s, decay of the first mode from string damping alone
+    /// The paper's chaplets (25–60 masses, link damping alone, no body) for its figures.
+    bool paper = false;
+    int masses = 0;              ///< 0: full bandwidth (paper: the largest stable count up to 60)
+    double bow_position = 0.12;  ///< β, bow distance from the bridge / string length
+    /// Keep β even where the embedded stroke finds no Helmholtz band (else the bow may move to
+    /// the next mass or two, where it finds one).
+    bool bow_position_fixed = false;
+    double string_damping = -1.0;  ///< N·s/m per string link, set by hand; < 0: from the decays
+    /// s, 60 dB decay of the first mode, every loss included; 0: a violin A string's at the
+    /// pitch (paper: 4 s, from link damping alone).
+    double string_t60 = 0.0;
+    double string_t60_high = 0.0;     ///< s, at string_t60_high_hz; 0: a violin A string's
+    double string_t60_high_hz = 0.0;  ///< Hz; 0: 2000 Hz (twice the pitch above 1 kHz)
+    std::string body = "violin";      ///< a body preset at the bridge, or "none" (string_body.hpp)
+    /// The bow rubs one mass (the paper's). Else it rubs a contact point spread ¼, ½, ¼ over
+    /// the bowed mass and its two neighbours, about a bow's hair width on a full string: the
+    /// chain's shortest waves, which a real bow's width averages out, stay out of the friction.
+    bool point_bow = false;
     double sample_rate = 48000.0;     ///< Hz, audio rate level
     int haptic_divider = 16;          ///< haptic rate = sample_rate / divider
     double tension = 57.1;            ///< N (violin A string)
@@ -46,9 +62,18 @@ struct BowedStringOptions {
     double buffer_stiffness = 5000.0;  ///< N/m, bow–string contact
     double buffer_damping = 5.0;       ///< N·s/m
     double mu_s = 0.8, mu_d = 0.3, v0 = 0.1;
-    double output_gain = 1.5;
-    bool with_gesture = true;  ///< embed the steady-bow gesture
+    /// Output to full scale; 0: so that the embedded stroke peaks at −6 dBFS (the paper's
+    /// strings: 1.5 per newton of bridge force).
+    double output_gain = 0.0;
+    double stroke_speed = 0.1;  ///< m/s, the embedded stroke's bow speed
+    bool with_gesture = true;   ///< embed a steady stroke in the middle of the Helmholtz band
 };
+
+/// The decay frequencies and times the options ask for, defaults filled in.
+struct StringDecays {
+    double low_hz = 0, low_t60 = 0, high_hz = 0, high_t60 = 0;
+};
+StringDecays string_decays(const BowedStringOptions& options);
 
 /// Builds, tunes and validates the model; throws InputError with the reason when no
 /// stable string exists for the options.
@@ -67,5 +92,8 @@ int max_stable_masses(double pitch, double sample_rate);
 /// The largest number of masses of a harmonic chain: its N-th partial N·f0 below fs/2.
 int max_harmonic_masses(double pitch, double sample_rate);
 
+/// The full-bandwidth count: the most masses whose highest mode keeps `margin` of the
+/// stability bound (λ·T² ≤ 4·(1 − margin)) in reserve.
+int full_bandwidth_masses(double pitch, double sample_rate, Tuning tuning, double margin);
 
 }  // namespace archet

@@ -13,4 +13,8 @@ namespace archet {
 
 std::vector<std::string> string_points(const Model& model);
 
+/// The MAT a bow module is centred on: its string end, or, when that end is a contact point
+/// spread over neighbouring string masses (a bow with a width), the mass it weighs most.
+std::string bowed_centre(const Model& model, const Lia& bow);
+
 }  // namespace archet

@@ -52,10 +52,16 @@ struct CompiledCrossLink {  ///< a link whose MATs run at other rate levels
     bool acting = true;                            ///< a buffer in contact at the last tick
 };
 
-struct CompiledGround {  ///< an oscillator's spring and damper to ground
+/// An oscillator's spring and damper to ground; its stiffness, damping/T and rest position are
+/// the level's ground_k, ground_zdt and ground_rest at `index`.
+struct CompiledGround {
     int index = 0;
-    double k = 0, zdt = 0, rest = 0;
     int element = -1;
+};
+
+/// Storage indices first..end−1 all have grounds: one loop the compiler vectorises.
+struct GroundRun {
+    int first = 0, end = 0;
 };
 
 struct CompiledGesturePoint {
@@ -111,6 +117,8 @@ struct CompiledLevel {
     std::vector<int> chain_element;   ///< index into Model::lias, −1 for none
     std::vector<CompiledLink> links;
     std::vector<CompiledGround> grounds;
+    std::vector<double> ground_k, ground_zdt, ground_rest;  ///< per storage index, 0 if none
+    std::vector<GroundRun> ground_runs;
     std::vector<CompiledGesturePoint> gestures;
     std::vector<int> bows;  ///< indices into CompiledModel::bows
     std::vector<CompiledModalPoint> modal_points;

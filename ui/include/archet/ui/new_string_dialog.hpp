@@ -1,11 +1,13 @@
 #pragma once
-// "New bowed string": the paper's string from a few choices (pitch, tuning, structure, masses,
-// bow position, decay), built and tuned by the same builder as `archet new bowed-string`.
+// "New bowed string": a bowed string from a few choices (pitch, tuning, structure, masses or
+// the paper's chaplet, body, bow position, decays), built and tuned by the same builder as
+// `archet new bowed-string`.
 
 #include <QDialog>
 
 #include "archet/builders/bowed_string.hpp"
 
+class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
 class QSpinBox;
@@ -20,12 +22,18 @@ class NewStringDialog : public QDialog {
     BowedStringOptions options() const;
 
   private:
+    void make_loss_fields();
+    void lay_out();
     QDoubleSpinBox* pitch_;
     QComboBox* tuning_;
     QComboBox* structure_;
+    QCheckBox* paper_;
     QSpinBox* masses_;
+    QComboBox* body_;
     QDoubleSpinBox* bow_position_;
     QDoubleSpinBox* t60_;
+    QDoubleSpinBox* t60_high_;
+    QDoubleSpinBox* t60_high_hz_;
     QDoubleSpinBox* damping_;
 };
 

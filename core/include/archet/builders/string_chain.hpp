@@ -1,0 +1,38 @@
+#pragma once
+// The string of the bowed-string builder: its chaplet of masses s1..sN and links k0..kN
+// between the bridge and the nut, tuned homogeneous or harmonic, and its exact modal
+// equivalent.
+
+#include "archet/builders/bowed_string.hpp"
+#include "archet/builders/harmonic_chain.hpp"
+#include "archet/builders/string_losses.hpp"
+
+namespace archet {
+
+/// Link damping as a share of stiffness (z = ratio·k) the options set during tuning: the
+/// paper's (from string_t60, or --string-damping); 0 when the losses are solved afterwards.
+double link_damping_ratio(const BowedStringOptions& o, const ChainProfile& profile);
+
+/// The chaplet of `n` masses tuned to the pitch under the scheme, with its bridges and body. A
+/// harmonic chaplet given its `losses` is tuned with them: the scheme's dampers pull its upper
+/// partials by several cents, which the tuning then corrects.
+Model tuned_string(const BowedStringOptions& o, int n, const StringLosses* losses = nullptr);
+
+/// Puts the damped first mode, as the scheme runs it, exactly on the pitch: the chain is tuned
+/// undamped, and the losses (and a body) then move it by a fraction of a cent. Scaling each
+/// link's stiffness and damping together keeps σ1.
+void retune_damped(Model& model, const BowedStringOptions& o, int n);
+
+/// The ids of the string's masses and links in a chain of `n` masses.
+StringElements string_elements(int n);
+
+/// Replaces the chain s1..sN by its exact modal equivalent: one damped oscillator per mode,
+/// with modal points at s1, the bowed mass and sN. `losses` are the string's (σ0 from the
+/// masses' dampers to their rest points, σ1 from the links', both proportional: modal). With
+/// `wide_bow` the bowed point reads ¼, ½, ¼ of the shapes at the bowed mass and its neighbours.
+void make_modal(Model& model, int n, int bowed, const StringLosses& losses, bool wide_bow);
+
+/// The string mass the bow sits on for bow position β (with a neighbour on each side).
+int bowed_mass(const BowedStringOptions& o, int n);
+
+}  // namespace archet
