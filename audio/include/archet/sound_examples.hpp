@@ -12,7 +12,7 @@ namespace archet {
 struct SoundExample {
     std::string file;     ///< WAV name in the output folder
     std::string model;    ///< under resources/models/
-    std::string gesture;  ///< under resources/gestures/
+    std::string gesture;  ///< under resources/gestures/; empty: the model's own stroke
     std::string what;     ///< one line for the listener
 };
 

@@ -104,8 +104,9 @@ std::string decays_text(const Model& model, const BowedStringOptions& o, int n) 
     text.precision(3);
     const char* between = "T60 ";
     for (double f : {d.low_hz, d.high_hz}) {
-        const ModeDecay m = string_mode_decay(model, string_elements(n), f);
-        text << between << std::log(1000.0) / m.rate << " s at " << m.frequency << " Hz";
+        const ModeDecay m = exact_string_mode_decay(model, string_elements(n), f);
+        text << between << std::log(1000.0) / m.rate << " s at " << std::lround(m.frequency)
+             << " Hz";
         between = ", ";
     }
     return text.str();

@@ -206,6 +206,12 @@ std::vector<double> string_mode_frequencies(const Model& model, const StringElem
     return f;  // the solver sorts λ ascending
 }
 
+ModeDecay exact_string_mode_decay(const Model& model, const StringElements& string,
+                                  double frequency) {
+    const double f = mode_coefficients(model, string, frequency).frequency;
+    return {f, exact_rate(model, f)};
+}
+
 ModeDecay string_mode_decay(const Model& model, const StringElements& string, double frequency) {
     const ModeCoefficients m = mode_coefficients(model, string, frequency);
     return {m.frequency, scheme_rate(m.rest, 1.0 / model.sample_rate)};
