@@ -50,10 +50,6 @@ bool plays_helmholtz(const Model& model, double pitch, double speed, double forc
 
 }  // namespace
 
-double HelmholtzBand::middle() const {
-    return std::sqrt(low * high);
-}
-
 HelmholtzBand helmholtz_band(const Model& model, double speed, int steps) {
     const double beta = bow_position(model);
     const SchellengBounds lines = schelleng_bounds(model, beta, speed);

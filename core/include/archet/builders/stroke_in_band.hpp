@@ -12,7 +12,6 @@ struct HelmholtzBand {
     double low = 0.0, high = 0.0;  ///< N, the lowest and highest force of the band found
     double played = 0.0;           ///< N, the force in its middle (one of those played)
     double peak = 0.0;             ///< the output's peak over that stroke, at the model's gain
-    double middle() const;         ///< N, the geometric mean of low and high
 };
 
 /// Steady strokes at `speed` m/s at `steps` log-spaced forces around Schelleng's lines; the
