@@ -166,22 +166,32 @@ double link_damping_ratio(const BowedStringOptions& o, const ChainProfile& profi
     return 2.0 * std::log(1000.0) / (string_decays(o).low_t60 * omega * omega);
 }
 
-// A body pulls the string's modes near its own and lowers the first a little: scaling every
-// link's stiffness moves all partials by the same ratio, so it puts the first back on the
-// pitch and keeps a harmonic string's other partials where the tuning put them.
-void retune_with_body(Model& model, const BowedStringOptions& o, int n) {
-    attach_body(model, find_body_preset(o.body));
+namespace {
+
+// Scaling every link's stiffness and damping together moves all partials by one ratio (and
+// keeps σ1): it puts the first mode (undamped or as the damped scheme runs it) on the pitch and
+// leaves a harmonic string's other partials where the tuning put them.
+void scale_links_to_pitch(Model& model, const BowedStringOptions& o, int n, bool damped,
+                          double tolerance, int iterations) {
     const StringElements string = string_elements(n);
-    for (int iteration = 0; iteration < 10; ++iteration) {
-        const double f = string_mode_decay(model, string, o.pitch).frequency;
-        if (!(f > 0) || std::abs(f / o.pitch - 1.0) < 1e-12) break;
+    for (int iteration = 0; iteration < iterations; ++iteration) {
+        const double f = first_mode(model, n, o.pitch, damped);
+        if (!(f > 0) || std::abs(f / o.pitch - 1.0) < tolerance) break;
+        const double scale = (o.pitch / f) * (o.pitch / f);
         for (const auto& id : string.links) {
             Lia* l = model.find_lia(id);
-            l->stiffness *= (o.pitch / f) * (o.pitch / f),
-                l->damping *= (o.pitch / f) * (o.pitch / f);
+            l->stiffness *= scale, l->damping *= scale;
         }
     }
 }
+
+// A body pulls the string's modes near its own and lowers the first a little.
+void retune_with_body(Model& model, const BowedStringOptions& o, int n) {
+    attach_body(model, find_body_preset(o.body));
+    scale_links_to_pitch(model, o, n, false, 1e-12, 10);
+}
+
+}  // namespace
 
 Model tuned_string(const BowedStringOptions& o, int n, const StringLosses* losses) {
     Model model =
@@ -191,16 +201,7 @@ Model tuned_string(const BowedStringOptions& o, int n, const StringLosses* losse
 }
 
 void retune_damped(Model& model, const BowedStringOptions& o, int n) {
-    const StringElements string = string_elements(n);
-    for (int iteration = 0; iteration < 4; ++iteration) {
-        const double f = first_mode(model, n, o.pitch, true);
-        if (!(f > 0) || std::abs(f / o.pitch - 1.0) < 1e-10) break;
-        const double scale = (o.pitch / f) * (o.pitch / f);
-        for (const auto& id : string.links) {
-            Lia* l = model.find_lia(id);
-            l->stiffness *= scale, l->damping *= scale;
-        }
-    }
+    scale_links_to_pitch(model, o, n, true, 1e-10, 4);
 }
 
 StringElements string_elements(int n) {
