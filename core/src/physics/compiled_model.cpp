@@ -109,10 +109,6 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
             lv.grounds.push_back({s, order[k]});
             lv.ground_k[s] = m.stiffness, lv.ground_zdt[s] = m.damping / lv.dt;
             lv.ground_rest[s] = m.position;
-            if (lv.ground_runs.empty() || lv.ground_runs.back().end != s)
-                lv.ground_runs.push_back({s, s + 1});
-            else
-                ++lv.ground_runs.back().end;
         }
         if (m.kind == MatKind::Gesture) {
             lv.watched.push_back(s);

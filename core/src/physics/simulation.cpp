@@ -219,47 +219,58 @@ void Simulation::compute_cross_link_forces() {
 #endif
 
 namespace {
+// The new position of MAT s from its two chain links: 2x − x⁻ + T²/m·(f_left − f_right).
+inline double chain_update(const double* __restrict x, const double* __restrict xp,
+                           const double* __restrict c, const double* __restrict f, int s) {
+    return 2.0 * x[s] - xp[s] + c[s] * (f[s - 1] - f[s]);
+}
+
+// What an oscillator's spring and damper to ground take off that update (zero for a MAT
+// without them).
+inline double ground_pull(const double* __restrict x, const double* __restrict xp,
+                          const double* __restrict c, const double* __restrict k,
+                          const double* __restrict z, const double* __restrict rest, int s) {
+    return c[s] * (k[s] * (x[s] - rest[s]) + z[s] * (x[s] - xp[s]));
+}
+
 // The chain links and the integration of every MAT of a level: the bulk of the work, in two
 // loops the compiler vectorises. Built for AVX2 and plain x86-64 and chosen at load time;
 // without FMA contraction both give the same bits. Transverse strings have no rest lengths,
-// so a variant skips them.
-template <bool kWithLength>
+// so a variant skips them; a level with oscillators (a string with losses to ground, a body)
+// takes their pull in the same pass rather than in a second one over the same arrays.
+template <bool kWithLength, bool kWithGrounds>
 inline void chain_loops(int n, const double* __restrict x, const double* __restrict xp,
-                        double* __restrict xn, const double* __restrict k,
-                        const double* __restrict z, const double* __restrict len,
-                        const double* __restrict c, double* __restrict f) {
+                        double* __restrict xn, CompiledLevel& lv) {
+    const double* __restrict k = lv.chain_k.data();
+    const double* __restrict z = lv.chain_zdt.data();
+    const double* __restrict len = lv.chain_length.data();
+    const double* __restrict c = lv.coeff.data();
+    const double* __restrict gk = lv.ground_k.data();
+    const double* __restrict gz = lv.ground_zdt.data();
+    const double* __restrict rest = lv.ground_rest.data();
+    double* __restrict f = lv.chain_force.data();
     // Chain links j = 0..n (0 and n are padding with zero coefficients).
     for (int j = 0; j <= n; ++j) {
         const double d = x[j] - x[j + 1];
         const double dp = xp[j] - xp[j + 1];
         f[j] = kWithLength ? k[j] * (d - len[j]) + z[j] * (d - dp) : k[j] * d + z[j] * (d - dp);
     }
-    for (int s = 1; s <= n; ++s) xn[s] = 2.0 * x[s] - xp[s] + c[s] * (f[s - 1] - f[s]);
+    for (int s = 1; s <= n; ++s)
+        xn[s] = kWithGrounds ? chain_update(x, xp, c, f, s) - ground_pull(x, xp, c, gk, gz, rest, s)
+                             : chain_update(x, xp, c, f, s);
 }
 
 ARCHET_AVX2_CLONES void integrate_chain(CompiledLevel& lv, double* xn) {
     const int current = lv.current;
     const double* x = lv.buffer[current].data();
     const double* xp = lv.buffer[CompiledLevel::before(current)].data();
+    const bool grounds = !lv.grounds.empty();
     if (lv.has_chain_lengths)
-        chain_loops<true>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(),
-                          lv.chain_length.data(), lv.coeff.data(), lv.chain_force.data());
+        grounds ? chain_loops<true, true>(lv.size, x, xp, xn, lv)
+                : chain_loops<true, false>(lv.size, x, xp, xn, lv);
     else
-        chain_loops<false>(lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(), nullptr,
-                           lv.coeff.data(), lv.chain_force.data());
-}
-
-// Oscillators' springs and dampers to ground, run by run of consecutive storage.
-ARCHET_AVX2_CLONES void integrate_grounds(CompiledLevel& lv, double* __restrict xn) {
-    const double* __restrict x = lv.x();
-    const double* __restrict xp = lv.x_prev();
-    const double* __restrict c = lv.coeff.data();
-    const double* __restrict k = lv.ground_k.data();
-    const double* __restrict z = lv.ground_zdt.data();
-    const double* __restrict rest = lv.ground_rest.data();
-    for (const auto& run : lv.ground_runs)
-        for (int s = run.first; s < run.end; ++s)
-            xn[s] -= c[s] * (k[s] * (x[s] - rest[s]) + z[s] * (x[s] - xp[s]));
+        grounds ? chain_loops<false, true>(lv.size, x, xp, xn, lv)
+                : chain_loops<false, false>(lv.size, x, xp, xn, lv);
 }
 }  // namespace
 
@@ -269,12 +280,21 @@ void Simulation::integrate(CompiledLevel& lv) {
     const double* f = lv.chain_force.data();
     integrate_chain(lv, xn);
     // The update is linear in force, so the other forces add their share afterwards, only
-    // where there are any: the other links' (`external`), held forces of slower links, and
-    // oscillator grounds'.
+    // where there are any: the other links' (`external`) and held forces of slower links.
+    // Where the chain pass took a ground's pull, such a MAT is updated again whole, in the
+    // order the scheme has always used (chain, other forces, ground), so its bits stay.
     const double* ext = lv.external.data();
     const double* held = lv.held.data();
-    for (int s : lv.touched) xn[s] += c[s] * (ext[s] + held[s]);
-    integrate_grounds(lv, xn);
+    if (lv.grounds.empty()) {
+        for (int s : lv.touched) xn[s] += c[s] * (ext[s] + held[s]);
+    } else {
+        const double* x = lv.x();
+        const double* xp = lv.x_prev();
+        for (int s : lv.touched)
+            xn[s] = (chain_update(x, xp, c, f, s) + c[s] * (ext[s] + held[s])) -
+                    ground_pull(x, xp, c, lv.ground_k.data(), lv.ground_zdt.data(),
+                                lv.ground_rest.data(), s);
+    }
     if (!lv.modal_points.empty()) {
         for (const auto& p : lv.modal_points) {
             const double force = ext[p.index] + held[p.index];

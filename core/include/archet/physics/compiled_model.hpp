@@ -59,11 +59,6 @@ struct CompiledGround {
     int element = -1;
 };
 
-/// Storage indices first..end−1 all have grounds: one loop the compiler vectorises.
-struct GroundRun {
-    int first = 0, end = 0;
-};
-
 struct CompiledGesturePoint {
     int index = 0;
     GestureAxis axis = GestureAxis::Slide;
@@ -118,7 +113,6 @@ struct CompiledLevel {
     std::vector<CompiledLink> links;
     std::vector<CompiledGround> grounds;
     std::vector<double> ground_k, ground_zdt, ground_rest;  ///< per storage index, 0 if none
-    std::vector<GroundRun> ground_runs;
     std::vector<CompiledGesturePoint> gestures;
     std::vector<int> bows;  ///< indices into CompiledModel::bows
     std::vector<CompiledModalPoint> modal_points;
