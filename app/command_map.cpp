@@ -8,11 +8,11 @@
 #include <cstdio>
 #include <iostream>
 #include <map>
-#include <thread>
 
 #include "archet/analysis/playability.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/common/input_limits.hpp"
+#include "archet/common/parallel_for.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/ui/playability_figure.hpp"
 #include "commands.hpp"
@@ -81,8 +81,7 @@ int run_map(const MapArguments& a) {
     if (std::sscanf(a.shard.c_str(), "%d/%d", &shard, &shards) != 2)
         throw InputError("--shard", "expected I/N, e.g. 3/16");
     const Model model = load_validated_model(a.model, {});
-    const int jobs =
-        a.jobs > 0 ? a.jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int jobs = a.jobs > 0 ? a.jobs : hardware_jobs();
     const bool show = ::isatty(STDERR_FILENO);
     const auto points =
         play_map(model, grid, jobs, shard, shards, [&](std::size_t done, std::size_t total) {

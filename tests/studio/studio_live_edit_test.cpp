@@ -250,12 +250,38 @@ TEST_F(LiveEdit, UndoingBackToAnUnstableModelIsCheckedNotPlayed) {
     expect_bowing_in_the_last_second();
 }
 
+// A new string is built off the GUI thread (tuning and the band search take seconds): the
+// call returns at once, the studio goes on taking the engine's frames while the pad bows the
+// string before it, and the new string is swapped in when it is ready.
 TEST_F(LiveEdit, ANewBowedString) {
+    BowedStringOptions o;
+    o.pitch = 330;
     expect_the_pad_bows_after([&] {
-        BowedStringOptions o;
-        o.pitch = 330;
-        window->open_model(build_bowed_string(o));
+        const std::uint64_t frames = window->engine().history().frames_received();
+        ASSERT_TRUE(window->build_string(o));
+        EXPECT_TRUE(window->building_string()) << "the build runs on, off the GUI thread";
+        EXPECT_FALSE(window->build_string(o)) << "one build at a time";
+        bow(*window, stroke, 0.2);
+        EXPECT_GT(window->engine().history().frames_received(), frames)
+            << "the studio takes the engine's frames while the string builds";
     });
+    EXPECT_FALSE(window->building_string());
+    EXPECT_EQ(window->document().model().name, "bowed-string-330");
+}
+
+// Cancel stops the build: the string before it stays open and playing, and no message says
+// the build failed.
+TEST_F(LiveEdit, ANewBowedStringCancelled) {
+    BowedStringOptions o;
+    o.pitch = 110;  // the longest string: its band search plays 17 strokes of 214 masses
+    ASSERT_TRUE(window->build_string(o));
+    window->cancel_string();
+    ASSERT_TRUE(wait_until([&] { return !window->building_string(); }, 120000));
+    EXPECT_EQ(window->document().model().name, "bowed-string-220-paper");
+    EXPECT_EQ(loads, 1) << "nothing new was played";
+    EXPECT_TRUE(QApplication::activeModalWidget() == nullptr) << "no message box";
+    bow(*window, stroke, 1.0);
+    expect_bowing_in_the_last_second();
 }
 
 // Every shipped model, opened while the 220 Hz string is being bowed.

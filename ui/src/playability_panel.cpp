@@ -9,9 +9,9 @@
 #include <QSpinBox>
 #include <QTimer>
 #include <QVBoxLayout>
-#include <thread>
 
 #include "archet/common/number_text.hpp"
+#include "archet/common/parallel_for.hpp"
 #include "archet/ui/playability_figure.hpp"
 
 namespace archet::ui {
@@ -119,7 +119,7 @@ void PlayabilityPanel::compute() {
                           .arg(QString::fromStdString(count_of(grid_.size(), "point", "points"))));
     job_.start(
         [model = model_, grid = grid_](BackgroundJob::Control& control) {
-            const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+            const int cores = hardware_jobs();
             return play_map(
                 model, grid, cores, 0, 1,
                 [&control](std::size_t done, std::size_t total) { control.progress(done, total); },

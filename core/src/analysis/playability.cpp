@@ -2,18 +2,17 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <complex>
 #include <numbers>
 #include <sstream>
-#include <thread>
 #include <unsupported/Eigen/FFT>
 
 #include "archet/analysis/bowing_analysis.hpp"
 #include "archet/analysis/modal_analysis.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/common/parallel_for.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/model/model_variants.hpp"
 #include "archet/model/string_points.hpp"
@@ -239,31 +238,16 @@ std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs
         press_stiffness(check);
     }
     std::vector<MapPoint> points(mine.size());
-    std::atomic<std::size_t> next{0}, done{0};
-    std::string error;
-    std::atomic<bool> failed{false};
-    auto cancelled = [&] { return cancel && cancel->load(); };
-    auto work = [&] {
-        for (std::size_t k;
-             !failed.load() && !cancelled() && (k = next.fetch_add(1)) < mine.size();) {
-            try {
-                points[k] = play_map_point(model, grid, mine[k], pitch);
-            } catch (const std::exception& e) {
-                if (!failed.exchange(true)) error = e.what();
-            }
-            done.fetch_add(1);
-        }
-    };
-    std::vector<std::thread> threads;
-    for (int t = 0; t < std::max(1, jobs); ++t) threads.emplace_back(work);
-    while (done.load() < mine.size() && !failed.load() && !cancelled()) {
-        if (progress) progress(done.load(), mine.size());
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    bool finished = false;
+    try {
+        finished = parallel_for(
+            mine.size(), jobs,
+            [&](std::size_t k) { points[k] = play_map_point(model, grid, mine[k], pitch); }, cancel,
+            progress);
+    } catch (const std::exception& e) {
+        throw InputError(model.name, e.what());
     }
-    for (auto& t : threads) t.join();
-    if (failed.load()) throw InputError(model.name, error);
-    if (cancelled()) throw InputError(model.name, "cancelled");
-    if (progress) progress(mine.size(), mine.size());
+    if (!finished) throw InputError(model.name, "cancelled");
     return points;
 }
 

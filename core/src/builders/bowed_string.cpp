@@ -16,6 +16,10 @@ namespace archet {
 
 namespace {
 
+bool was_cancelled(const std::atomic<bool>* cancel) {
+    return cancel && cancel->load();
+}
+
 constexpr int kPaperMinMasses = 25;
 constexpr int kPaperMaxMasses = 60;
 constexpr int kMinMasses = 4;
@@ -220,7 +224,7 @@ std::string size_limit_text(const BowedStringOptions& o, int limit) {
 
 // The string with its stroke. A short string has few masses to bow: where the default bow
 // position finds no Helmholtz band, the next mass or two may.
-Model finished(Model model, const BowedStringOptions& o, int n) {
+Model finished(Model model, const BowedStringOptions& o, int n, const std::atomic<bool>* cancel) {
     validate_model(model);
     if (!o.with_gesture) return model;
     const int bowed = bowed_mass(o, n);
@@ -232,14 +236,14 @@ Model finished(Model model, const BowedStringOptions& o, int n) {
         if (bowed_mass(moved, n) != bowed + moves[k]) continue;  // off the string's bowable half
         Model m = moves[k] == 0 ? model : assemble(moved, n);
         try {
-            const HelmholtzBand band = helmholtz_band(m, o.stroke_speed);
+            const HelmholtzBand band = helmholtz_band(m, o.stroke_speed, 17, cancel);
             m.gesture = stroke_in_band(m, band, o.stroke_speed);
             if (!o.paper && !(o.output_gain > 0) && band.peak > 0)
                 m.output_gain *= kStrokePeak / band.peak;  // the stroke it carries at −6 dBFS
             validate_model(m);
             return m;
         } catch (const InputError&) {
-            if (k + 1 == moves.size()) throw;
+            if (k + 1 == moves.size() || was_cancelled(cancel)) throw;
         }
     }
     throw InputError("--bow-position", "no bow position near " + fmt(o.bow_position) +
@@ -298,7 +302,7 @@ int full_bandwidth_masses(double pitch, double sample_rate, Tuning tuning, doubl
     return best;
 }
 
-Model build_bowed_string(const BowedStringOptions& o) {
+Model build_bowed_string(const BowedStringOptions& o, const std::atomic<bool>* cancel) {
     check_options(o);
     const bool harmonic = o.tuning == Tuning::Harmonic;
     const int limit = harmonic ? max_harmonic_masses(o.pitch, o.sample_rate)
@@ -316,7 +320,7 @@ Model build_bowed_string(const BowedStringOptions& o) {
                                  " Hz are unstable once damped (largest normalised eigenvalue " +
                                  fmt(4 * stability_use(m)) +
                                  " of 4); use fewer masses or less damping");
-        return finished(m, o, o.masses);
+        return finished(m, o, o.masses, cancel);
     }
     const int low = o.paper ? kPaperMinMasses : kMinMasses;
     const int high =
@@ -330,6 +334,7 @@ Model build_bowed_string(const BowedStringOptions& o) {
                                         " Hz: " + size_limit_text(o, limit));
     // The largest count that keeps a reserve; the smallest stable one otherwise.
     for (int n = high; n >= low; --n) {
+        if (was_cancelled(cancel)) throw InputError("--pitch", "cancelled");
         Model m;
         try {
             // The full string's losses and tuning cost seconds; its tuned chain with the bow
@@ -344,7 +349,7 @@ Model build_bowed_string(const BowedStringOptions& o) {
         }
         if (stability_use(m) <= 1.0 - margin || n == low) {
             if (stability_use(m) >= 1.0) break;
-            return finished(m, o, n);
+            return finished(m, o, n, cancel);
         }
     }
     throw InputError("--pitch",

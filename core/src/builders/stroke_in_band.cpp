@@ -9,6 +9,7 @@
 #include "archet/analysis/playability.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/common/parallel_for.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
 
@@ -50,7 +51,8 @@ bool plays_helmholtz(const Model& model, double pitch, double speed, double forc
 
 }  // namespace
 
-HelmholtzBand helmholtz_band(const Model& model, double speed, int steps) {
+HelmholtzBand helmholtz_band(const Model& model, double speed, int steps,
+                             const std::atomic<bool>* cancel) {
     const double beta = bow_position(model);
     const SchellengBounds lines = schelleng_bounds(model, beta, speed);
     const double pitch = analyse_modes(model).fundamental;
@@ -59,12 +61,17 @@ HelmholtzBand helmholtz_band(const Model& model, double speed, int steps) {
     const bool lined = lines.minimum > 0 && lines.maximum > lines.minimum;
     const double low = lined ? std::max(1e-4, kBelowMinimum * lines.minimum) : 3e-3;
     const double high = lined ? std::max(low * 100, kAboveMaximum * lines.maximum) : 3.0;
-    std::vector<double> forces, peaks(steps, 0.0);
-    std::vector<bool> plays;
-    for (int i = 0; i < steps; ++i) {
-        forces.push_back(low * std::pow(high / low, i / (steps - 1.0)));
-        plays.push_back(plays_helmholtz(model, pitch, speed, forces.back(), peaks[i]));
-    }
+    std::vector<double> forces(steps), peaks(steps, 0.0);
+    std::vector<char> plays(steps, 0);  // not vector<bool>: each stroke writes its own byte
+    for (int i = 0; i < steps; ++i) forces[i] = low * std::pow(high / low, i / (steps - 1.0));
+    // The strokes are independent: played side by side on every core.
+    const bool finished = parallel_for(
+        forces.size(), hardware_jobs(),
+        [&](std::size_t i) {
+            plays[i] = plays_helmholtz(model, pitch, speed, forces[i], peaks[i]);
+        },
+        cancel);
+    if (!finished) throw InputError(model.name, "cancelled");
     // The widest run of consecutive forces that play; its middle force was played too.
     HelmholtzBand best;
     int best_length = 0;

@@ -6,6 +6,7 @@
 // gesture points at the haptic rate); the friction module at the bowing point; and a steady
 // stroke in the middle of the string's own Helmholtz band.
 
+#include <atomic>
 #include <string>
 
 #include "archet/model/gesture.hpp"
@@ -76,8 +77,10 @@ struct StringDecays {
 StringDecays string_decays(const BowedStringOptions& options);
 
 /// Builds, tunes and validates the model; throws InputError with the reason when no
-/// stable string exists for the options.
-Model build_bowed_string(const BowedStringOptions& options);
+/// stable string exists for the options, and InputError "cancelled" once `*cancel` is set
+/// (checked between the counts tried and between the strokes of the band search).
+Model build_bowed_string(const BowedStringOptions& options,
+                         const std::atomic<bool>* cancel = nullptr);
 
 /// Adds the bow module to a model that has `string_mass` at the "audio" rate and a "haptic"
 /// rate level: the two bow masses ("bow", "bow_press"), the surface, the two gesture points

@@ -3,6 +3,8 @@
 // string's own Helmholtz band, found by playing that stroke at forces log-spaced wide around
 // Schelleng's lines and keeping those in steady Helmholtz motion from 1.5 s to the lift.
 
+#include <atomic>
+
 #include "archet/model/gesture.hpp"
 #include "archet/model/model.hpp"
 
@@ -15,8 +17,10 @@ struct HelmholtzBand {
 };
 
 /// Steady strokes at `speed` m/s at `steps` log-spaced forces around Schelleng's lines; the
-/// widest run of forces in steady Helmholtz motion. Throws InputError when none plays.
-HelmholtzBand helmholtz_band(const Model& model, double speed, int steps = 17);
+/// widest run of forces in steady Helmholtz motion. Throws InputError when none plays, and
+/// InputError "cancelled" once `*cancel` is set (checked between strokes).
+HelmholtzBand helmholtz_band(const Model& model, double speed, int steps = 17,
+                             const std::atomic<bool>* cancel = nullptr);
 
 /// A steady stroke at `speed` with the band's middle force (`played`), 3 s long.
 Gesture stroke_in_band(const Model& model, const HelmholtzBand& band, double speed);

@@ -13,7 +13,9 @@
 #include <utility>
 #include <vector>
 
+#include "archet/builders/bowed_string.hpp"
 #include "archet/model/model.hpp"
+#include "archet/ui/background_job.hpp"
 #include "archet/ui/engine_client.hpp"
 
 class QAction;
@@ -21,6 +23,7 @@ class QSplitter;
 class QTabWidget;
 class QLabel;
 class QMenu;
+class QProgressDialog;
 
 namespace archet::ui {
 
@@ -47,6 +50,13 @@ class MainWindow : public QMainWindow {
     /// Errors go to a message box; returns whether the file was opened.
     bool open_file(const QString& path);
     bool save_to(const QString& path);
+    /// Builds a new string off the GUI thread (tuning and the band search take seconds), with
+    /// a progress dialog whose Cancel stops it, then opens it; the engine plays the model
+    /// before it meanwhile. False while another build runs.
+    bool build_string(const BowedStringOptions& options);
+    bool building_string() const { return string_job_.busy(); }
+    /// Stops the build; the model before it stays open.
+    void cancel_string();
 
     EngineClient& engine() { return *engine_; }
     ModelDocument& document() { return *document_; }
@@ -149,7 +159,10 @@ class MainWindow : public QMainWindow {
     QString resources_folder_;
     QString autosave_folder_;
     QString documents_folder_;
-    QString take_;  ///< the folder being recorded into
+    QString take_;                                ///< the folder being recorded into
+    QProgressDialog* string_progress_ = nullptr;  ///< while a new string builds
+    bool string_cancelled_ = false;
+    BackgroundJob string_job_;  ///< last: destroyed (cancelled and joined) first
 };
 
 }  // namespace archet::ui
