@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
 #include <exception>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -14,6 +16,8 @@ bool parallel_for(std::size_t count, int jobs, const std::function<void(std::siz
     std::atomic<std::size_t> next{0}, done{0};
     std::atomic<bool> failed{false};
     std::exception_ptr error;
+    std::mutex mutex;
+    std::condition_variable ended;  // a worker ran out of pieces
     auto cancelled = [&] { return cancel && cancel->load(); };
     auto worker = [&] {
         for (std::size_t i; !failed.load() && !cancelled() && (i = next.fetch_add(1)) < count;) {
@@ -24,14 +28,16 @@ bool parallel_for(std::size_t count, int jobs, const std::function<void(std::siz
             }
             done.fetch_add(1);
         }
+        std::lock_guard lock(mutex);
+        ended.notify_one();
     };
     std::vector<std::thread> threads;
-    const auto workers = static_cast<std::size_t>(std::max(1, jobs));
-    for (std::size_t t = 0; t < std::min(workers, std::max<std::size_t>(count, 1)); ++t)
-        threads.emplace_back(worker);
-    while (done.load() < count && !failed.load() && !cancelled()) {
+    const auto workers = std::min(static_cast<std::size_t>(std::max(1, jobs)), count);
+    for (std::size_t t = 0; t < workers; ++t) threads.emplace_back(worker);
+    // Progress about ten times a second, until the pieces are done or no longer handed out.
+    for (std::unique_lock lock(mutex); done.load() < count && !failed.load() && !cancelled();) {
         if (progress) progress(done.load(), count);
-        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        ended.wait_for(lock, std::chrono::milliseconds(100));
     }
     for (auto& t : threads) t.join();
     if (failed.load()) std::rethrow_exception(error);
