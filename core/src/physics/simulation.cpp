@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace archet {
 
@@ -219,10 +220,11 @@ void Simulation::compute_cross_link_forces() {
 #endif
 
 namespace {
-// The new position of MAT s from its two chain links: 2x − x⁻ + T²/m·(f_left − f_right).
+// The new position of MAT s from the forces of its two chain links:
+// 2x − x⁻ + T²/m·(f_left − f_right).
 inline double chain_update(const double* __restrict x, const double* __restrict xp,
-                           const double* __restrict c, const double* __restrict f, int s) {
-    return 2.0 * x[s] - xp[s] + c[s] * (f[s - 1] - f[s]);
+                           const double* __restrict c, int s, double left, double right) {
+    return 2.0 * x[s] - xp[s] + c[s] * (left - right);
 }
 
 // What an oscillator's spring and damper to ground take off that update (zero for a MAT
@@ -233,67 +235,90 @@ inline double ground_pull(const double* __restrict x, const double* __restrict x
     return c[s] * (k[s] * (x[s] - rest[s]) + z[s] * (x[s] - xp[s]));
 }
 
-// The chain links and the integration of every MAT of a level: the bulk of the work, in two
-// loops the compiler vectorises. Built for AVX2 and plain x86-64 and chosen at load time;
-// without FMA contraction both give the same bits. Transverse strings have no rest lengths,
-// so a variant skips them; a level with oscillators (a string with losses to ground, a body)
-// takes their pull in the same pass rather than in a second one over the same arrays.
+// The force of chain link j, between storage j and j + 1, from x[n] and x[n−1].
+template <bool kWithLength>
+inline double link_force(const double* x, const double* xp, const double* k, const double* z,
+                         const double* len, int j) {
+    const double d = x[j] - x[j + 1];
+    const double dp = xp[j] - xp[j + 1];
+    return kWithLength ? k[j] * (d - len[j]) + z[j] * (d - dp) : k[j] * d + z[j] * (d - dp);
+}
+
+// The chain links and the integration of every MAT of a level: the bulk of the work, in one
+// loop the compiler vectorises. Each MAT computes both its links' forces (every link twice,
+// to the same bits) rather than reading back forces just stored: a vector load that
+// straddles two vector stores still in flight waits for both to retire, which cost as much
+// as the rest of the loop. Built for AVX2 and plain x86-64 and chosen at load time; without
+// FMA contraction both give the same bits. Transverse strings have no rest lengths, so a
+// variant skips them; a level with oscillators (a string's losses to ground, a body) takes
+// their pull in the same loop.
 template <bool kWithLength, bool kWithGrounds>
 inline void chain_loops(int n, const double* __restrict x, const double* __restrict xp,
-                        double* __restrict xn, CompiledLevel& lv) {
-    const double* __restrict k = lv.chain_k.data();
-    const double* __restrict z = lv.chain_zdt.data();
-    const double* __restrict len = lv.chain_length.data();
-    const double* __restrict c = lv.coeff.data();
-    const double* __restrict gk = lv.ground_k.data();
-    const double* __restrict gz = lv.ground_zdt.data();
-    const double* __restrict rest = lv.ground_rest.data();
-    double* __restrict f = lv.chain_force.data();
-    // Chain links j = 0..n (0 and n are padding with zero coefficients).
-    for (int j = 0; j <= n; ++j) {
-        const double d = x[j] - x[j + 1];
-        const double dp = xp[j] - xp[j + 1];
-        f[j] = kWithLength ? k[j] * (d - len[j]) + z[j] * (d - dp) : k[j] * d + z[j] * (d - dp);
+                        double* __restrict xn, const double* __restrict k,
+                        const double* __restrict z, const double* __restrict len,
+                        const double* __restrict c, const double* __restrict gk,
+                        const double* __restrict gz, const double* __restrict rest,
+                        double* __restrict f) {
+    // Links 0 and n are padding with zero coefficients; f is kept for readouts and the books.
+    f[0] = link_force<kWithLength>(x, xp, k, z, len, 0);
+    for (int s = 1; s <= n; ++s) {
+        const double left = link_force<kWithLength>(x, xp, k, z, len, s - 1);
+        const double right = link_force<kWithLength>(x, xp, k, z, len, s);
+        f[s] = right;
+        const double update = chain_update(x, xp, c, s, left, right);
+        xn[s] = kWithGrounds ? update - ground_pull(x, xp, c, gk, gz, rest, s) : update;
     }
-    for (int s = 1; s <= n; ++s)
-        xn[s] = kWithGrounds ? chain_update(x, xp, c, f, s) - ground_pull(x, xp, c, gk, gz, rest, s)
-                             : chain_update(x, xp, c, f, s);
+}
+
+// Grounds are taken in the chain loop when most MATs have one (a string with losses to its
+// rest points): each costs the loop a few flops, which a few bridges do not repay.
+bool grounds_in_chain_loop(const CompiledLevel& lv) {
+    return 2 * lv.grounds.size() > static_cast<std::size_t>(lv.size);
 }
 
 ARCHET_AVX2_CLONES void integrate_chain(CompiledLevel& lv, double* xn) {
     const int current = lv.current;
     const double* x = lv.buffer[current].data();
     const double* xp = lv.buffer[CompiledLevel::before(current)].data();
-    const bool grounds = !lv.grounds.empty();
+    auto run = [&](auto with_length, auto with_grounds) {
+        chain_loops<with_length.value, with_grounds.value>(
+            lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(), lv.chain_length.data(),
+            lv.coeff.data(), lv.ground_k.data(), lv.ground_zdt.data(), lv.ground_rest.data(),
+            lv.chain_force.data());
+    };
+    using yes = std::true_type;
+    using no = std::false_type;
+    const bool grounds = grounds_in_chain_loop(lv);
     if (lv.has_chain_lengths)
-        grounds ? chain_loops<true, true>(lv.size, x, xp, xn, lv)
-                : chain_loops<true, false>(lv.size, x, xp, xn, lv);
+        grounds ? run(yes{}, yes{}) : run(yes{}, no{});
     else
-        grounds ? chain_loops<false, true>(lv.size, x, xp, xn, lv)
-                : chain_loops<false, false>(lv.size, x, xp, xn, lv);
+        grounds ? run(no{}, yes{}) : run(no{}, no{});
 }
 }  // namespace
 
 void Simulation::integrate(CompiledLevel& lv) {
     double* xn = lv.x_next();
+    const double* x = lv.x();
+    const double* xp = lv.x_prev();
     const double* c = lv.coeff.data();
     const double* f = lv.chain_force.data();
+    const double *gk = lv.ground_k.data(), *gz = lv.ground_zdt.data(),
+                 *rest = lv.ground_rest.data();
     integrate_chain(lv, xn);
     // The update is linear in force, so the other forces add their share afterwards, only
-    // where there are any: the other links' (`external`) and held forces of slower links.
-    // Where the chain pass took a ground's pull, such a MAT is updated again whole, in the
-    // order the scheme has always used (chain, other forces, ground), so its bits stay.
+    // where there are any: the other links' (`external`), held forces of slower links, and
+    // grounds the chain loop did not take. Where it took them, a MAT with other forces is
+    // updated again whole, in the scheme's order (chain, other forces, ground): same bits.
     const double* ext = lv.external.data();
     const double* held = lv.held.data();
-    if (lv.grounds.empty()) {
-        for (int s : lv.touched) xn[s] += c[s] * (ext[s] + held[s]);
-    } else {
-        const double* x = lv.x();
-        const double* xp = lv.x_prev();
+    if (grounds_in_chain_loop(lv)) {
         for (int s : lv.touched)
-            xn[s] = (chain_update(x, xp, c, f, s) + c[s] * (ext[s] + held[s])) -
-                    ground_pull(x, xp, c, lv.ground_k.data(), lv.ground_zdt.data(),
-                                lv.ground_rest.data(), s);
+            xn[s] = (chain_update(x, xp, c, s, f[s - 1], f[s]) + c[s] * (ext[s] + held[s])) -
+                    ground_pull(x, xp, c, gk, gz, rest, s);
+    } else {
+        for (int s : lv.touched) xn[s] += c[s] * (ext[s] + held[s]);
+        for (const auto& g : lv.grounds)
+            xn[g.index] -= ground_pull(x, xp, c, gk, gz, rest, g.index);
     }
     if (!lv.modal_points.empty()) {
         for (const auto& p : lv.modal_points) {
