@@ -98,6 +98,9 @@ ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
     result.dofs = sys.dofs;
     result.points = modal_point_reads(sys, model);
     const std::vector<bool> is_oscillator = support_dofs(sys, model);
+    // Built once: eigenvectors() converts the whole real Schur basis to a complex matrix at
+    // every call, which inside the loop cost a quarter of a long string's retuning.
+    const Eigen::MatrixXcd vectors = solver.eigenvectors();
     for (int r = 0; r < 2 * n; ++r) {
         const std::complex<double> root = solver.eigenvalues()[r];
         if (root.imag() <= 0.0) continue;  // one of each conjugate pair; real roots do not ring
@@ -107,7 +110,7 @@ ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
         mode.t60 = radius < 1.0 ? std::log(1e-3) / std::log(radius) * dt
                                 : std::numeric_limits<double>::infinity();
         // Shape: the x[n] half of the eigenvector, turned so its largest entry is real.
-        Eigen::VectorXcd v = solver.eigenvectors().col(r).head(n);
+        Eigen::VectorXcd v = vectors.col(r).head(n);
         Eigen::Index top = 0;
         v.cwiseAbs().maxCoeff(&top);
         v *= std::abs(v[top]) / v[top];
