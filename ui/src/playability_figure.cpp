@@ -84,10 +84,11 @@ void PlayabilityFigure::show_map(const MapGrid& grid, const std::vector<MapPoint
     }
     // Schelleng's lines, from the model's own string.
     QVector<double> beta, low, high;
+    const SchellengLines lines = schelleng_lines(model);
     for (int i = 0; i <= 100; ++i) {
         const double b = grid.position_min * 0.9 +
                          (grid.position_max * 1.1 - grid.position_min * 0.9) * i / 100.0;
-        const SchellengBounds s = schelleng_bounds(model, b, grid.speed);
+        const SchellengBounds s = lines.at(b, grid.speed);
         if (s.maximum > 0) beta << b, low << s.minimum, high << s.maximum;
     }
     if (!beta.isEmpty()) {

@@ -265,7 +265,7 @@ double bow_position(const Model& model) {
     return n > 0 && bowed > 0 ? static_cast<double>(bowed) / (n + 1) : 0.0;
 }
 
-SchellengBounds schelleng_bounds(const Model& model, double position, double speed) {
+SchellengLines schelleng_lines(const Model& model) {
     const Lia& bow = bow_module(model);
     const std::string centre = bowed_centre(model, bow);
     const Mat* bowed = model.find_mat(centre);
@@ -278,14 +278,25 @@ SchellengBounds schelleng_bounds(const Model& model, double position, double spe
     double t60 = 0;
     for (const auto& m : modes.modes)
         if (m.partial == 1) t60 = m.t60;
+    SchellengLines lines;
+    if (!bowed || !(k > 0) || !(t60 > 0) || !std::isfinite(t60)) return lines;
+    lines.impedance = std::sqrt(k * bowed->mass);
+    lines.resistance = 2 * lines.impedance * modes.fundamental * t60 / std::log(1000.0);
+    lines.friction_drop = bow.mu_static - bow.mu_dynamic;
+    return lines;
+}
+
+SchellengBounds SchellengLines::at(double position, double speed) const {
     SchellengBounds b;
-    if (!bowed || !(k > 0) || !(t60 > 0) || !std::isfinite(t60)) return b;
-    const double z0 = std::sqrt(k * bowed->mass);
-    const double r = 2 * z0 * modes.fundamental * t60 / std::log(1000.0);
-    const double dmu = bow.mu_static - bow.mu_dynamic;
+    if (!(impedance > 0)) return b;
+    const double z0 = impedance, r = resistance, dmu = friction_drop;
     b.maximum = 2 * z0 * speed / (position * dmu);
     b.minimum = z0 * z0 * speed / (2 * r * position * position * dmu);
     return b;
+}
+
+SchellengBounds schelleng_bounds(const Model& model, double position, double speed) {
+    return schelleng_lines(model).at(position, speed);
 }
 
 std::string format_map(const MapGrid& grid, const std::vector<MapPoint>& points,
@@ -295,8 +306,9 @@ std::string format_map(const MapGrid& grid, const std::vector<MapPoint>& points,
     s << "# archet-map " << grid.describe() << "\n";
     s << "index,force_n,position,regime,slips_per_period,pitch_cents,slip_share,centroid_hz,"
          "schelleng_min_n,schelleng_max_n\n";
+    const SchellengLines lines = schelleng_lines(model);
     for (const auto& p : points) {
-        const SchellengBounds b = schelleng_bounds(model, p.position, grid.speed);
+        const SchellengBounds b = lines.at(p.position, grid.speed);
         s << p.index << "," << p.force << "," << p.position << "," << to_string(p.analysis.regime)
           << "," << p.analysis.slips_per_period << "," << p.analysis.pitch_cents << ","
           << p.analysis.slip_share << "," << p.analysis.centroid << "," << b.minimum << ","

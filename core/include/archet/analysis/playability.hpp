@@ -74,12 +74,21 @@ std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs
 double force_for_press(const Model& model, double press);
 double bow_position(const Model& model);
 
-/// Schelleng's bounds for the model's string at bow position β and `speed`: below `minimum`
-/// several slips per period, above `maximum` raucous. From the string's impedance Z0 = √(k·m)
-/// at the bow, μs − μd, and the loss resistance R = 2·Z0·f1·τ of its first mode's decay.
+/// Schelleng's bounds at one bow position and speed: below `minimum` several slips per
+/// period, above `maximum` raucous (both zero for a model without a string to read).
 struct SchellengBounds {
     double minimum = 0, maximum = 0;
 };
+
+/// What Schelleng's lines need of the model's string: its impedance Z0 = √(k·m) at the bow,
+/// μs − μd, and the loss resistance R = 2·Z0·f1·τ of its first mode's decay. Reading them
+/// takes a modal analysis; the bounds at each position are then a formula.
+struct SchellengLines {
+    double impedance = 0, resistance = 0, friction_drop = 0;
+    SchellengBounds at(double position, double speed) const;
+};
+SchellengLines schelleng_lines(const Model& model);
+/// schelleng_lines(model).at(position, speed).
 SchellengBounds schelleng_bounds(const Model& model, double position, double speed);
 
 /// The map as CSV (first line: "# archet-map " + grid.describe()); and back.
