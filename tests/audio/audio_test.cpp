@@ -161,7 +161,7 @@ class JackServer : public ::testing::Test {
     pid_t pid_ = -1;
 };
 
-TEST_F(JackServer, SixtyMassStringAt64FramesForAMinuteWithoutXruns) {
+TEST_F(JackServer, TheFullBandwidth110HzStringAt64FramesForAMinuteWithoutXruns) {
     test::DeadlineWitness machine(kPeriodOf64Frames);
     const auto r =
         test::run_archet({"play", test::resource("models/bowed-string-110.json").string(),

@@ -28,7 +28,8 @@ class DeadlineWitness {
 
     void stop();
 
-    /// Wake-ups, on any CPU, later than half a period.
+    /// Deadlines missed on any CPU: a wake-up later than half a period misses one, and one
+    /// more for each whole period it was late.
     std::uint64_t missed() const { return missed_.load(); }
     double worst_lateness_us() const { return static_cast<double>(worst_ns_.load()) / 1000.0; }
     bool realtime() const { return realtime_.load(); }
