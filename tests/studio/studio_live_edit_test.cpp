@@ -12,7 +12,9 @@
 #include <sys/stat.h>
 #include <QApplication>
 #include <QDialogButtonBox>
+#include <QDir>
 #include <QListWidget>
+#include <QProgressDialog>
 #include <QPushButton>
 #include <QStatusBar>
 #include <QTest>
@@ -269,13 +271,25 @@ TEST_F(LiveEdit, ANewBowedString) {
     EXPECT_EQ(window->document().model().name, "bowed-string-330");
 }
 
-// Cancel stops the build: the string before it stays open and playing, and no message says
-// the build failed.
+// The progress window's Cancel stops the build: the string before it stays open and
+// playing, and no message says the build failed.
 TEST_F(LiveEdit, ANewBowedStringCancelled) {
     BowedStringOptions o;
     o.pitch = 110;  // the longest string: its band search plays 17 strokes of 214 masses
     ASSERT_TRUE(window->build_string(o));
-    window->cancel_string();
+    QProgressDialog* progress = nullptr;
+    ASSERT_TRUE(wait_until(
+        [&] {
+            progress = window->findChild<QProgressDialog*>();
+            return progress && progress->isVisible();
+        },
+        60000))
+        << "a progress window shows while the string builds";
+    EXPECT_TRUE(progress->grab().save(
+        QDir(ARCHET_ARTIFACT_DIR).filePath("studio-new-string-building.png")));
+    QPushButton* cancel = progress->findChild<QPushButton*>();
+    ASSERT_NE(cancel, nullptr);
+    QTest::mouseClick(cancel, Qt::LeftButton);
     ASSERT_TRUE(wait_until([&] { return !window->building_string(); }, 120000));
     EXPECT_EQ(window->document().model().name, "bowed-string-220-paper");
     EXPECT_EQ(loads, 1) << "nothing new was played";
