@@ -111,8 +111,9 @@ bool MainWindow::build_string(const BowedStringOptions& options) {
         tr("Building the string and finding its Helmholtz band…"), tr("Cancel"), 0, 0, this);
     string_progress_->setWindowTitle(tr("New bowed string"));
     string_progress_->setWindowModality(Qt::WindowModal);  // the model it replaces stays as is
-    string_progress_->setMinimumDuration(300);
+    string_progress_->setMinimumDuration(0);
     connect(string_progress_, &QProgressDialog::canceled, this, &MainWindow::cancel_string);
+    string_progress_->show();  // at once: it has no value to set that would show it later
     auto finish = [this] {
         string_progress_->deleteLater();
         string_progress_ = nullptr;
