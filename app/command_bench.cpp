@@ -11,6 +11,7 @@
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/model/model_validation.hpp"
+#include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
 #include "commands.hpp"
@@ -80,15 +81,18 @@ int run_bench(const BenchArguments& a) {
         std::printf(
             "{\"model\": \"%s\", \"ns_per_sample\": %.3f, \"best_ns_per_sample\": %.3f, "
             "\"realtime_load\": %.6f, \"masses\": %zu, \"links\": %zu, "
-            "\"sample_rate\": %.0f, \"steps\": %llu, \"checksum\": %.17g}\n",
+            "\"sample_rate\": %.0f, \"steps\": %llu, \"chain_build\": \"%s\", "
+            "\"checksum\": %.17g}\n",
             model.name.c_str(), ns, best, load, model.mats.size(), model.lias.size(),
-            sim.sample_rate(), static_cast<unsigned long long>(steps), sink);
+            sim.sample_rate(), static_cast<unsigned long long>(steps),
+            chain_build_name(chosen_chain_build()), sink);
     } else {
         std::printf(
             "%s: %zu masses, %zu links: %.2f ns per sample (median of %d rounds, best %.2f), "
-            "%.2f ns per mass, real-time load %.2f %% at %.0f Hz\n",
+            "%.2f ns per mass, real-time load %.2f %% at %.0f Hz (%s chain loop)\n",
             model.name.c_str(), model.mats.size(), model.lias.size(), ns, kRounds, best,
-            ns / model.mats.size(), 100 * load, sim.sample_rate());
+            ns / model.mats.size(), 100 * load, sim.sample_rate(),
+            chain_build_name(chosen_chain_build()));
     }
     return 0;
 }

@@ -79,7 +79,7 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
     CompiledLevel& lv = c.levels[li];
     lv.size = static_cast<int>(order.size());
     const int storage = lv.size + 2;
-    for (auto& b : lv.buffer) b.assign(storage, 0.0);
+    for (auto& b : lv.buffer) b.assign(storage + CompiledLevel::kReadAhead, 0.0);
     lv.coeff.assign(storage, 0.0);
     lv.mass.assign(storage, 0.0);
     lv.external.assign(storage, 0.0);

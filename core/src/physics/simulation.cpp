@@ -1,5 +1,7 @@
 #include "archet/physics/simulation.hpp"
 
+#include "archet/physics/chain_kernel.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <type_traits>
@@ -211,14 +213,6 @@ void Simulation::compute_cross_link_forces() {
     }
 }
 
-// The AVX2 and plain builds of the chain loops, chosen at load time by an ifunc resolver.
-// ThreadSanitizer instruments the resolver, which runs before it is set up: there, one build.
-#if defined(__SANITIZE_THREAD__)
-#define ARCHET_AVX2_CLONES
-#else
-#define ARCHET_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
-#endif
-
 namespace {
 // The new position of MAT s from the forces of its two chain links:
 // 2x − x⁻ + T²/m·(f_left − f_right).
@@ -233,66 +227,6 @@ inline double ground_pull(const double* __restrict x, const double* __restrict x
                           const double* __restrict c, const double* __restrict k,
                           const double* __restrict z, const double* __restrict rest, int s) {
     return c[s] * (k[s] * (x[s] - rest[s]) + z[s] * (x[s] - xp[s]));
-}
-
-// The force of chain link j, between storage j and j + 1, from x[n] and x[n−1].
-template <bool kWithLength>
-inline double link_force(const double* x, const double* xp, const double* k, const double* z,
-                         const double* len, int j) {
-    const double d = x[j] - x[j + 1];
-    const double dp = xp[j] - xp[j + 1];
-    return kWithLength ? k[j] * (d - len[j]) + z[j] * (d - dp) : k[j] * d + z[j] * (d - dp);
-}
-
-// The chain links and the integration of every MAT of a level: the bulk of the work, in one
-// loop the compiler vectorises. Each MAT computes both its links' forces (every link twice,
-// to the same bits) rather than reading back forces just stored: a vector load that
-// straddles two vector stores still in flight waits for both to retire, which cost as much
-// as the rest of the loop. Built for AVX2 and plain x86-64 and chosen at load time; without
-// FMA contraction both give the same bits. Transverse strings have no rest lengths, so a
-// variant skips them; a level with oscillators (a string's losses to ground, a body) takes
-// their pull in the same loop.
-template <bool kWithLength, bool kWithGrounds>
-inline void chain_loops(int n, const double* __restrict x, const double* __restrict xp,
-                        double* __restrict xn, const double* __restrict k,
-                        const double* __restrict z, const double* __restrict len,
-                        const double* __restrict c, const double* __restrict gk,
-                        const double* __restrict gz, const double* __restrict rest,
-                        double* __restrict f) {
-    // Links 0 and n are padding with zero coefficients; f is kept for readouts and the books.
-    f[0] = link_force<kWithLength>(x, xp, k, z, len, 0);
-    for (int s = 1; s <= n; ++s) {
-        const double left = link_force<kWithLength>(x, xp, k, z, len, s - 1);
-        const double right = link_force<kWithLength>(x, xp, k, z, len, s);
-        f[s] = right;
-        const double update = chain_update(x, xp, c, s, left, right);
-        xn[s] = kWithGrounds ? update - ground_pull(x, xp, c, gk, gz, rest, s) : update;
-    }
-}
-
-// Grounds are taken in the chain loop when most MATs have one (a string with losses to its
-// rest points): each costs the loop a few flops, which a few bridges do not repay.
-bool grounds_in_chain_loop(const CompiledLevel& lv) {
-    return 2 * lv.grounds.size() > static_cast<std::size_t>(lv.size);
-}
-
-ARCHET_AVX2_CLONES void integrate_chain(CompiledLevel& lv, double* xn) {
-    const int current = lv.current;
-    const double* x = lv.buffer[current].data();
-    const double* xp = lv.buffer[CompiledLevel::before(current)].data();
-    auto run = [&](auto with_length, auto with_grounds) {
-        chain_loops<with_length.value, with_grounds.value>(
-            lv.size, x, xp, xn, lv.chain_k.data(), lv.chain_zdt.data(), lv.chain_length.data(),
-            lv.coeff.data(), lv.ground_k.data(), lv.ground_zdt.data(), lv.ground_rest.data(),
-            lv.chain_force.data());
-    };
-    using yes = std::true_type;
-    using no = std::false_type;
-    const bool grounds = grounds_in_chain_loop(lv);
-    if (lv.has_chain_lengths)
-        grounds ? run(yes{}, yes{}) : run(yes{}, no{});
-    else
-        grounds ? run(no{}, yes{}) : run(no{}, no{});
 }
 }  // namespace
 

@@ -17,7 +17,8 @@ void Simulation::for_each_state(Self& self, Field&& field) {
     all(self.active_), all(self.countdown_), all(self.period_done_), all(self.dissipated_);
     for (auto& lv : self.model_.levels) {
         field(lv.current);
-        for (auto& buffer : lv.buffer) all(buffer);
+        for (auto& buffer : lv.buffer)  // the storage, not the zeros read ahead
+            for (int s = 0; s < lv.size + 2; ++s) field(buffer[s]);
         // Parameters may have changed while playing; forces carry over between steps.
         all(lv.coeff), all(lv.mass), all(lv.external), all(lv.held);
         all(lv.chain_k), all(lv.chain_zdt), all(lv.chain_length), all(lv.chain_force);

@@ -99,7 +99,10 @@ struct CompiledLevel {
     int divider = 1;
     double inverse_divider = 1;
     double dt = 0;
-    int size = 0;                   ///< MATs at this level
+    int size = 0;  ///< MATs at this level
+    /// Zeros after the storage of each position buffer: the chain loop reads the vector
+    /// after the one it updates (see chain_kernel.cpp), up to 8 doubles past the last MAT.
+    static constexpr int kReadAhead = 8;
     std::vector<double> buffer[3];  ///< positions at n+1, n, n−1 by rotation
     int current = 0;                ///< which buffer holds x[n]
     std::vector<double> coeff;      ///< T² / m, zero for immovable MATs

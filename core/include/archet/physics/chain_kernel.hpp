@@ -1,0 +1,26 @@
+#pragma once
+// The chain loop of a rate level: every chain link's force and every MAT's update, the bulk
+// of a step. Built for several instruction sets that all give the same bits.
+
+#include "archet/physics/compiled_model.hpp"
+
+namespace archet {
+
+enum class ChainBuild { Plain, Avx2, Avx512 };
+
+/// The widest build this CPU runs, chosen once when the library loads.
+ChainBuild chosen_chain_build();
+bool chain_build_runs_here(ChainBuild build);
+const char* chain_build_name(ChainBuild build);  ///< "plain", "avx2", "avx512"
+
+/// Whether the chain loop also takes the level's grounds: when most MATs have one (a string
+/// with losses to its rest points); a few bridges do not repay the loop's extra flops.
+bool grounds_in_chain_loop(const CompiledLevel& level);
+
+/// Writes x[n+1] of every MAT of the level into `xn` from its chain links (and its grounds,
+/// see grounds_in_chain_loop()), and each chain link's force into `chain_force`.
+void integrate_chain(CompiledLevel& level, double* xn);
+/// The same with a given build, which must run here (for tests and benchmarks).
+void integrate_chain(CompiledLevel& level, double* xn, ChainBuild build);
+
+}  // namespace archet

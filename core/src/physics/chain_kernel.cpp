@@ -1,0 +1,246 @@
+// The chain loop, written once over vectors of W doubles and built for AVX-512 (W = 8), AVX2
+// (W = 4) and plain x86-64 (W = 2); the widest the CPU runs is chosen once, at load time.
+// Each lane does what the scalar scheme does, in the same order and without FMA contraction,
+// so every build gives the same bits (the golden renders check it).
+//
+// Why vectors by hand: each MAT needs the force of the link on its left, which is the force
+// the MAT before it computed on its right. Reading it back from memory makes a load straddle
+// two stores still in flight, and computing it twice costs a third of the loop; a shift
+// across lanes hands it over in a register. The same shift gives x[s + 1] from the vector
+// already loaded, so each array is read once, in whole aligned-or-not vectors.
+
+#include "archet/physics/chain_kernel.hpp"
+
+#include <cstring>
+#include <stdexcept>
+#include <type_traits>
+
+namespace archet {
+
+namespace {
+
+typedef double Doubles8 __attribute__((vector_size(64)));
+typedef double Doubles4 __attribute__((vector_size(32)));
+typedef double Doubles2 __attribute__((vector_size(16)));
+
+// {a[W−1], b[0], …, b[W−2]}: the lanes of b moved up one, a's last lane entering.
+[[gnu::always_inline]] inline Doubles8 shift_in(Doubles8 a, Doubles8 b) {
+    return __builtin_shufflevector(a, b, 7, 8, 9, 10, 11, 12, 13, 14);
+}
+[[gnu::always_inline]] inline Doubles4 shift_in(Doubles4 a, Doubles4 b) {
+    return __builtin_shufflevector(a, b, 3, 4, 5, 6);
+}
+[[gnu::always_inline]] inline Doubles2 shift_in(Doubles2 a, Doubles2 b) {
+    return __builtin_shufflevector(a, b, 1, 2);
+}
+
+// {a[1], …, a[W−1], b[0]}: a's lanes moved down one, b's first lane entering.
+[[gnu::always_inline]] inline Doubles8 next_of(Doubles8 a, Doubles8 b) {
+    return __builtin_shufflevector(a, b, 1, 2, 3, 4, 5, 6, 7, 8);
+}
+[[gnu::always_inline]] inline Doubles4 next_of(Doubles4 a, Doubles4 b) {
+    return __builtin_shufflevector(a, b, 1, 2, 3, 4);
+}
+[[gnu::always_inline]] inline Doubles2 next_of(Doubles2 a, Doubles2 b) {
+    return __builtin_shufflevector(a, b, 1, 2);
+}
+
+template <int W>
+using Doubles =
+    std::conditional_t<W == 8, Doubles8, std::conditional_t<W == 4, Doubles4, Doubles2>>;
+
+template <class V>
+[[gnu::always_inline]] inline V load(const double* p) {
+    V v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+}
+
+template <class V>
+[[gnu::always_inline]] inline void store(double* p, V v) {
+    std::memcpy(p, &v, sizeof v);
+}
+
+struct ChainArrays {
+    const double *x, *xp;          ///< x[n], x[n−1]
+    double* xn;                    ///< x[n+1]
+    const double *k, *z, *length;  ///< chain link j joins storage j and j + 1
+    const double* c;               ///< T²/m
+    const double *ground_k, *ground_z, *rest;
+    double* force;  ///< chain link forces, kept for the readouts and the books
+};
+
+// The force of a chain link from the distance d = x[j] − x[j+1] now and dp a step before.
+template <bool kWithLength, class T>
+[[gnu::always_inline]] inline T link_force(T d, T dp, T k, T z, T length) {
+    if constexpr (kWithLength)
+        return k * (d - length) + z * (d - dp);
+    else
+        return k * d + z * (d - dp);
+}
+
+// A MAT's new position from its two chain links (2x − x⁻ + T²/m·(f_left − f_right)), less
+// what its spring and damper to ground take off.
+template <bool kWithGrounds, class T>
+[[gnu::always_inline]] inline T mat_update(T x, T xp, T c, T left, T right, T gk, T gz, T rest) {
+    const T update = 2.0 * x - xp + c * (left - right);
+    if constexpr (kWithGrounds)
+        return update - c * (gk * (x - rest) + gz * (x - xp));
+    else
+        return update;
+}
+
+// MATs 1 … n; storage 0 and n + 1 are padding, and links 0 and n have zero coefficients.
+template <int W, bool kWithLength, bool kWithGrounds>
+[[gnu::always_inline]] inline void chain_loop(const ChainArrays& arrays, int n) {
+    using V = Doubles<W>;
+    // Local restrict copies: the vector stores are byte copies, which the compiler would
+    // otherwise assume may overwrite the pointers themselves, reloading them every round.
+    const double* __restrict x = arrays.x;
+    const double* __restrict xp = arrays.xp;
+    double* __restrict xn = arrays.xn;
+    const double* __restrict k = arrays.k;
+    const double* __restrict z = arrays.z;
+    const double* __restrict length = arrays.length;
+    const double* __restrict c = arrays.c;
+    const double* __restrict ground_k = arrays.ground_k;
+    const double* __restrict ground_z = arrays.ground_z;
+    const double* __restrict rest = arrays.rest;
+    double* __restrict force = arrays.force;
+    auto scalar_link = [&](int j) {
+        return link_force<kWithLength>(x[j] - x[j + 1], xp[j] - xp[j + 1], k[j], z[j],
+                                       kWithLength ? length[j] : 0.0);
+    };
+    double left = scalar_link(0);
+    force[0] = left;
+    int s = 1;
+    // Each round also reads the vector after its own from x and x⁻, which runs into the
+    // zeros kept after the storage (CompiledLevel::kReadAhead ≥ W − 1).
+    static_assert(CompiledLevel::kReadAhead >= W - 1);
+    if (s + W - 1 <= n) {
+        V forces{};  // the last lane carries the left link of the round's first MAT
+        forces[W - 1] = left;
+        V xs = load<V>(x + s), xps = load<V>(xp + s);
+        const V zero{};
+        for (; s + W - 1 <= n; s += W) {
+            const V x_after = load<V>(x + s + W), xp_after = load<V>(xp + s + W);
+            const V d = xs - next_of(xs, x_after), dp = xps - next_of(xps, xp_after);
+            const V right = link_force<kWithLength>(d, dp, load<V>(k + s), load<V>(z + s),
+                                                    kWithLength ? load<V>(length + s) : zero);
+            store(force + s, right);
+            store(xn + s,
+                  mat_update<kWithGrounds>(xs, xps, load<V>(c + s), shift_in(forces, right), right,
+                                           kWithGrounds ? load<V>(ground_k + s) : zero,
+                                           kWithGrounds ? load<V>(ground_z + s) : zero,
+                                           kWithGrounds ? load<V>(rest + s) : zero));
+            forces = right, xs = x_after, xps = xp_after;
+        }
+        left = forces[W - 1];
+    }
+    for (; s <= n; ++s) {
+        const double right = scalar_link(s);
+        force[s] = right;
+        xn[s] = mat_update<kWithGrounds>(
+            x[s], xp[s], c[s], left, right, kWithGrounds ? ground_k[s] : 0.0,
+            kWithGrounds ? ground_z[s] : 0.0, kWithGrounds ? rest[s] : 0.0);
+        left = right;
+    }
+}
+
+template <int W>
+[[gnu::always_inline]] inline void chain_variant(const ChainArrays& a, int n, bool lengths,
+                                                 bool grounds) {
+    if (lengths)
+        grounds ? chain_loop<W, true, true>(a, n) : chain_loop<W, true, false>(a, n);
+    else
+        grounds ? chain_loop<W, false, true>(a, n) : chain_loop<W, false, false>(a, n);
+}
+
+using ChainLoop = void (*)(const ChainArrays&, int, bool, bool);
+
+__attribute__((target("avx512f,prefer-vector-width=512"))) void chain_avx512(const ChainArrays& a,
+                                                                             int n, bool lengths,
+                                                                             bool grounds) {
+    chain_variant<8>(a, n, lengths, grounds);
+}
+
+__attribute__((target("avx2"))) void chain_avx2(const ChainArrays& a, int n, bool lengths,
+                                                bool grounds) {
+    chain_variant<4>(a, n, lengths, grounds);
+}
+
+void chain_plain(const ChainArrays& a, int n, bool lengths, bool grounds) {
+    chain_variant<2>(a, n, lengths, grounds);
+}
+
+ChainBuild chosen_at_load() {
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f")) return ChainBuild::Avx512;
+    if (__builtin_cpu_supports("avx2")) return ChainBuild::Avx2;
+    return ChainBuild::Plain;
+}
+
+// Chosen by a plain CPU check rather than an ifunc resolver (ThreadSanitizer instruments
+// resolvers, which run before it is set up), before main(): the real-time thread never
+// makes the choice.
+const ChainBuild chosen = chosen_at_load();
+const ChainLoop chosen_loop = chosen == ChainBuild::Avx512 ? chain_avx512
+                              : chosen == ChainBuild::Avx2 ? chain_avx2
+                                                           : chain_plain;
+
+}  // namespace
+
+bool grounds_in_chain_loop(const CompiledLevel& lv) {
+    return 2 * lv.grounds.size() > static_cast<std::size_t>(lv.size);
+}
+
+namespace {
+void run_chain(ChainLoop loop, CompiledLevel& lv, double* xn) {
+    const ChainArrays arrays{lv.x(),
+                             lv.x_prev(),
+                             xn,
+                             lv.chain_k.data(),
+                             lv.chain_zdt.data(),
+                             lv.chain_length.data(),
+                             lv.coeff.data(),
+                             lv.ground_k.data(),
+                             lv.ground_zdt.data(),
+                             lv.ground_rest.data(),
+                             lv.chain_force.data()};
+    loop(arrays, lv.size, lv.has_chain_lengths, grounds_in_chain_loop(lv));
+}
+}  // namespace
+
+ChainBuild chosen_chain_build() {
+    return chosen;
+}
+
+bool chain_build_runs_here(ChainBuild build) {
+    return build <= chosen;
+}
+
+const char* chain_build_name(ChainBuild build) {
+    switch (build) {
+        case ChainBuild::Avx512:
+            return "avx512";
+        case ChainBuild::Avx2:
+            return "avx2";
+        case ChainBuild::Plain:
+            break;
+    }
+    return "plain";
+}
+
+void integrate_chain(CompiledLevel& lv, double* xn) {
+    run_chain(chosen_loop, lv, xn);
+}
+
+void integrate_chain(CompiledLevel& lv, double* xn, ChainBuild build) {
+    if (!chain_build_runs_here(build)) throw std::logic_error("chain build not run here");
+    run_chain(build == ChainBuild::Avx512 ? chain_avx512
+              : build == ChainBuild::Avx2 ? chain_avx2
+                                          : chain_plain,
+              lv, xn);
+}
+
+}  // namespace archet
