@@ -31,6 +31,16 @@ void BM_BowedString(benchmark::State& state) {
 }
 BENCHMARK(BM_BowedString)->Arg(110)->Arg(220)->Arg(440)->Arg(880);
 
+// The stored energy the engine's energy probe reads: O(N), like a step.
+void BM_StoredEnergy(benchmark::State& state) {
+    archet::BowedStringOptions o;
+    o.pitch = static_cast<double>(state.range(0));
+    archet::Simulation sim(archet::compile(archet::build_bowed_string(o)));
+    for (int i = 0; i < 9600; ++i) sim.step();
+    for (auto _ : state) benchmark::DoNotOptimize(sim.stored_energy());
+}
+BENCHMARK(BM_StoredEnergy)->Arg(110)->Arg(220);
+
 void BM_BowedChain(benchmark::State& state) {
     run_steps(state, archet::build_bowed_chain(static_cast<int>(state.range(0))));
 }

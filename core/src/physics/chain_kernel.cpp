@@ -51,9 +51,13 @@ using Doubles =
 
 template <class V>
 [[gnu::always_inline]] inline V load(const double* p) {
-    V v;
-    std::memcpy(&v, p, sizeof v);
-    return v;
+    if constexpr (std::is_same_v<V, double>) {
+        return *p;
+    } else {
+        V v;
+        std::memcpy(&v, p, sizeof v);
+        return v;
+    }
 }
 
 template <class V>
@@ -156,7 +160,41 @@ template <int W>
         grounds ? chain_loop<W, false, true>(a, n) : chain_loop<W, false, false>(a, n);
 }
 
+// What MAT s of a level stores, with its chain link to s + 1 and its ground: kinetic
+// ½m((x[n]−x[n−1])/T)², ½K·d[n]·d[n−1] − (Z/4T)·(d[n]−d[n−1])² for the link, and the same
+// for the spring and damper to ground. Padding and absent elements have zero coefficients.
+template <class T>
+[[gnu::always_inline]] inline T mat_energy(const CompiledLevel& lv, const double* x,
+                                           const double* xp, int s) {
+    const T xs = load<T>(x + s), xps = load<T>(xp + s);
+    const T v = (xs - xps) / lv.dt;
+    const T d = xs - load<T>(x + s + 1), dp = xps - load<T>(xp + s + 1);
+    const T length = load<T>(lv.chain_length.data() + s);
+    const T u = d - dp;
+    const T rest = load<T>(lv.ground_rest.data() + s), g = xs - xps;
+    return 0.5 * load<T>(lv.mass.data() + s) * v * v +
+           (0.5 * load<T>(lv.chain_k.data() + s) * (d - length) * (dp - length) -
+            0.25 * load<T>(lv.chain_zdt.data() + s) * u * u) +
+           (0.5 * load<T>(lv.ground_k.data() + s) * (xs - rest) * (xps - rest) -
+            0.25 * load<T>(lv.ground_zdt.data() + s) * g * g);
+}
+
+// Σ mat_energy over MATs 1 … size in eight interleaved partial sums (MAT s in lane
+// (s − 1) mod 8), added up in a fixed tree: the same bits on every build, and eight
+// independent additions in flight instead of one chain of them.
+[[gnu::always_inline]] inline double level_energy(const CompiledLevel& lv) {
+    const double* x = lv.x();
+    const double* xp = lv.x_prev();
+    Doubles8 sums{};
+    int s = 1;
+    for (; s + 7 <= lv.size; s += 8) sums += mat_energy<Doubles8>(lv, x, xp, s);
+    for (int lane = 0; s <= lv.size; ++s, ++lane) sums[lane] += mat_energy<double>(lv, x, xp, s);
+    return ((sums[0] + sums[1]) + (sums[2] + sums[3])) +
+           ((sums[4] + sums[5]) + (sums[6] + sums[7]));
+}
+
 using ChainLoop = void (*)(const ChainArrays&, int, bool, bool);
+using EnergySum = double (*)(const CompiledLevel&);
 
 __attribute__((target("avx512f,prefer-vector-width=512"))) void chain_avx512(const ChainArrays& a,
                                                                              int n, bool lengths,
@@ -173,6 +211,21 @@ void chain_plain(const ChainArrays& a, int n, bool lengths, bool grounds) {
     chain_variant<2>(a, n, lengths, grounds);
 }
 
+// The energy is summed in eight lanes on every build (the plain one in pairs), so that
+// each gives the same bits.
+__attribute__((target("avx512f,prefer-vector-width=512"))) double energy_avx512(
+    const CompiledLevel& lv) {
+    return level_energy(lv);
+}
+
+__attribute__((target("avx2"))) double energy_avx2(const CompiledLevel& lv) {
+    return level_energy(lv);
+}
+
+double energy_plain(const CompiledLevel& lv) {
+    return level_energy(lv);
+}
+
 ChainBuild chosen_at_load() {
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx512f")) return ChainBuild::Avx512;
@@ -187,6 +240,9 @@ const ChainBuild chosen = chosen_at_load();
 const ChainLoop chosen_loop = chosen == ChainBuild::Avx512 ? chain_avx512
                               : chosen == ChainBuild::Avx2 ? chain_avx2
                                                            : chain_plain;
+const EnergySum chosen_energy = chosen == ChainBuild::Avx512 ? energy_avx512
+                                : chosen == ChainBuild::Avx2 ? energy_avx2
+                                                             : energy_plain;
 
 }  // namespace
 
@@ -229,6 +285,17 @@ const char* chain_build_name(ChainBuild build) {
             break;
     }
     return "plain";
+}
+
+double level_stored_energy(const CompiledLevel& lv) {
+    return chosen_energy(lv);
+}
+
+double level_stored_energy(const CompiledLevel& lv, ChainBuild build) {
+    if (!chain_build_runs_here(build)) throw std::logic_error("chain build not run here");
+    return build == ChainBuild::Avx512 ? energy_avx512(lv)
+           : build == ChainBuild::Avx2 ? energy_avx2(lv)
+                                       : energy_plain(lv);
 }
 
 void integrate_chain(CompiledLevel& lv, double* xn) {

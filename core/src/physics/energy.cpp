@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "archet/physics/chain_kernel.hpp"
+
 namespace archet {
 
 void Simulation::account(CompiledLevel& lv) {
@@ -62,23 +64,11 @@ double Simulation::stored_energy() const {
             const double u = (x[a] - x[b]) - (xp[a] - xp[b]);
             return 0.25 * zdt * u * u;
         };
-        for (int s = 1; s <= lv.size; ++s) {
-            const double v = (x[s] - xp[s]) / lv.dt;
-            e += 0.5 * lv.mass[s] * v * v;
-        }
-        for (int j = 1; j < lv.size; ++j)
-            e += 0.5 * lv.chain_k[j] * (x[j] - x[j + 1] - lv.chain_length[j]) *
-                     (xp[j] - xp[j + 1] - lv.chain_length[j]) -
-                 in_flight(lv.chain_zdt[j], j, j + 1);
+        e += level_stored_energy(lv);  // masses, chain links and grounds
         for (const auto& l : lv.links) {
             const double d = x[l.a] - x[l.b] - l.length, dp = xp[l.a] - xp[l.b] - l.length;
             if (!l.contact || (d > 0 && dp > 0)) e += 0.5 * l.k * d * dp;
             if (!l.contact || d > 0) e -= in_flight(l.zdt, l.a, l.b);
-        }
-        for (const auto& g : lv.grounds) {
-            const double u = x[g.index] - xp[g.index], rest = lv.ground_rest[g.index];
-            e += 0.5 * lv.ground_k[g.index] * (x[g.index] - rest) * (xp[g.index] - rest) -
-                 0.25 * lv.ground_zdt[g.index] * u * u;
         }
         for (int b : lv.bows) {
             const auto& bow = model_.bows[b];

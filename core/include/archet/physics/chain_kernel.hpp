@@ -1,6 +1,7 @@
 #pragma once
-// The chain loop of a rate level: every chain link's force and every MAT's update, the bulk
-// of a step. Built for several instruction sets that all give the same bits.
+// The loops over every MAT of a rate level: the chain loop (every chain link's force and
+// every MAT's update, the bulk of a step) and the stored energy of the level's masses, chain
+// links and grounds. Built for several instruction sets that all give the same bits.
 
 #include "archet/physics/compiled_model.hpp"
 
@@ -22,5 +23,12 @@ bool grounds_in_chain_loop(const CompiledLevel& level);
 void integrate_chain(CompiledLevel& level, double* xn);
 /// The same with a given build, which must run here (for tests and benchmarks).
 void integrate_chain(CompiledLevel& level, double* xn, ChainBuild build);
+
+/// Kinetic energy of the level's MATs plus the energy stored in its chain links and grounds
+/// (J), in the discrete-consistent form of Simulation::stored_energy(): summed over the MATs
+/// in eight interleaved partial sums, then added in a fixed tree.
+double level_stored_energy(const CompiledLevel& level);
+/// The same with a given build, which must run here (for tests).
+double level_stored_energy(const CompiledLevel& level, ChainBuild build);
 
 }  // namespace archet
