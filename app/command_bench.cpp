@@ -27,6 +27,7 @@ struct BenchArguments {
     int chain = 0;
     double seconds = 2.0;
     bool json = false;
+    bool probes = false;  ///< read every probe after each step, as the engine does
 };
 
 int run_bench(const BenchArguments& a) {
@@ -53,7 +54,13 @@ int run_bench(const BenchArguments& a) {
     // Warm up past the bow's landing so the friction runs in its steady state.
     const auto warm = static_cast<std::uint64_t>(0.2 * sim.sample_rate());
     double sink = 0;
-    for (std::uint64_t i = 0; i < warm; ++i) sim.step(), sink += sim.output();
+    const std::size_t probe_count = a.probes ? sim.probe_count() : 0;
+    auto step = [&] {
+        sim.step();
+        sink += sim.output();
+        for (std::size_t p = 0; p < probe_count; ++p) sink += sim.probe(p);
+    };
+    for (std::uint64_t i = 0; i < warm; ++i) step();
     // Several rounds, reporting the median (and the best): one long window on a shared
     // machine measures its neighbours as much as the model.
     using clock = std::chrono::steady_clock;
@@ -66,7 +73,7 @@ int run_bench(const BenchArguments& a) {
         std::uint64_t round_steps = 0;
         double elapsed = 0;
         do {
-            for (std::uint64_t i = 0; i < batch; ++i) sim.step(), sink += sim.output();
+            for (std::uint64_t i = 0; i < batch; ++i) step();
             round_steps += batch;
             elapsed = std::chrono::duration<double>(clock::now() - start).count();
         } while (elapsed < a.seconds / kRounds);
@@ -89,10 +96,10 @@ int run_bench(const BenchArguments& a) {
     } else {
         std::printf(
             "%s: %zu masses, %zu links: %.2f ns per sample (median of %d rounds, best %.2f), "
-            "%.2f ns per mass, real-time load %.2f %% at %.0f Hz (%s chain loop)\n",
+            "%.2f ns per mass, real-time load %.2f %% at %.0f Hz (%s chain loop%s)\n",
             model.name.c_str(), model.mats.size(), model.lias.size(), ns, kRounds, best,
             ns / model.mats.size(), 100 * load, sim.sample_rate(),
-            chain_build_name(chosen_chain_build()));
+            chain_build_name(chosen_chain_build()), a.probes ? ", probes read" : "");
     }
     return 0;
 }
@@ -107,6 +114,9 @@ void add_bench_command(CLI::App& app, Action& action) {
     cmd->add_option("--seconds", a->seconds, "Wall-clock seconds to measure (s)")
         ->check(finite_range(0, 600, "s", true))
         ->capture_default_str();
+    cmd->add_flag("--probes", a->probes,
+                  "Also read every probe of the model after each step, as the engine does for "
+                  "its scopes and takes");
     cmd->add_flag("--json", a->json,
                   "Print one JSON object: ns_per_sample, realtime_load, masses, links");
     cmd->callback([&action, a] { action = [a] { return run_bench(*a); }; });

@@ -2,9 +2,12 @@
 
 #include <benchmark/benchmark.h>
 
+#include <memory>
+
 #include "archet/builders/bowed_chain.hpp"
 #include "archet/builders/bowed_string.hpp"
 #include "archet/common/denormal_guard.hpp"
+#include "archet/files/model_file.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
@@ -57,6 +60,42 @@ void BM_Validate(benchmark::State& state) {
     for (auto _ : state) archet::validate_model(model);
 }
 BENCHMARK(BM_Validate)->Arg(5000)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+// What the engine's control thread does to swap a model in (control_thread.cpp, nrt_load), up
+// to the pointer it hands the real-time thread: parse the file, validate, compile, and build
+// the Simulation from a copy (the engine keeps the compiled model to resolve parameters).
+// Its cost check steps a further copy for at most 20 ms; the hand-over itself is one
+// atomic exchange, taken at the next block boundary.
+void BM_ModelSwap(benchmark::State& state) {
+    const std::string text =
+        archet::format_model(archet::build_bowed_chain(static_cast<int>(state.range(0))));
+    for (auto _ : state) {
+        archet::Model model = archet::parse_model(text);
+        archet::validate_model(model);
+        const archet::CompiledModel compiled = archet::compile(model);
+        auto running = std::make_unique<archet::Simulation>(compiled);
+        benchmark::DoNotOptimize(running.get());
+    }
+}
+BENCHMARK(BM_ModelSwap)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+// The part of the swap after validation: compile, and the Simulation built from a copy.
+void BM_CompileAndPrepare(benchmark::State& state) {
+    const archet::Model model = archet::build_bowed_chain(static_cast<int>(state.range(0)));
+    for (auto _ : state) {
+        const archet::CompiledModel compiled = archet::compile(model);
+        auto running = std::make_unique<archet::Simulation>(compiled);
+        benchmark::DoNotOptimize(running.get());
+    }
+}
+BENCHMARK(BM_CompileAndPrepare)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+void BM_ParseModel(benchmark::State& state) {
+    const std::string text =
+        archet::format_model(archet::build_bowed_chain(static_cast<int>(state.range(0))));
+    for (auto _ : state) benchmark::DoNotOptimize(archet::parse_model(text));
+}
+BENCHMARK(BM_ParseModel)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
