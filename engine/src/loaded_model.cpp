@@ -48,6 +48,8 @@ std::unique_ptr<LoadedModel> nrt_prepare_model(const Model& model, double sample
     for (const std::string& id : string_points(model))
         if (loaded->shape.size() < ipc::kMaxShapePoints)
             loaded->shape.push_back(loaded->resolver.mat_slots.at(id));
+    for (const CompiledProbe& p : loaded->resolver.probes)
+        loaded->has_energy_probe = loaded->has_energy_probe || p.kind == ProbeKind::Energy;
     loaded->sequence = sequence;
     loaded->generation = generation;
     return loaded;

@@ -25,7 +25,9 @@ struct LoadedModel {
     std::optional<HapticLoop> haptic;  ///< with a device: its loop and link for this model
     std::uint64_t haptic_divider = 1;  ///< the gesture points' level, for takes
     double haptic_dt = 0;
-    std::uint64_t generation = 0;  ///< which load of the control thread it comes from
+    bool has_energy_probe = false;  ///< any probe of kind Energy
+    double held_energy = 0;         ///< J, the last stored energy the scopes were given
+    std::uint64_t generation = 0;   ///< which load of the control thread it comes from
     std::uint32_t sequence = 0;
 };
 

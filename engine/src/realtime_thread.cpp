@@ -179,7 +179,14 @@ void RealtimeThread::rt_run_block(LoadedModel& m, float* out, int frames, int ch
         f.tick = sim.tick();
         f.count = static_cast<std::uint32_t>(probes);
         f.reserved = 0;
-        for (std::size_t p = 0; p < probes; ++p) f.values[p] = sim.probe(p);
+        // The stored energy is a sum over every element, as costly as the step: the scopes
+        // get it at every kEnergyEvery-th sample and hold it in between; a take records it
+        // at every sample.
+        if (m.has_energy_probe && (rt_recording_ || f.tick % kEnergyEvery == 0))
+            m.held_energy = sim.stored_energy();
+        for (std::size_t p = 0; p < probes; ++p)
+            f.values[p] =
+                sim.model().probes[p].kind == ProbeKind::Energy ? m.held_energy : sim.probe(p);
         f.output = sim.output();
         // A take holds the model's own output, before the cross-fade and the studio's fade:
         // what `render --take` reproduces (a non-finite one ends the take, see TakeRecorder).

@@ -174,8 +174,9 @@ TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
     // of sound), counted as they come, however long the machine takes to play them.
     auto probes = link.probes();
     std::uint64_t frames = 0, last_tick = 0;
-    double max_friction = 0;
-    bool ordered = true, finite = true;
+    double max_friction = 0, last_energy = 0;
+    bool ordered = true, finite = true, energy_held = true;
+    int energy_changes = 0;
     ASSERT_TRUE(wait_for(
         [&] {
             const double t = static_cast<double>(frames) / 48000;  // the sound's own time
@@ -189,6 +190,11 @@ TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
                     finite = finite && std::isfinite(f.values[p]);
                 max_friction = std::max(max_friction, std::abs(f.values[5]));  // friction_force
                 EXPECT_EQ(f.count, 11u);
+                // The energy probe is read at every 16th tick and held in between.
+                const double energy = f.values[9];
+                if (f.tick % 16 != 0 && frames > 1 && energy != last_energy) energy_held = false;
+                energy_changes += energy != last_energy;
+                last_energy = energy;
             }
             return frames >= 36000 && max_friction > 0.01;
         },
@@ -201,6 +207,8 @@ TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
     EXPECT_TRUE(ordered) << "no frame lost while the reader keeps up";
     EXPECT_TRUE(finite);
     EXPECT_GT(max_friction, 0.01) << "the pad's gesture bowed the string";
+    EXPECT_TRUE(energy_held) << "the scopes' energy changes only at every 16th tick";
+    EXPECT_GT(energy_changes, 1000) << "and follows the string as it is bowed";
 
     auto shapes = link.shapes();
     ShapeFrame shape;

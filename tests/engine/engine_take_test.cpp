@@ -6,8 +6,10 @@
 // that clips says so.
 
 #include <gtest/gtest.h>
+
 #include <signal.h>
 #include <sndfile.h>
+#include <sstream>
 
 #include <chrono>
 #include <cmath>
@@ -167,6 +169,23 @@ TEST(EngineTake, StartedMidPerformanceReRendersToTheByte) {
     EXPECT_GT(take.start_tick, 10000u);
     EXPECT_GT(take.frames, 20000u);
     expect_replayed(dir, "the re-rendered take differs");
+    // Its probes too, the energy at every sample (the scopes get it at every 16th).
+    const auto r =
+        test::run_archet({"render", "--take", (dir / "take").string(), "--probes",
+                          (dir / "again.csv").string(), "-o", (dir / "again-too.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    // Every probe column (the time column counts from the take's start in the take, from 0 in
+    // the render).
+    auto values = [](const std::string& csv) {
+        std::string out;
+        std::istringstream lines(csv);
+        for (std::string line; std::getline(lines, line);)
+            out += line.substr(line.find(',')) + "\n";
+        return out;
+    };
+    EXPECT_EQ(values(test::read_file(dir / "again.csv")),
+              values(test::read_file(dir / "take" / "probes.csv")))
+        << "the take's probes re-render to the byte";
 }
 
 TEST(EngineTake, RefusesAFolderThatHoldsFiles) {

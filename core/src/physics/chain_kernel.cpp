@@ -196,12 +196,17 @@ template <class T>
            ((sums[4] + sums[5]) + (sums[6] + sums[7]));
 }
 
+// Whole 512-bit vectors: GCC and clang otherwise split them into halves on AVX-512.
+#if defined(__clang__)
+#define ARCHET_TARGET_AVX512 __attribute__((target("avx512f"), min_vector_width(512)))
+#else
+#define ARCHET_TARGET_AVX512 __attribute__((target("avx512f,prefer-vector-width=512")))
+#endif
+
 using ChainLoop = void (*)(const ChainArrays&, int, bool, bool);
 using EnergySum = double (*)(const CompiledLevel&);
 
-__attribute__((target("avx512f,prefer-vector-width=512"))) void chain_avx512(const ChainArrays& a,
-                                                                             int n, bool lengths,
-                                                                             bool grounds) {
+ARCHET_TARGET_AVX512 void chain_avx512(const ChainArrays& a, int n, bool lengths, bool grounds) {
     chain_variant<8>(a, n, lengths, grounds);
 }
 
@@ -216,8 +221,7 @@ void chain_plain(const ChainArrays& a, int n, bool lengths, bool grounds) {
 
 // The energy is summed in eight lanes on every build (the plain one in pairs), so that
 // each gives the same bits.
-__attribute__((target("avx512f,prefer-vector-width=512"))) double energy_avx512(
-    const CompiledLevel& lv) {
+ARCHET_TARGET_AVX512 double energy_avx512(const CompiledLevel& lv) {
     return level_energy(lv);
 }
 
