@@ -9,6 +9,7 @@
 #include "archet/common/denormal_guard.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_validation.hpp"
+#include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
 
@@ -33,6 +34,26 @@ void BM_BowedString(benchmark::State& state) {
     run_steps(state, archet::build_bowed_string(o));
 }
 BENCHMARK(BM_BowedString)->Arg(110)->Arg(220)->Arg(440)->Arg(880);
+
+// The chain loop alone on a bare string's audio level (the string's masses, its bridges and
+// the bow's, with their grounds), in each build this CPU runs: its cost apart from the rest
+// of a step.
+void BM_ChainLoop(benchmark::State& state) {
+    const auto build = static_cast<archet::ChainBuild>(state.range(0));
+    if (!archet::chain_build_runs_here(build)) return state.SkipWithError("not on this CPU");
+    archet::BowedStringOptions o;
+    o.masses = static_cast<int>(state.range(1));
+    o.body = "none";
+    archet::CompiledModel compiled = archet::compile(archet::build_bowed_string(o));
+    archet::CompiledLevel& audio = compiled.levels.front();
+    std::vector<double> xn(audio.buffer[0].size());
+    for (auto _ : state) {
+        archet::integrate_chain(audio, xn.data(), build);
+        benchmark::DoNotOptimize(xn.data());
+    }
+    state.SetLabel(archet::chain_build_name(build));
+}
+BENCHMARK(BM_ChainLoop)->ArgsProduct({{0, 1, 2}, {30, 60}});
 
 // The stored energy the engine's energy probe reads: O(N), like a step.
 void BM_StoredEnergy(benchmark::State& state) {
