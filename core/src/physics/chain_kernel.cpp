@@ -253,10 +253,6 @@ const EnergySum chosen_energy = chosen == ChainBuild::Avx512 ? energy_avx512
 
 }  // namespace
 
-bool grounds_in_chain_loop(const CompiledLevel& lv) {
-    return 2 * lv.grounds.size() > static_cast<std::size_t>(lv.size);
-}
-
 namespace {
 void run_chain(ChainLoop loop, CompiledLevel& lv, double* xn) {
     const ChainArrays arrays{lv.x(),

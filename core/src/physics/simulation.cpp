@@ -66,11 +66,6 @@ void Simulation::enable_accounting(bool on) {
     accounting_ = on;
 }
 
-double Simulation::velocity(MatSlot s) const {
-    const auto& lv = model_.levels[s.level];
-    return (lv.x()[s.index] - lv.x_prev()[s.index]) / lv.dt;
-}
-
 void Simulation::step() {
     // Countdowns rather than tick % divider: a 64-bit division per level costs more than
     // the whole step of a small model.

@@ -154,7 +154,7 @@ int main() {
         "Archet's chain loop: %s\n\n",
         kRounds, kRoundSamples, kSampleRate, kBlock,
         archet::chain_build_name(archet::chosen_chain_build()));
-    std::printf("%-34s %12s %12s %14s %10s\n", "contender", "ns/sample", "best", "archet bare /",
+    std::printf("%-34s %12s %12s %14s %10s\n", "contender", "ns/sample", "best", "bare / this",
                 "rms out");
     for (const auto& c : contenders) {
         const double ns = median(c.ns_per_sample);

@@ -16,7 +16,9 @@ const char* chain_build_name(ChainBuild build);  ///< "plain", "avx2", "avx512"
 
 /// Whether the chain loop also takes the level's grounds: when most MATs have one (a string
 /// with losses to its rest points); a few bridges do not repay the loop's extra flops.
-bool grounds_in_chain_loop(const CompiledLevel& level);
+inline bool grounds_in_chain_loop(const CompiledLevel& level) {
+    return 2 * level.grounds.size() > static_cast<std::size_t>(level.size);
+}
 
 /// Writes x[n+1] of every MAT of the level into `xn` from its chain links (and its grounds,
 /// see grounds_in_chain_loop()), and each chain link's force into `chain_force`.

@@ -121,6 +121,12 @@ class Simulation {
     std::vector<HandLinkPlan> hand_plan_;
 };
 
+// Inline: the output and the probes read it at every step.
+inline double Simulation::velocity(MatSlot s) const {
+    const CompiledLevel& lv = model_.levels[s.level];
+    return (lv.x()[s.index] - lv.x_prev()[s.index]) / lv.dt;
+}
+
 // A faster link sees a slower MAT move along a straight line over the MAT's period, from
 // its previous position to its newest (a first-order hold): a gesture point then moves
 // smoothly at the link's rate instead of in steps its damper would feel as spikes. The
