@@ -50,6 +50,7 @@ std::unique_ptr<LoadedModel> nrt_prepare_model(const Model& model, double sample
             loaded->shape.push_back(loaded->resolver.mat_slots.at(id));
     for (const CompiledProbe& p : loaded->resolver.probes)
         loaded->has_energy_probe = loaded->has_energy_probe || p.kind == ProbeKind::Energy;
+    loaded->held_energy = loaded->simulation->stored_energy();  // until its first reading
     loaded->sequence = sequence;
     loaded->generation = generation;
     return loaded;

@@ -1,5 +1,6 @@
-// The chain loop, written once over vectors of W doubles and built for AVX-512 (W = 8), AVX2
-// (W = 4) and plain x86-64 (W = 2); the widest the CPU runs is chosen once, at load time.
+// The loops over every MAT of a level, the chain loop and the stored energy, written once over
+// vectors of doubles and built for AVX-512, AVX2 and plain x86-64; the widest build the CPU
+// runs is chosen once, at load time.
 // Each lane does what the scalar scheme does, in the same order and without FMA contraction,
 // so every build gives the same bits (the golden renders check it).
 //
@@ -251,9 +252,6 @@ const EnergySum chosen_energy = chosen == ChainBuild::Avx512 ? energy_avx512
                                 : chosen == ChainBuild::Avx2 ? energy_avx2
                                                              : energy_plain;
 
-}  // namespace
-
-namespace {
 void run_chain(ChainLoop loop, CompiledLevel& lv, double* xn) {
     const ChainArrays arrays{lv.x(),
                              lv.x_prev(),
@@ -268,6 +266,7 @@ void run_chain(ChainLoop loop, CompiledLevel& lv, double* xn) {
                              lv.chain_force.data()};
     loop(arrays, lv.size, lv.has_chain_lengths, grounds_in_chain_loop(lv));
 }
+
 }  // namespace
 
 ChainBuild chosen_chain_build() {
