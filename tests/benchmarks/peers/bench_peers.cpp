@@ -1,10 +1,13 @@
-// Archet against its peers on one bowed string, timed interleaved in one run: each round
-// renders a quarter second on every contender in turn, and the medians over the rounds are
-// compared, so that a slower moment of the machine falls on all of them alike.
-//   archet (bare)   the 60-mass string and its bridges, bowed by Archet's bow module
-//   archet (body)   the shipped string: the same with its violin body (`archet new
-//                   bowed-string --pitch 220 --masses 60`)
-//   faust mi.lib    the bare string in mi.lib, written by mi_string_writer, compiled by faust
+// Archet against its peers on a 60-mass bowed string at 220 Hz, timed interleaved in one run:
+// each round renders a quarter second on every contender in turn, and the medians over the
+// rounds are compared, so that a slower moment of the machine falls on all of them alike.
+//   archet paper    the paper's chaplet: link damping alone, bridges, a point bow
+//                   (`archet new bowed-string --pitch 220 --masses 60 --paper`)
+//   archet bare     the shipped string without its body: losses to its rest points too, and a
+//                   bow spread over three masses
+//   archet + body   the shipped string (`archet new bowed-string --pitch 220 --masses 60`)
+//   mi.lib paper,   the first two in Faust's mi.lib, written by mi_string_writer and compiled
+//   mi.lib bare     by faust, with mi.lib's own bow (a friction curve, no normal force)
 //   stk Bowed       STK's bowed-string waveguide (Smith), the classic cheap bowed string
 // A peer that is not installed is skipped with a message (Debian: faust, libstk-dev).
 
@@ -13,6 +16,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,13 +29,16 @@
 #include "peer_string.hpp"
 
 #if ARCHET_PEER_FAUST
-#include "mi_bowed_string.hpp"
+#include "mi_bare_string.hpp"
+#include "mi_paper_string.hpp"
 #endif
 #if ARCHET_PEER_STK
 #include <stk/Bowed.h>
 #endif
 
 namespace {
+
+using archet::peers::PeerString;
 
 constexpr double kSampleRate = 48000.0;
 constexpr int kBlock = 64;            // samples per call, as an audio callback asks
@@ -52,11 +59,12 @@ double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
+// Bowed at 0.1 m/s from the gesture points, as `archet bench` bows.
 class ArchetString {
   public:
-    explicit ArchetString(bool with_body)
+    explicit ArchetString(PeerString string)
         : stroke_(archet::steady_bow_gesture(archet::peers::kBowSpeed, 0.0015, 1e4)),
-          sim_(archet::compile(archet::build_bowed_string(archet::peers::string_options(with_body)),
+          sim_(archet::compile(archet::build_bowed_string(archet::peers::string_options(string)),
                                kSampleRate)) {
         sim_.set_gesture_track(&stroke_);
     }
@@ -73,7 +81,8 @@ class ArchetString {
 };
 
 #if ARCHET_PEER_FAUST
-// The mi.lib string reads the bow's position as its input: a stroke at constant speed.
+// A mi.lib string reads the bow's position as its input: a stroke at constant speed.
+template <class Dsp>
 class MiLibString {
   public:
     MiLibString() { dsp_.init(static_cast<int>(kSampleRate)); }
@@ -87,7 +96,7 @@ class MiLibString {
     }
 
   private:
-    MiBowedString dsp_;
+    Dsp dsp_;
     long tick_ = 0;
 };
 #endif
@@ -108,6 +117,11 @@ void time_round(Contender& c) {
     c.ns_per_sample.push_back(seconds * 1e9 / kRoundSamples);
 }
 
+template <class Instrument>
+std::function<void(double*, int)> renderer(std::shared_ptr<Instrument> instrument) {
+    return [instrument](double* out, int count) { instrument->render(out, count); };
+}
+
 }  // namespace
 
 int main() {
@@ -116,29 +130,28 @@ int main() {
     auto add = [&](std::string name, std::function<void(double*, int)> render) {
         contenders.push_back({std::move(name), std::move(render), {}, 0.0, 0, true});
     };
-    auto bare = std::make_shared<ArchetString>(false);
-    auto body = std::make_shared<ArchetString>(true);
-    add("archet, 60 masses (bare)", [bare](double* o, int n) { bare->render(o, n); });
-    add("archet, 60 masses + violin body", [body](double* o, int n) { body->render(o, n); });
+    add("archet paper", renderer(std::make_shared<ArchetString>(PeerString::Paper)));
+    add("archet bare", renderer(std::make_shared<ArchetString>(PeerString::Bare)));
+    add("archet + body", renderer(std::make_shared<ArchetString>(PeerString::Body)));
 #if ARCHET_PEER_FAUST
-    auto mi = std::make_shared<MiLibString>();
-    add("faust mi.lib, 60 masses (bare)", [mi](double* o, int n) { mi->render(o, n); });
+    add("mi.lib paper", renderer(std::make_shared<MiLibString<MiPaperString>>()));
+    add("mi.lib bare", renderer(std::make_shared<MiLibString<MiBareString>>()));
 #else
     std::printf(
-        "faust mi.lib: skipped (faust was not found when this was configured: apt install "
-        "faust)\n");
+        "faust mi.lib: skipped (faust was not found when this was configured: "
+        "apt install faust)\n");
 #endif
 #if ARCHET_PEER_STK
     stk::Stk::setSampleRate(kSampleRate);
     auto bowed = std::make_shared<stk::Bowed>();
     bowed->noteOn(archet::peers::kPitch, 0.8);
-    add("stk Bowed (waveguide)", [bowed](double* o, int n) {
-        for (int i = 0; i < n; ++i) o[i] = bowed->tick();
+    add("stk Bowed", [bowed](double* out, int count) {
+        for (int i = 0; i < count; ++i) out[i] = bowed->tick();
     });
 #else
     std::printf(
-        "stk Bowed: skipped (STK was not found when this was configured: apt install "
-        "libstk-dev)\n");
+        "stk Bowed: skipped (STK was not found when this was configured: "
+        "apt install libstk-dev)\n");
 #endif
     // Warm up (past the bow's landing), then the interleaved rounds.
     for (auto& c : contenders) {
@@ -148,20 +161,28 @@ int main() {
     for (int round = 0; round < kRounds; ++round)
         for (auto& c : contenders) time_round(c);
 
-    const double reference = median(contenders.front().ns_per_sample);
     std::printf(
         "%d interleaved rounds of %d samples at %.0f Hz, blocks of %d, one core; "
         "Archet's chain loop: %s\n\n",
         kRounds, kRoundSamples, kSampleRate, kBlock,
         archet::chain_build_name(archet::chosen_chain_build()));
-    std::printf("%-34s %12s %12s %14s %10s\n", "contender", "ns/sample", "best", "bare / this",
-                "rms out");
+    std::printf("%-16s %10s %10s %10s\n", "contender", "ns/sample", "best", "rms out");
+    std::map<std::string, double> ns;
     for (const auto& c : contenders) {
-        const double ns = median(c.ns_per_sample);
+        ns[c.name] = median(c.ns_per_sample);
         const double best = *std::min_element(c.ns_per_sample.begin(), c.ns_per_sample.end());
-        std::printf("%-34s %12.1f %12.1f %14.3f %10.3g%s\n", c.name.c_str(), ns, best,
-                    reference / ns, std::sqrt(c.sum_squares / static_cast<double>(c.samples)),
+        std::printf("%-16s %10.1f %10.1f %10.3g%s\n", c.name.c_str(), ns[c.name], best,
+                    std::sqrt(c.sum_squares / static_cast<double>(c.samples)),
                     c.finite ? "" : "  (not finite!)");
     }
+    std::printf("\n");
+    auto ratio = [&](const std::string& a, const std::string& b) {
+        if (ns.count(a) && ns.count(b))
+            std::printf("%-14s / %-14s %6.3f\n", a.c_str(), b.c_str(), ns[a] / ns[b]);
+    };
+    ratio("archet paper", "mi.lib paper");
+    ratio("archet bare", "mi.lib bare");
+    ratio("archet paper", "stk Bowed");
+    ratio("archet bare", "stk Bowed");
     return 0;
 }

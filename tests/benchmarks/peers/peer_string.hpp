@@ -12,13 +12,20 @@ constexpr double kBowSpeed = 0.1;  ///< m/s
 constexpr double kBowForce = 0.5;  ///< N, for mi.lib's friction curve
 constexpr double kBowMuS = 0.8, kBowV0 = 0.1;
 
-/// The shipped string, with its violin body or (`bare`) the string and bridges alone, the
-/// same elements as the mi.lib model.
-inline BowedStringOptions string_options(bool with_body) {
+/// The strings the contenders play.
+enum class PeerString {
+    Paper,  ///< the paper's chaplet: link damping alone, bridges, a point bow (`--paper`)
+    Bare,   ///< the shipped string without its body: losses to its rest points, bridges, and
+            ///< a bow spread over three masses
+    Body,   ///< the shipped string with its violin body
+};
+
+inline BowedStringOptions string_options(PeerString string) {
     BowedStringOptions o;
     o.pitch = kPitch;
     o.masses = kMasses;
-    if (!with_body) o.body = "none";
+    o.paper = string == PeerString::Paper;
+    if (string == PeerString::Bare) o.body = "none";
     return o;
 }
 
