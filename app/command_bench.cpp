@@ -10,6 +10,7 @@
 #include "archet/builders/bowed_chain.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/ipc/segment_layout.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
@@ -55,13 +56,15 @@ int run_bench(const BenchArguments& a) {
     const auto warm = static_cast<std::uint64_t>(0.2 * sim.sample_rate());
     double sink = 0;
     // With --probes, what the engine's real-time thread reads after each step for the scopes:
-    // every probe, the stored energy (a sum over the whole model) at every 16th step.
+    // every probe, the stored energy (a sum over the whole model) at every
+    // ipc::kEnergyProbeEvery-th step.
     const std::size_t probe_count = a.probes ? sim.probe_count() : 0;
     auto step = [&] {
         sim.step();
         sink += sim.output();
         for (std::size_t p = 0; p < probe_count; ++p)
-            if (sim.model().probes[p].kind != ProbeKind::Energy || sim.tick() % 16 == 0)
+            if (sim.model().probes[p].kind != ProbeKind::Energy ||
+                sim.tick() % ipc::kEnergyProbeEvery == 0)
                 sink += sim.probe(p);
     };
     for (std::uint64_t i = 0; i < warm; ++i) step();

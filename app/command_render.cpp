@@ -188,6 +188,8 @@ int run_render(const RenderArguments& a) {
             }
             smoother.advance(s);
         };
+    // A take begun mid-performance starts at its tick: its probes keep the engine's times.
+    const std::uint64_t start_tick = sim.tick();
     render(sim, options, [&](const RenderBlock& block) {
         // Unwinding removes the temporary files: nothing is left, the output is untouched.
         if (interruption_signal()) {
@@ -199,8 +201,9 @@ int run_render(const RenderArguments& a) {
         }
         audio.write(block.audio, block.frames);
         for (std::size_t i = 0; csv && i < block.frames; ++i)
-            csv->write_row(static_cast<double>(block.first_tick + i + 1) / sim.sample_rate(),
-                           block.probes + i * block.probe_count);
+            csv->write_row(
+                static_cast<double>(start_tick + block.first_tick + i + 1) / sim.sample_rate(),
+                block.probes + i * block.probe_count);
         if (show_progress)
             std::fprintf(stderr, "\rrendering %5.1f / %.1f s",
                          static_cast<double>(block.first_tick + block.frames) / sim.sample_rate(),

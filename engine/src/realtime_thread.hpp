@@ -60,9 +60,7 @@ class RealtimeThread final : public AudioRenderer {
     double rt_device_time() const { return static_cast<double>(rt_device_ticks_) / sample_rate_; }
 
     static constexpr double kGlideSeconds = 0.01;  ///< parameter changes arrive over 10 ms
-    /// Samples between two readings of the stored energy for the scopes (3 kHz at 48 kHz).
-    static constexpr std::uint64_t kEnergyEvery = 16;
-    static constexpr double kFadeSeconds = 0.01;  ///< models swap over a 10 ms cross-fade
+    static constexpr double kFadeSeconds = 0.01;   ///< models swap over a 10 ms cross-fade
     /// A bowed string holds millijoules: a thousand joules means the numbers ran away.
     static constexpr double kRunawayEnergy = 1e3;
 

@@ -190,9 +190,10 @@ TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
                     finite = finite && std::isfinite(f.values[p]);
                 max_friction = std::max(max_friction, std::abs(f.values[5]));  // friction_force
                 EXPECT_EQ(f.count, 11u);
-                // The energy probe is read at every 16th tick and held in between.
+                // The energy probe is read at every kEnergyProbeEvery-th tick and held in between.
                 const double energy = f.values[9];
-                if (f.tick % 16 != 0 && frames > 1 && energy != last_energy) energy_held = false;
+                if (f.tick % ipc::kEnergyProbeEvery != 0 && frames > 1 && energy != last_energy)
+                    energy_held = false;
                 energy_changes += energy != last_energy;
                 last_energy = energy;
             }
