@@ -84,13 +84,12 @@ template <bool kWithLength, class T>
         return k * d + z * (d - dp);
 }
 
-// A MAT's new position from its two chain links (2x − x⁻ + T²/m·(f_left − f_right)), less
-// what its spring and damper to ground take off.
+// A MAT's new position from its two chain links, less what its ground takes off.
 template <bool kWithGrounds, class T>
 [[gnu::always_inline]] inline T mat_update(T x, T xp, T c, T left, T right, T gk, T gz, T rest) {
-    const T update = 2.0 * x - xp + c * (left - right);
+    const T update = chain_update(x, xp, c, left, right);
     if constexpr (kWithGrounds)
-        return update - c * (gk * (x - rest) + gz * (x - xp));
+        return update - ground_pull(x, xp, c, gk, gz, rest);
     else
         return update;
 }
@@ -234,6 +233,14 @@ double energy_plain(const CompiledLevel& lv) {
     return level_energy(lv);
 }
 
+// The builds, indexed by ChainBuild.
+struct Build {
+    ChainLoop chain;
+    EnergySum energy;
+};
+constexpr Build kBuilds[] = {
+    {chain_plain, energy_plain}, {chain_avx2, energy_avx2}, {chain_avx512, energy_avx512}};
+
 ChainBuild chosen_at_load() {
     __builtin_cpu_init();
     if (__builtin_cpu_supports("avx512f")) return ChainBuild::Avx512;
@@ -245,12 +252,13 @@ ChainBuild chosen_at_load() {
 // resolvers, which run before it is set up), before main(): the real-time thread never
 // makes the choice.
 const ChainBuild chosen = chosen_at_load();
-const ChainLoop chosen_loop = chosen == ChainBuild::Avx512 ? chain_avx512
-                              : chosen == ChainBuild::Avx2 ? chain_avx2
-                                                           : chain_plain;
-const EnergySum chosen_energy = chosen == ChainBuild::Avx512 ? energy_avx512
-                                : chosen == ChainBuild::Avx2 ? energy_avx2
-                                                             : energy_plain;
+const Build& chosen_build = kBuilds[static_cast<int>(chosen)];
+
+// A given build, for tests and benchmarks: it must run on this CPU.
+const Build& build_here(ChainBuild build) {
+    if (!chain_build_runs_here(build)) throw std::logic_error("chain build not run here");
+    return kBuilds[static_cast<int>(build)];
+}
 
 void run_chain(ChainLoop loop, CompiledLevel& lv, double* xn) {
     const ChainArrays arrays{lv.x(),
@@ -290,26 +298,19 @@ const char* chain_build_name(ChainBuild build) {
 }
 
 double level_stored_energy(const CompiledLevel& lv) {
-    return chosen_energy(lv);
+    return chosen_build.energy(lv);
 }
 
 double level_stored_energy(const CompiledLevel& lv, ChainBuild build) {
-    if (!chain_build_runs_here(build)) throw std::logic_error("chain build not run here");
-    return build == ChainBuild::Avx512 ? energy_avx512(lv)
-           : build == ChainBuild::Avx2 ? energy_avx2(lv)
-                                       : energy_plain(lv);
+    return build_here(build).energy(lv);
 }
 
 void integrate_chain(CompiledLevel& lv, double* xn) {
-    run_chain(chosen_loop, lv, xn);
+    run_chain(chosen_build.chain, lv, xn);
 }
 
 void integrate_chain(CompiledLevel& lv, double* xn, ChainBuild build) {
-    if (!chain_build_runs_here(build)) throw std::logic_error("chain build not run here");
-    run_chain(build == ChainBuild::Avx512 ? chain_avx512
-              : build == ChainBuild::Avx2 ? chain_avx2
-                                          : chain_plain,
-              lv, xn);
+    run_chain(build_here(build).chain, lv, xn);
 }
 
 }  // namespace archet

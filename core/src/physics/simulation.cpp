@@ -208,23 +208,6 @@ void Simulation::compute_cross_link_forces() {
     }
 }
 
-namespace {
-// The new position of MAT s from the forces of its two chain links:
-// 2x − x⁻ + T²/m·(f_left − f_right).
-inline double chain_update(const double* __restrict x, const double* __restrict xp,
-                           const double* __restrict c, int s, double left, double right) {
-    return 2.0 * x[s] - xp[s] + c[s] * (left - right);
-}
-
-// What an oscillator's spring and damper to ground take off that update (zero for a MAT
-// without them).
-inline double ground_pull(const double* __restrict x, const double* __restrict xp,
-                          const double* __restrict c, const double* __restrict k,
-                          const double* __restrict z, const double* __restrict rest, int s) {
-    return c[s] * (k[s] * (x[s] - rest[s]) + z[s] * (x[s] - xp[s]));
-}
-}  // namespace
-
 void Simulation::integrate(CompiledLevel& lv) {
     double* xn = lv.x_next();
     const double* x = lv.x();
@@ -242,12 +225,13 @@ void Simulation::integrate(CompiledLevel& lv) {
     const double* held = lv.held.data();
     if (grounds_in_chain_loop(lv)) {
         for (int s : lv.touched)
-            xn[s] = (chain_update(x, xp, c, s, f[s - 1], f[s]) + c[s] * (ext[s] + held[s])) -
-                    ground_pull(x, xp, c, gk, gz, rest, s);
+            xn[s] = (chain_update(x[s], xp[s], c[s], f[s - 1], f[s]) + c[s] * (ext[s] + held[s])) -
+                    ground_pull(x[s], xp[s], c[s], gk[s], gz[s], rest[s]);
     } else {
         for (int s : lv.touched) xn[s] += c[s] * (ext[s] + held[s]);
         for (const auto& g : lv.grounds)
-            xn[g.index] -= ground_pull(x, xp, c, gk, gz, rest, g.index);
+            xn[g.index] -= ground_pull(x[g.index], xp[g.index], c[g.index], gk[g.index],
+                                       gz[g.index], rest[g.index]);
     }
     if (!lv.modal_points.empty()) {
         for (const auto& p : lv.modal_points) {

@@ -14,6 +14,21 @@ ChainBuild chosen_chain_build();
 bool chain_build_runs_here(ChainBuild build);
 const char* chain_build_name(ChainBuild build);  ///< "plain", "avx2", "avx512"
 
+/// The scheme's new position of a MAT from the forces of its two chain links,
+/// 2x − x⁻ + T²/m·(f_left − f_right), for a double or a vector of them: the chain loop and
+/// the MATs updated again after it (Simulation::integrate) must agree to the bit.
+template <class T>
+[[gnu::always_inline]] inline T chain_update(T x, T xp, T c, T left, T right) {
+    return 2.0 * x - xp + c * (left - right);
+}
+
+/// What an oscillator's spring and damper to ground take off that update (zero for a MAT
+/// without them).
+template <class T>
+[[gnu::always_inline]] inline T ground_pull(T x, T xp, T c, T k, T z, T rest) {
+    return c * (k * (x - rest) + z * (x - xp));
+}
+
 /// Whether the chain loop also takes the level's grounds: when most MATs have one (a string
 /// with losses to its rest points); a few bridges do not repay the loop's extra flops.
 inline bool grounds_in_chain_loop(const CompiledLevel& level) {
