@@ -196,17 +196,17 @@ int run_render(const RenderArguments& a) {
             if (show_progress) std::fputc('\n', stderr);
             throw_if_interrupted(
                 "stopped at " +
-                std::to_string(static_cast<double>(block.first_tick) / sim.sample_rate()) +
+                std::to_string(static_cast<double>(block.first_frame) / sim.sample_rate()) +
                 " s; nothing written, " + a.output + " is as it was");
         }
         audio.write(block.audio, block.frames);
         for (std::size_t i = 0; csv && i < block.frames; ++i)
             csv->write_row(
-                static_cast<double>(start_tick + block.first_tick + i + 1) / sim.sample_rate(),
+                static_cast<double>(start_tick + block.first_frame + i + 1) / sim.sample_rate(),
                 block.probes + i * block.probe_count);
         if (show_progress)
             std::fprintf(stderr, "\rrendering %5.1f / %.1f s",
-                         static_cast<double>(block.first_tick + block.frames) / sim.sample_rate(),
+                         static_cast<double>(block.first_frame + block.frames) / sim.sample_rate(),
                          duration);
     });
     if (show_progress) std::fputc('\n', stderr);

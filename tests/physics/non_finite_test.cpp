@@ -28,7 +28,7 @@ std::string render_until_blow_up(Simulation& sim, std::uint64_t frames, std::siz
     try {
         render(sim, options, [&](const RenderBlock& b) {
             for (std::size_t i = 0; i < b.frames; ++i) {
-                EXPECT_TRUE(std::isfinite(b.audio[i])) << "at sample " << b.first_tick + i;
+                EXPECT_TRUE(std::isfinite(b.audio[i])) << "at sample " << b.first_frame + i;
                 for (std::size_t p = 0; p < b.probe_count; ++p)
                     EXPECT_TRUE(std::isfinite(b.probes[i * b.probe_count + p]));
             }

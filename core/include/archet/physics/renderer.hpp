@@ -11,7 +11,7 @@
 namespace archet {
 
 struct RenderBlock {
-    std::uint64_t first_tick = 0;
+    std::uint64_t first_frame = 0;  ///< frames rendered before this block (not the model's tick)
     std::size_t frames = 0;
     const double* audio = nullptr;   ///< frames values
     const double* probes = nullptr;  ///< frames × probe_count values, row by row (or null)
