@@ -38,13 +38,12 @@ BENCHMARK(BM_BowedString)->Arg(110)->Arg(220)->Arg(440)->Arg(880);
 // The chain loop alone on a bare string's audio level (the string's masses, its bridges and
 // the bow's, with their grounds), in each build this CPU runs: its cost apart from the rest
 // of a step.
-void BM_ChainLoop(benchmark::State& state) {
+// The chain loop alone, in each build: on a 60-mass string (with its losses to rest, as
+// shipped) and on long bare chains (archet bench --chain), to split a step's cost between
+// the loop and the rest.
+void time_chain_loop(benchmark::State& state, archet::CompiledModel compiled) {
     const auto build = static_cast<archet::ChainBuild>(state.range(0));
     if (!archet::chain_build_runs_here(build)) return state.SkipWithError("not on this CPU");
-    archet::BowedStringOptions o;
-    o.masses = static_cast<int>(state.range(1));
-    o.body = "none";
-    archet::CompiledModel compiled = archet::compile(archet::build_bowed_string(o));
     archet::CompiledLevel& audio = compiled.levels.front();
     std::vector<double> xn(audio.buffer[0].size());
     for (auto _ : state) {
@@ -53,7 +52,20 @@ void BM_ChainLoop(benchmark::State& state) {
     }
     state.SetLabel(archet::chain_build_name(build));
 }
+
+void BM_ChainLoop(benchmark::State& state) {
+    archet::BowedStringOptions o;
+    o.masses = static_cast<int>(state.range(1));
+    o.body = "none";
+    time_chain_loop(state, archet::compile(archet::build_bowed_string(o)));
+}
 BENCHMARK(BM_ChainLoop)->ArgsProduct({{0, 1, 2}, {30, 60}});
+
+void BM_LongChainLoop(benchmark::State& state) {
+    time_chain_loop(state,
+                    archet::compile(archet::build_bowed_chain(static_cast<int>(state.range(1)))));
+}
+BENCHMARK(BM_LongChainLoop)->ArgsProduct({{1, 2}, {1024, 10000}});
 
 // The stored energy the engine's energy probe reads: O(N), like a step.
 void BM_StoredEnergy(benchmark::State& state) {

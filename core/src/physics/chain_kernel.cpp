@@ -111,43 +111,28 @@ template <int W, bool kWithLength, bool kWithGrounds>
     const double* __restrict ground_z = arrays.ground_z;
     const double* __restrict rest = arrays.rest;
     double* __restrict force = arrays.force;
-    auto scalar_link = [&](int j) {
-        return link_force<kWithLength>(x[j] - x[j + 1], xp[j] - xp[j + 1], k[j], z[j],
-                                       kWithLength ? length[j] : 0.0);
-    };
-    double left = scalar_link(0);
-    force[0] = left;
-    int s = 1;
-    // Each round also reads the vector after its own from x and x⁻, which runs into the
-    // zeros kept after the storage (CompiledLevel::kReadAhead ≥ W − 1).
-    static_assert(CompiledLevel::kReadAhead >= W - 1);
-    if (s + W - 1 <= n) {
-        V forces{};  // the last lane carries the left link of the round's first MAT
-        forces[W - 1] = left;
-        V xs = load<V>(x + s), xps = load<V>(xp + s);
-        const V zero{};
-        for (; s + W - 1 <= n; s += W) {
-            const V x_after = load<V>(x + s + W), xp_after = load<V>(xp + s + W);
-            const V d = xs - next_of(xs, x_after), dp = xps - next_of(xps, xp_after);
-            const V right = link_force<kWithLength>(d, dp, load<V>(k + s), load<V>(z + s),
-                                                    kWithLength ? load<V>(length + s) : zero);
-            store(force + s, right);
-            store(xn + s,
-                  mat_update<kWithGrounds>(xs, xps, load<V>(c + s), shift_in(forces, right), right,
-                                           kWithGrounds ? load<V>(ground_k + s) : zero,
-                                           kWithGrounds ? load<V>(ground_z + s) : zero,
-                                           kWithGrounds ? load<V>(rest + s) : zero));
-            forces = right, xs = x_after, xps = xp_after;
-        }
-        left = forces[W - 1];
-    }
-    for (; s <= n; ++s) {
-        const double right = scalar_link(s);
-        force[s] = right;
-        xn[s] = mat_update<kWithGrounds>(
-            x[s], xp[s], c[s], left, right, kWithGrounds ? ground_k[s] : 0.0,
-            kWithGrounds ? ground_z[s] : 0.0, kWithGrounds ? rest[s] : 0.0);
-        left = right;
+    // Link 0, on the left of MAT 1, enters as the last lane of the round before the first.
+    const V zero{};
+    V forces{};
+    forces[W - 1] = link_force<kWithLength>(x[0] - x[1], xp[0] - xp[1], k[0], z[0],
+                                            kWithLength ? length[0] : 0.0);
+    force[0] = forces[W - 1];
+    // Whole rounds only: the last one runs up to W − 1 MATs past MAT n into the zeros kept
+    // after the storage, whose zero coefficients keep them zero, and each round also reads
+    // the vector after its own from x and x⁻ (CompiledLevel::kReadAhead ≥ 2W − 1).
+    static_assert(CompiledLevel::kReadAhead >= 2 * W - 1);
+    V xs = load<V>(x + 1), xps = load<V>(xp + 1);
+    for (int s = 1; s <= n; s += W) {
+        const V x_after = load<V>(x + s + W), xp_after = load<V>(xp + s + W);
+        const V d = xs - next_of(xs, x_after), dp = xps - next_of(xps, xp_after);
+        const V right = link_force<kWithLength>(d, dp, load<V>(k + s), load<V>(z + s),
+                                                kWithLength ? load<V>(length + s) : zero);
+        store(force + s, right);
+        store(xn + s, mat_update<kWithGrounds>(xs, xps, load<V>(c + s), shift_in(forces, right),
+                                               right, kWithGrounds ? load<V>(ground_k + s) : zero,
+                                               kWithGrounds ? load<V>(ground_z + s) : zero,
+                                               kWithGrounds ? load<V>(rest + s) : zero));
+        forces = right, xs = x_after, xps = xp_after;
     }
 }
 

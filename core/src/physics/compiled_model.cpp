@@ -79,18 +79,14 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
     CompiledLevel& lv = c.levels[li];
     lv.size = static_cast<int>(order.size());
     const int storage = lv.size + 2;
-    for (auto& b : lv.buffer) b.assign(storage + CompiledLevel::kReadAhead, 0.0);
-    lv.coeff.assign(storage, 0.0);
+    // What the chain loop reads or writes, with the zeros it runs into past the last MAT.
+    for (auto* values :
+         {&lv.buffer[0], &lv.buffer[1], &lv.buffer[2], &lv.coeff, &lv.chain_k, &lv.chain_zdt,
+          &lv.chain_length, &lv.chain_force, &lv.ground_k, &lv.ground_zdt, &lv.ground_rest})
+        values->assign(storage + CompiledLevel::kReadAhead, 0.0);
     lv.mass.assign(storage, 0.0);
     lv.external.assign(storage, 0.0);
     lv.held.assign(storage, 0.0);
-    lv.chain_k.assign(storage, 0.0);
-    lv.ground_k.assign(storage, 0.0);
-    lv.ground_zdt.assign(storage, 0.0);
-    lv.ground_rest.assign(storage, 0.0);
-    lv.chain_zdt.assign(storage, 0.0);
-    lv.chain_length.assign(storage, 0.0);
-    lv.chain_force.assign(storage, 0.0);
     lv.chain_element.assign(storage, -1);
     lv.element_of.assign(storage, -1);
     lv.modal_point_of.assign(storage, -1);

@@ -16,12 +16,15 @@ void Simulation::for_each_state(Self& self, Field&& field) {
     field(self.device_.slide), field(self.device_.press);
     all(self.active_), all(self.countdown_), all(self.period_done_), all(self.dissipated_);
     for (auto& lv : self.model_.levels) {
+        auto stored = [&](auto& values) {  // the storage, not the zeros the chain loop reads ahead
+            for (int s = 0; s < lv.size + 2; ++s) field(values[s]);
+        };
         field(lv.current);
-        for (auto& buffer : lv.buffer)  // the storage, not the zeros read ahead
-            for (int s = 0; s < lv.size + 2; ++s) field(buffer[s]);
+        for (auto& buffer : lv.buffer) stored(buffer);
         // Parameters may have changed while playing; forces carry over between steps.
-        all(lv.coeff), all(lv.mass), all(lv.external), all(lv.held);
-        all(lv.chain_k), all(lv.chain_zdt), all(lv.chain_length), all(lv.chain_force);
+        stored(lv.coeff), all(lv.mass), all(lv.external), all(lv.held);
+        stored(lv.chain_k), stored(lv.chain_zdt), stored(lv.chain_length);
+        stored(lv.chain_force);
         all(lv.watched_force);
         for (auto& l : lv.links) field(l.k), field(l.zdt), field(l.length);
         for (const auto& g : lv.grounds)  // in the order of the grounds, as always

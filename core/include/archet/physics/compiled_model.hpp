@@ -100,9 +100,11 @@ struct CompiledLevel {
     double inverse_divider = 1;
     double dt = 0;
     int size = 0;  ///< MATs at this level
-    /// Zeros after the storage of each position buffer: the chain loop reads the vector
-    /// after the one it updates (see chain_kernel.cpp), up to 8 doubles past the last MAT.
-    static constexpr int kReadAhead = 8;
+    /// Zeros after the storage of the arrays the chain loop uses (positions, chain links,
+    /// grounds, T²/m): it updates whole vectors of up to 8 MATs, the last one running past
+    /// the last MAT into these zeros (which it leaves zero), and reads the vector after each
+    /// (see chain_kernel.cpp).
+    static constexpr int kReadAhead = 16;
     std::vector<double> buffer[3];  ///< positions at n+1, n, n−1 by rotation
     int current = 0;                ///< which buffer holds x[n]
     std::vector<double> coeff;      ///< T² / m, zero for immovable MATs
