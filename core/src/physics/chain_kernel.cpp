@@ -72,17 +72,7 @@ struct ChainArrays {
     const double *k, *z, *length;  ///< chain link j joins storage j and j + 1
     const double* c;               ///< T²/m
     const double *ground_k, *ground_z, *rest;
-    double* force;  ///< chain link forces, kept for the readouts and the books
 };
-
-// The force of a chain link from the distance d = x[j] − x[j+1] now and dp a step before.
-template <bool kWithLength, class T>
-[[gnu::always_inline]] inline T link_force(T d, T dp, T k, T z, T length) {
-    if constexpr (kWithLength)
-        return k * (d - length) + z * (d - dp);
-    else
-        return k * d + z * (d - dp);
-}
 
 // A MAT's new position from its two chain links, less what its ground takes off.
 template <bool kWithGrounds, class T>
@@ -110,13 +100,11 @@ template <int W, bool kWithLength, bool kWithGrounds>
     const double* __restrict ground_k = arrays.ground_k;
     const double* __restrict ground_z = arrays.ground_z;
     const double* __restrict rest = arrays.rest;
-    double* __restrict force = arrays.force;
     // Link 0, on the left of MAT 1, enters as the last lane of the round before the first.
     const V zero{};
     V forces{};
     forces[W - 1] = link_force<kWithLength>(x[0] - x[1], xp[0] - xp[1], k[0], z[0],
                                             kWithLength ? length[0] : 0.0);
-    force[0] = forces[W - 1];
     // Whole rounds only: the last one runs up to W − 1 MATs past MAT n into the zeros kept
     // after the storage, whose zero coefficients keep them zero, and each round also reads
     // the vector after its own from x and x⁻ (CompiledLevel::kReadAhead ≥ 2W − 1).
@@ -127,7 +115,6 @@ template <int W, bool kWithLength, bool kWithGrounds>
         const V d = xs - next_of(xs, x_after), dp = xps - next_of(xps, xp_after);
         const V right = link_force<kWithLength>(d, dp, load<V>(k + s), load<V>(z + s),
                                                 kWithLength ? load<V>(length + s) : zero);
-        store(force + s, right);
         store(xn + s, mat_update<kWithGrounds>(xs, xps, load<V>(c + s), shift_in(forces, right),
                                                right, kWithGrounds ? load<V>(ground_k + s) : zero,
                                                kWithGrounds ? load<V>(ground_z + s) : zero,
@@ -255,8 +242,7 @@ void run_chain(ChainLoop loop, CompiledLevel& lv, double* xn) {
                              lv.coeff.data(),
                              lv.ground_k.data(),
                              lv.ground_zdt.data(),
-                             lv.ground_rest.data(),
-                             lv.chain_force.data()};
+                             lv.ground_rest.data()};
     loop(arrays, lv.size, lv.has_chain_lengths, grounds_in_chain_loop(lv));
 }
 

@@ -82,11 +82,12 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
     // What the chain loop reads or writes, with the zeros it runs into past the last MAT.
     for (auto* values :
          {&lv.buffer[0], &lv.buffer[1], &lv.buffer[2], &lv.coeff, &lv.chain_k, &lv.chain_zdt,
-          &lv.chain_length, &lv.chain_force, &lv.ground_k, &lv.ground_zdt, &lv.ground_rest})
+          &lv.chain_length, &lv.ground_k, &lv.ground_zdt, &lv.ground_rest})
         values->assign(storage + CompiledLevel::kReadAhead, 0.0);
     lv.mass.assign(storage, 0.0);
     lv.external.assign(storage, 0.0);
     lv.held.assign(storage, 0.0);
+    lv.chain_force.assign(storage, 0.0);
     lv.chain_element.assign(storage, -1);
     lv.element_of.assign(storage, -1);
     lv.modal_point_of.assign(storage, -1);
@@ -286,6 +287,10 @@ void compile_readouts(CompiledModel& c, const Model& model) {
         std::sort(lv.touched.begin(), lv.touched.end());
         lv.touched.erase(std::unique(lv.touched.begin(), lv.touched.end()), lv.touched.end());
         lv.watched_force.assign(lv.watched.size(), 0.0);
+        std::set<int> used;
+        for (const auto* mats : {&lv.touched, &lv.watched})
+            for (int s : *mats) used.insert({s - 1, s});
+        lv.chain_forces_used.assign(used.begin(), used.end());
     }
 }
 

@@ -213,10 +213,11 @@ void Simulation::integrate(CompiledLevel& lv) {
     const double* x = lv.x();
     const double* xp = lv.x_prev();
     const double* c = lv.coeff.data();
-    const double* f = lv.chain_force.data();
+    double* f = lv.chain_force.data();
     const double *gk = lv.ground_k.data(), *gz = lv.ground_zdt.data(),
                  *rest = lv.ground_rest.data();
     integrate_chain(lv, xn);
+    for (int j : lv.chain_forces_used) f[j] = chain_link_force(lv, x, xp, j);
     // The update is linear in force, so the other forces add their share afterwards, only
     // where there are any: the other links' (`external`), held forces of slower links, and
     // grounds the chain loop did not take. Where it took them, a MAT with other forces is

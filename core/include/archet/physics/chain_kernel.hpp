@@ -14,6 +14,25 @@ ChainBuild chosen_chain_build();
 bool chain_build_runs_here(ChainBuild build);
 const char* chain_build_name(ChainBuild build);  ///< "plain", "avx2", "avx512"
 
+/// The force of a chain link from the distance d = x[j] − x[j+1] now and dp a step before,
+/// for a double or a vector of them. Without rest lengths the loop skips `d − length`, which
+/// gives the same bits as subtracting a zero length.
+template <bool kWithLength, class T>
+[[gnu::always_inline]] inline T link_force(T d, T dp, T k, T z, T length) {
+    if constexpr (kWithLength)
+        return k * (d - length) + z * (d - dp);
+    else
+        return k * d + z * (d - dp);
+}
+
+/// The force of chain link j (joining storage j and j + 1) at this step, as the chain loop
+/// computes it; the loop keeps none of them, so the few the step needs beside it (next to
+/// the MATs other forces touch and the watched ones) are computed again here.
+inline double chain_link_force(const CompiledLevel& lv, const double* x, const double* xp, int j) {
+    return link_force<true>(x[j] - x[j + 1], xp[j] - xp[j + 1], lv.chain_k[j], lv.chain_zdt[j],
+                            lv.chain_length[j]);
+}
+
 /// The scheme's new position of a MAT from the forces of its two chain links,
 /// 2x − x⁻ + T²/m·(f_left − f_right), for a double or a vector of them: the chain loop and
 /// the MATs updated again after it (Simulation::integrate) must agree to the bit.
@@ -36,7 +55,7 @@ inline bool grounds_in_chain_loop(const CompiledLevel& level) {
 }
 
 /// Writes x[n+1] of every MAT of the level into `xn` from its chain links (and its grounds,
-/// see grounds_in_chain_loop()), and each chain link's force into `chain_force`.
+/// see grounds_in_chain_loop()).
 void integrate_chain(CompiledLevel& level, double* xn);
 /// The same with a given build, which must run here (for tests and benchmarks).
 void integrate_chain(CompiledLevel& level, double* xn, ChainBuild build);

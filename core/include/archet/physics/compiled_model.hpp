@@ -113,8 +113,11 @@ struct CompiledLevel {
     std::vector<double> held;       ///< forces of slower links, held between their ticks, N
     std::vector<double> chain_k, chain_zdt, chain_length;  ///< link j joins storage j, j+1
     bool has_chain_lengths = false;                        ///< any non-zero chain_length
-    std::vector<double> chain_force;  ///< scratch: force of each chain link this step
-    std::vector<int> chain_element;   ///< index into Model::lias, −1 for none
+    /// Scratch: this step's force of the chain links in chain_forces_used (the chain loop
+    /// keeps none).
+    std::vector<double> chain_force;
+    std::vector<int> chain_forces_used;  ///< links on either side of touched and watched MATs
+    std::vector<int> chain_element;      ///< index into Model::lias, −1 for none
     std::vector<CompiledLink> links;
     std::vector<CompiledGround> grounds;
     std::vector<double> ground_k, ground_zdt, ground_rest;  ///< per storage index, 0 if none
