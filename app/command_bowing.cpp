@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 
+#include "archet/analysis/attack.hpp"
 #include "archet/analysis/bowing_analysis.hpp"
 #include "archet/analysis/modal_analysis.hpp"
 #include "archet/common/denormal_guard.hpp"
@@ -34,8 +35,23 @@ struct Report {
     std::string name;
     double pitch = 0;
     AttackAnalysis attack;
+    AttackTransient transient;  ///< as `archet attack` counts it, from the first slip
     BowingAnalysis steady;
 };
+
+// The transient of the stroke from the bow's first contact to its last, in periods of f1,
+// judged as `archet attack` judges one (with no cap on its length).
+AttackTransient judge_stroke(const std::vector<double>& slip, const std::vector<double>& normal,
+                             double fs, double pitch) {
+    std::size_t first = 0, last = normal.size();
+    while (first < last && !(normal[first] > 0)) ++first;
+    while (last > first && !(normal[last - 1] > 0)) --last;
+    const std::vector<double> onsets = slip_onsets(slip, fs, first, last);
+    const int longest = static_cast<int>((last - first) / fs * pitch) + 1;
+    AttackTransient t = judge_transient(onsets, 1.0 / pitch, 0.0, longest);
+    if (!t.decided) t.kind = AttackKind::Never;
+    return t;
+}
 
 Report play(const std::string& path, const BowingArguments& a) {
     const Model model = load_validated_model(path, a.set);
@@ -64,6 +80,7 @@ Report play(const std::string& path, const BowingArguments& a) {
         }
     }
     r.attack = analyse_attack(slip, normal, fs, r.pitch);
+    r.transient = judge_stroke(slip, normal, fs, r.pitch);
     // The steady part: from Helmholtz onset (or half a second after contact) to the last
     // contact, less a few periods for the lift.
     std::size_t last = normal.size();
@@ -89,6 +106,11 @@ int run_bowing(const BowingArguments& a) {
                  {"contact", r.attack.contact},
                  {"helmholtz", settled ? nlohmann::ordered_json(r.attack.helmholtz) : nullptr},
                  {"attack", settled ? nlohmann::ordered_json(r.attack.attack()) : nullptr},
+                 {"attack_kind", to_string(r.transient.kind)},
+                 {"transient", to_string(r.transient.transient)},
+                 {"transient_periods", r.transient.kind == AttackKind::Never
+                                           ? nullptr
+                                           : nlohmann::ordered_json(r.transient.periods)},
                  {"slips_per_period", r.steady.slips_per_period},
                  {"pitch_cents", r.steady.pitch_cents},
                  {"slip_share", r.steady.slip_share},
@@ -97,14 +119,20 @@ int run_bowing(const BowingArguments& a) {
         std::cout << out.dump(2) << "\n";
         return 0;
     }
-    std::printf("%-30s %10s %9s %10s %12s %8s %10s %s\n", "model", "f1 Hz", "contact s",
-                "attack ms", "slips/period", "cents", "slip share", "Helmholtz");
+    std::printf("%-30s %10s %9s %10s %8s %-14s %12s %8s %10s %s\n", "model", "f1 Hz", "contact s",
+                "attack ms", "periods", "transient", "slips/period", "cents", "slip share",
+                "Helmholtz");
     for (const auto& r : reports) {
         std::printf("%-30s %10.3f %9.4f ", r.name.c_str(), r.pitch, r.attack.contact);
         if (r.attack.reached() && r.steady.helmholtz())
             std::printf("%10.1f", 1e3 * r.attack.attack());
         else
             std::printf("%10s", "never");
+        if (r.transient.kind == AttackKind::Never)
+            std::printf(" %8s", "never");
+        else
+            std::printf(" %8.1f", r.transient.periods);
+        std::printf(" %-14s", to_string(r.transient.transient));
         std::printf(" %12.3f %+8.1f %10.3f %s\n", r.steady.slips_per_period, r.steady.pitch_cents,
                     r.steady.slip_share, r.steady.helmholtz() ? "yes" : "no");
     }
@@ -124,7 +152,8 @@ void add_bowing_command(CLI::App& app, Action& action) {
                     "Override a parameter in every model: ID.PARAM=VALUE (repeatable)");
     cmd->add_flag(
         "--json", a->json,
-        "Print JSON: contact, helmholtz, attack (s), slips_per_period, pitch_cents, slip_share");
+        "Print JSON: contact, helmholtz, attack (s), attack_kind, transient, transient_periods, "
+        "slips_per_period, pitch_cents, slip_share");
     cmd->callback([&action, a] { action = [a] { return run_bowing(*a); }; });
 }
 

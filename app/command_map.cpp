@@ -10,6 +10,7 @@
 #include <map>
 
 #include "archet/analysis/playability.hpp"
+#include "archet/common/grid_sweep.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/common/input_limits.hpp"
 #include "archet/common/parallel_for.hpp"
@@ -109,13 +110,7 @@ int run_merge(const MapArguments& a) {
         grid = g;
         points.insert(points.end(), p.begin(), p.end());
     }
-    std::sort(points.begin(), points.end(), [](auto& x, auto& y) { return x.index < y.index; });
-    for (std::size_t i = 0; i < grid->size(); ++i)
-        if (i >= points.size() || points[i].index != i)
-            throw InputError(a.parts.front(), "the shards do not cover the grid: point " +
-                                                  std::to_string(i) + " is missing or repeated");
-    if (points.size() != grid->size())
-        throw InputError(a.parts.front(), "the shards hold more points than the grid");
+    check_shards_cover(points, grid->size(), a.parts.front());
     write_file_atomically(a.output, format_map(*grid, points, model));
     if (!a.png.empty()) write_png(a.png, *grid, points, model);
     print_summary(points);

@@ -21,5 +21,6 @@ void add_devices_command(CLI::App& app, Action& action);
 void add_compare_command(CLI::App& app, Action& action);
 void add_examples_command(CLI::App& app, Action& action);
 void add_map_command(CLI::App& app, Action& action);
+void add_attack_command(CLI::App& app, Action& action);
 
 }  // namespace archet::cli

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
     archet::cli::add_compare_command(app, action);
     archet::cli::add_examples_command(app, action);
     archet::cli::add_map_command(app, action);
+    archet::cli::add_attack_command(app, action);
     archet::cli::add_bench_command(app, action);
     archet::cli::add_engine_command(app, action);
     archet::cli::add_play_command(app, action);

@@ -155,6 +155,15 @@ TEST(Cli, BowingComparesAttacksSideBySide) {
     EXPECT_TRUE(j[0]["helmholtz_motion"].get<bool>());
     EXPECT_TRUE(j[1]["helmholtz_motion"].get<bool>());
     EXPECT_LT(j[1]["attack"].get<double>(), j[0]["attack"].get<double>());
+    // The transient counted as `archet attack` counts it: periods of f1 from the first slip
+    // (which comes a little after the contact the attack time counts from), and how it began.
+    for (const auto& one : j) {
+        EXPECT_EQ(one["attack_kind"], one["transient"]) << one.dump();
+        const double periods = one["attack"].get<double>() * one["pitch"].get<double>();
+        EXPECT_LE(one["transient_periods"].get<double>(), periods) << one.dump();
+        EXPECT_GE(one["transient_periods"].get<double>(), 0.9 * periods) << one.dump();
+    }
+    EXPECT_LT(j[1]["transient_periods"].get<double>(), j[0]["transient_periods"].get<double>());
     // The paper's 880 Hz harmonic string with the shipped stroke never settles, said plainly;
     // the shipped one, with the stroke it carries, does.
     const auto text = test::run_archet(
@@ -163,6 +172,7 @@ TEST(Cli, BowingComparesAttacksSideBySide) {
     EXPECT_EQ(text.status, 0);
     EXPECT_NE(text.out.find("never"), std::string::npos)
         << "no Helmholtz motion, said plainly: " << text.out;
+    EXPECT_NE(text.out.find("transient"), std::string::npos) << text.out;
     const auto shipped = test::run_archet(
         {"bowing", test::resource("models/bowed-string-880-harmonic.json").string(), "--json"});
     ASSERT_EQ(shipped.status, 0) << shipped.err;

@@ -5,6 +5,7 @@
 #include <QVBoxLayout>
 #include <cmath>
 
+#include "archet/ui/nearest_point.hpp"
 #include "archet/ui/plot_palette.hpp"
 #include "archet/ui/widget_export.hpp"
 
@@ -121,15 +122,9 @@ void PlayabilityFigure::mark(std::optional<std::pair<double, double>> point) {
 }
 
 long PlayabilityFigure::point_at(QPoint pixel) const {
-    long best = -1;
-    double nearest = 15;  // px
-    for (const auto& p : points_) {
-        const double dx = plot_->xAxis->coordToPixel(p.position) - pixel.x();
-        const double dy = plot_->yAxis->coordToPixel(p.force) - pixel.y();
-        const double d = std::hypot(dx, dy);
-        if (d < nearest) nearest = d, best = static_cast<long>(p.index);
-    }
-    return best;
+    return nearest_point(
+        *plot_, points_, pixel, [](const auto& p) { return p.position; },
+        [](const auto& p) { return p.force; });
 }
 
 bool PlayabilityFigure::save(const QString& path, QSize size) {

@@ -10,29 +10,41 @@ bool BowingAnalysis::helmholtz() const {
            std::abs(pitch_cents) < 50.0 && slip_share > 0.0 && slip_share < 0.5;
 }
 
+bool SlipOnsets::add(std::size_t i, double v) {
+    const double a1 = std::abs(v);
+    const bool slip = a1 > threshold_;
+    const bool starts = slip && !slipping_ && started_;
+    if (starts) {
+        const double a0 = previous_;
+        const double fraction = a1 > a0 ? (threshold_ - a0) / (a1 - a0) : 0.0;
+        onset_ = (static_cast<double>(i - 1) + std::clamp(fraction, 0.0, 1.0)) / fs_;
+    }
+    slipping_ = slip, previous_ = a1, started_ = true;
+    return starts;
+}
+
 namespace {
 
-// Times (s) where |v| rises through the threshold, interpolated between samples.
-std::vector<double> slip_onsets(const std::vector<double>& v, double fs, std::size_t first,
-                                std::size_t last, double threshold, std::size_t* slipping) {
+// Times (s) where |v| rises through the threshold, and how many samples were slipping.
+std::vector<double> onsets_and_share(const std::vector<double>& v, double fs, std::size_t first,
+                                     std::size_t last, double threshold, std::size_t* slipping) {
     std::vector<double> onsets;
     std::size_t count = 0;
-    bool was_slipping = std::abs(v[first]) > threshold;
+    SlipOnsets detector(fs, threshold);
     for (std::size_t i = first; i < last; ++i) {
-        const bool slip = std::abs(v[i]) > threshold;
-        count += slip;
-        if (slip && !was_slipping && i > first) {
-            const double a0 = std::abs(v[i - 1]), a1 = std::abs(v[i]);
-            const double fraction = a1 > a0 ? (threshold - a0) / (a1 - a0) : 0.0;
-            onsets.push_back((static_cast<double>(i - 1) + std::clamp(fraction, 0.0, 1.0)) / fs);
-        }
-        was_slipping = slip;
+        if (detector.add(i, v[i])) onsets.push_back(detector.onset());
+        count += detector.slipping();
     }
     if (slipping) *slipping = count;
     return onsets;
 }
 
 }  // namespace
+
+std::vector<double> slip_onsets(const std::vector<double>& v, double fs, std::size_t first,
+                                std::size_t last, double threshold) {
+    return onsets_and_share(v, fs, first, std::min(last, v.size()), threshold, nullptr);
+}
 
 AttackAnalysis analyse_attack(const std::vector<double>& v, const std::vector<double>& normal,
                               double fs, double pitch, int settle, double tolerance,
@@ -44,7 +56,7 @@ AttackAnalysis analyse_attack(const std::vector<double>& v, const std::vector<do
     if (contact >= end) return a;
     a.contact = static_cast<double>(contact) / fs;
     while (end > contact && !(normal[end - 1] > 0.0)) --end;  // up to the bow's last contact
-    const auto onsets = slip_onsets(v, fs, contact, end, threshold, nullptr);
+    const auto onsets = onsets_and_share(v, fs, contact, end, threshold, nullptr);
     if (onsets.size() < static_cast<std::size_t>(2 * settle) + 1) return a;
     // The steady period: the median interval over the second half of the contact, which
     // outvotes the lift at its end.
@@ -75,7 +87,7 @@ BowingAnalysis analyse_bowing(const std::vector<double>& v, double fs, double pi
     last = std::min(last, v.size());
     if (last <= first + 1) return a;
     std::size_t slipping = 0;
-    const std::vector<double> onsets = slip_onsets(v, fs, first, last, threshold, &slipping);
+    const std::vector<double> onsets = onsets_and_share(v, fs, first, last, threshold, &slipping);
     a.slips = static_cast<int>(onsets.size());
     a.periods = static_cast<double>(last - first) / fs * pitch;
     a.slips_per_period = a.slips / a.periods;

@@ -11,8 +11,8 @@
 #include "archet/analysis/bowing_analysis.hpp"
 #include "archet/analysis/modal_analysis.hpp"
 #include "archet/common/denormal_guard.hpp"
+#include "archet/common/grid_sweep.hpp"
 #include "archet/common/input_error.hpp"
-#include "archet/common/parallel_for.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/model/model_variants.hpp"
 #include "archet/model/string_points.hpp"
@@ -225,30 +225,18 @@ std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs
                                int shards,
                                const std::function<void(std::size_t, std::size_t)>& progress,
                                const std::atomic<bool>* cancel) {
-    if (shards < 1 || shard < 0 || shard >= shards)
-        throw InputError("--shard", "expected I/N with 0 ≤ I < N");
-    std::vector<std::size_t> mine;
-    for (std::size_t i = 0; i < grid.size(); ++i)
-        if (static_cast<int>(i % static_cast<std::size_t>(shards)) == shard) mine.push_back(i);
-    const double pitch = first_mode(model);  // the bow's position does not move the modes
+    shard_points(grid.size(), shard, shards);  // a bad shard is refused before anything runs
+    const double pitch = first_mode(model);    // the bow's position does not move the modes
     // Every variant is checked before the threads start.
     for (double beta : {grid.position_min, grid.position_max}) {
         Model check = model;
         set_variant_parameter(check, "bow.position", beta);
         press_stiffness(check);
     }
-    std::vector<MapPoint> points(mine.size());
-    bool finished = false;
-    try {
-        finished = parallel_for(
-            mine.size(), jobs,
-            [&](std::size_t k) { points[k] = play_map_point(model, grid, mine[k], pitch); }, cancel,
-            progress);
-    } catch (const std::exception& e) {
-        throw InputError(model.name, e.what());
-    }
-    if (!finished) throw InputError(model.name, "cancelled");
-    return points;
+    return sweep_grid<MapPoint>(
+        model.name, grid.size(), jobs, shard, shards,
+        [&](std::size_t index) { return play_map_point(model, grid, index, pitch); }, progress,
+        cancel);
 }
 
 double force_for_press(const Model& model, double press) {

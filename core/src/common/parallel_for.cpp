@@ -1,5 +1,7 @@
 #include "archet/common/parallel_for.hpp"
 
+#include "archet/common/grid_sweep.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
@@ -48,6 +50,16 @@ bool parallel_for(std::size_t count, int jobs, const std::function<void(std::siz
 
 int hardware_jobs() {
     return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+std::vector<std::size_t> shard_points(std::size_t count, int shard, int shards) {
+    if (shards < 1 || shard < 0 || shard >= shards)
+        throw InputError("--shard", "expected I/N with 0 ≤ I < N");
+    std::vector<std::size_t> mine;
+    for (std::size_t i = static_cast<std::size_t>(shard); i < count;
+         i += static_cast<std::size_t>(shards))
+        mine.push_back(i);
+    return mine;
 }
 
 }  // namespace archet

@@ -19,6 +19,27 @@ struct BowingAnalysis {
     bool helmholtz() const;       ///< one slip per period, steady, near the pitch
 };
 
+/// Finds where the slip velocity rises through `threshold` (m/s), one sample at a time:
+/// the times the bow starts to slip, interpolated between samples.
+class SlipOnsets {
+  public:
+    explicit SlipOnsets(double sample_rate, double threshold = 1e-3)
+        : fs_(sample_rate), threshold_(threshold) {}
+    /// Sample i's slip velocity; true when a slip starts at it (its time is then onset()).
+    bool add(std::size_t i, double slip_velocity);
+    double onset() const { return onset_; }  ///< s
+    bool slipping() const { return slipping_; }
+
+  private:
+    double fs_, threshold_;
+    double previous_ = 0, onset_ = 0;
+    bool slipping_ = false, started_ = false;
+};
+
+/// The times (s) slips start in samples [first, last) of `slip_velocity`.
+std::vector<double> slip_onsets(const std::vector<double>& slip_velocity, double sample_rate,
+                                std::size_t first, std::size_t last, double threshold = 1e-3);
+
 /// `slip_velocity` sampled at `sample_rate`; analyses samples [first, last). A sample counts
 /// as slipping when |v| exceeds `threshold` (m/s).
 BowingAnalysis analyse_bowing(const std::vector<double>& slip_velocity, double sample_rate,

@@ -1,0 +1,169 @@
+// `archet attack MODEL --acceleration MIN:MAX:STEPS --force MIN:MAX:STEPS -o ATTACK.csv`: the
+// model's attack map (a Guettler diagram) on all cores, optionally one shard of it;
+// `archet attack merge PARTS... -o ATTACK.csv` joins shards.
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <optional>
+
+#include "archet/analysis/attack.hpp"
+#include "archet/analysis/modal_analysis.hpp"
+#include "archet/common/grid_sweep.hpp"
+#include "archet/common/input_error.hpp"
+#include "archet/common/input_limits.hpp"
+#include "archet/common/parallel_for.hpp"
+#include "archet/files/model_file.hpp"
+#include "archet/ui/attack_figure.hpp"
+#include "commands.hpp"
+#include "figure_application.hpp"
+#include "model_loading.hpp"
+#include "option_checks.hpp"
+
+namespace archet::cli {
+
+namespace {
+
+struct AttackArguments {
+    std::string model, acceleration = "0.5:8:8", force = "0.05:2:8", axes = "linear", output, png,
+                       shard = "0/1";
+    double position = 0;
+    int periods_max = 25, jobs = 0;
+    std::size_t max_points = limits::kMapPoints;
+    std::vector<std::string> parts;
+};
+
+void write_png(const std::string& path, const AttackGrid& grid,
+               const std::vector<AttackPoint>& points, const std::string& title) {
+    const FigureApplication app;
+    ui::AttackFigure figure;
+    figure.show_attacks(grid, points, QString::fromStdString(title));
+    if (!figure.save(QString::fromStdString(path)))
+        throw InputError(path, "could not write the figure");
+}
+
+void print_summary(const std::vector<AttackPoint>& points) {
+    std::map<std::string, int> counts;
+    for (const auto& p : points) ++counts[to_string(p.transient.kind)];
+    for (const auto& [kind, n] : counts) std::cout << kind << ": " << n << "\n";
+}
+
+AttackGrid grid_from(const AttackArguments& a) {
+    // Each range on its own, so that a bad one is named by its option.
+    auto range = [](const std::string& option, const std::string& key, const std::string& value) {
+        try {
+            return AttackGrid::parse(key + "=" + value);
+        } catch (const InputError&) {
+            throw InputError(option, "\"" + value + "\": expected MIN:MAX:STEPS, e.g. 0.5:8:8");
+        }
+    };
+    AttackGrid grid = range("--acceleration", "acceleration", a.acceleration);
+    const AttackGrid forces = range("--force", "force", a.force);
+    grid.force_min = forces.force_min, grid.force_max = forces.force_max;
+    grid.force_steps = forces.force_steps;
+    if (a.axes != "linear" && a.axes != "log")
+        throw InputError("--axes", "\"" + a.axes + "\": expected linear or log");
+    grid.log_axes = a.axes == "log";
+    grid.position = a.position, grid.periods_max = a.periods_max;
+    if (!(grid.acceleration_min > 0 && grid.acceleration_max >= grid.acceleration_min &&
+          grid.acceleration_max <= 1000 && grid.acceleration_steps >= 1))
+        throw InputError("--acceleration", "expected 0 < MIN ≤ MAX ≤ 1000 and STEPS ≥ 1 (m/s²)");
+    if (!(grid.force_min > 0 && grid.force_max >= grid.force_min && grid.force_max <= 100 &&
+          grid.force_steps >= 1))
+        throw InputError("--force", "expected 0 < MIN ≤ MAX ≤ 100 and STEPS ≥ 1 (N)");
+    if (static_cast<double>(grid.acceleration_steps) * grid.force_steps > a.max_points)
+        throw InputError("--force", std::to_string(grid.acceleration_steps) + " × " +
+                                        std::to_string(grid.force_steps) +
+                                        " points is more than --max-points " +
+                                        std::to_string(a.max_points) +
+                                        "; use fewer STEPS, or raise --max-points and share the "
+                                        "work with --shard");
+    return grid;
+}
+
+int run_attack(const AttackArguments& a) {
+    if (a.model.empty()) throw InputError("MODEL", "give a model file (or: archet attack merge)");
+    if (a.output.empty()) throw InputError("--output", "give the attack map's CSV file");
+    const AttackGrid grid = grid_from(a);
+    int shard = 0, shards = 1;
+    if (std::sscanf(a.shard.c_str(), "%d/%d", &shard, &shards) != 2)
+        throw InputError("--shard", "expected I/N, e.g. 3/16");
+    const Model model = load_validated_model(a.model, {});
+    const int jobs = a.jobs > 0 ? a.jobs : hardware_jobs();
+    const bool show = ::isatty(STDERR_FILENO);
+    const auto points =
+        play_attack(model, grid, jobs, shard, shards, [&](std::size_t done, std::size_t total) {
+            if (show) std::fprintf(stderr, "\rattack %zu / %zu", done, total);
+        });
+    if (show) std::fputc('\n', stderr);
+    write_file_atomically(a.output,
+                          format_attack({grid, points, analyse_modes(model).fundamental}));
+    if (!a.png.empty()) write_png(a.png, grid, points, model.name);
+    print_summary(points);
+    std::cout << "wrote " << a.output << " (" << points.size() << " of " << grid.size() << " points"
+              << (shards > 1 ? ", shard " + a.shard : std::string()) << ")\n";
+    return 0;
+}
+
+int run_merge(const AttackArguments& a) {
+    if (a.parts.empty()) throw InputError("PARTS", "give the shards' CSV files");
+    std::optional<AttackMap> merged;
+    for (const auto& part : a.parts) {
+        AttackMap map = parse_attack(read_text_file(part), part);
+        if (merged && map.grid.describe() != merged->grid.describe())
+            throw InputError(part, "is a shard of another grid (" + map.grid.describe() + ")");
+        if (!merged) merged = AttackMap{map.grid, {}, map.pitch};
+        merged->points.insert(merged->points.end(), map.points.begin(), map.points.end());
+    }
+    auto& points = merged->points;
+    check_shards_cover(points, merged->grid.size(), a.parts.front());
+    write_file_atomically(a.output, format_attack(*merged));
+    if (!a.png.empty()) write_png(a.png, merged->grid, points, a.output);
+    print_summary(points);
+    std::cout << "wrote " << a.output << " (" << points.size() << " points from " << a.parts.size()
+              << " shards)\n";
+    return 0;
+}
+
+}  // namespace
+
+void add_attack_command(CLI::App& app, Action& action) {
+    auto a = std::make_shared<AttackArguments>();
+    auto* cmd = app.add_subcommand(
+        "attack", "Attack map (Guettler diagram): bow acceleration against bow force");
+    cmd->add_option("model", a->model, "Model file (.json)");
+    cmd->add_option("--acceleration", a->acceleration,
+                    "The hand's acceleration MIN:MAX:STEPS (m/s²)")
+        ->capture_default_str();
+    cmd->add_option("--force", a->force, "Bow force MIN:MAX:STEPS (N)")->capture_default_str();
+    cmd->add_option("--axes", a->axes, "Grid spacing and figure axes: linear or log")
+        ->capture_default_str();
+    cmd->add_option("--position", a->position, "Bow position β (0: the model's own)")
+        ->capture_default_str()
+        ->check(finite_range(0, 0.5, "β"));
+    cmd->add_option("--periods-max", a->periods_max,
+                    "Longest transient counted, in periods (longer ones are \"never\")")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
+    cmd->add_option("--max-points", a->max_points,
+                    "Largest grid accepted (acceleration steps × force steps)")
+        ->capture_default_str();
+    cmd->add_option("--jobs", a->jobs, "Threads (0: every core)")->capture_default_str();
+    cmd->add_option("--shard", a->shard, "Play only shard I of N (I/N): points with index % N == I")
+        ->capture_default_str();
+    cmd->add_option("-o,--output", a->output, "The attack map's CSV file");
+    cmd->add_option("--png", a->png, "Draw the diagram as a PNG too");
+    cmd->callback([&action, a] {
+        if (!action) action = [a] { return run_attack(*a); };
+    });
+    auto* merge = cmd->add_subcommand("merge", "Join the shards of one attack map");
+    merge->add_option("parts", a->parts, "The shards' CSV files")->required();
+    merge->add_option("-o,--output", a->output, "The merged CSV file")->required();
+    merge->add_option("--png", a->png, "Draw the diagram as a PNG too");
+    merge->callback([&action, a] { action = [a] { return run_merge(*a); }; });
+}
+
+}  // namespace archet::cli

@@ -1,0 +1,115 @@
+#pragma once
+// Attack maps (Guettler diagrams): how a bowed string starts a note. The bow starts from rest
+// at a constant force and a constant acceleration; each attack is judged by how many periods
+// pass from the first slip until steady Helmholtz motion (one slip per period of the string)
+// and by what the transient was. Guettler, Acta Acustica 88 (2002); Woodhouse, Euphonics §9.5.
+
+#include <atomic>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "archet/model/gesture.hpp"
+#include "archet/model/model.hpp"
+
+namespace archet {
+
+/// What the start of an attack did: nothing irregular, or its first irregular period.
+enum class Transient {
+    None,          ///< Helmholtz motion from the first slip
+    MultipleSlip,  ///< a period with more than one slip (too little force)
+    Prolonged,     ///< a period longer than the string's (too much force)
+    Sliding,       ///< the bow slipped once and never gripped again (far too little force)
+};
+const char* to_string(Transient transient);
+/// Throws InputError for an unknown name.
+Transient transient_from_string(const std::string& name);
+
+/// How the attack ended.
+enum class AttackKind {
+    Perfect,       ///< Helmholtz motion from the first slip
+    MultipleSlip,  ///< Helmholtz motion after a transient that began with multiple slips
+    Prolonged,     ///< Helmholtz motion after a transient that began with a prolonged period
+    Never,         ///< no steady Helmholtz motion within the periods allowed
+};
+const char* to_string(AttackKind kind);
+/// Throws InputError for an unknown name.
+AttackKind attack_kind_from_string(const std::string& name);
+
+struct AttackTransient {
+    AttackKind kind = AttackKind::Never;
+    Transient transient = Transient::Sliding;
+    double periods = 0;    ///< from the first slip to steady Helmholtz motion, in periods of f1
+    int slips = 0;         ///< slips in that transient (in the periods allowed, for Never)
+    bool decided = false;  ///< the slips seen so far settle it
+};
+
+/// Judges an attack from its slip onsets (s, in order) against the string's period (s).
+/// Steady Helmholtz motion starts at the first onset followed by `settle` intervals each
+/// within `tolerance`·period of the period, at most `periods_max` periods after the first
+/// slip. The transient is named by its first period that is not steady: shorter than the
+/// string's (a second slip) or longer. `now` (s) is how far the stroke has been played: a
+/// transient that has not settled by then is Never only once no later start could count.
+AttackTransient judge_transient(const std::vector<double>& onsets, double period, double now,
+                                int periods_max, int settle = 10, double tolerance = 0.1);
+
+/// The attack protocol's timing (s): the press ramps up from 0 to its full value over
+/// kPressRamp, holds still until kBowStart, and from then the hand slides with constant
+/// acceleration. A stroke that has not slipped kNoSlipWait after the bow started is Never.
+inline constexpr double kPressRamp = 0.02, kBowStart = 0.05, kNoSlipWait = 1.0;
+
+/// The protocol as a gesture, in device units: keyframes every `step` seconds (the hand's
+/// rate) on the parabola slide = ½·a·(t − kBowStart)², up to `duration`.
+Gesture attack_gesture(double press, double acceleration, double step, double duration);
+
+struct AttackGrid {
+    double acceleration_min = 0.5, acceleration_max = 8;  ///< m/s², of the hand
+    int acceleration_steps = 8;
+    double force_min = 0.05, force_max = 2;  ///< N, the bow's steady normal force
+    int force_steps = 8;
+    bool log_axes = false;  ///< log-spaced grid (else linear)
+    double position = 0;    ///< β; 0 keeps the model's own bow position
+    int periods_max = 25;   ///< longest transient counted
+    std::size_t size() const;
+    double acceleration(
+        std::size_t index) const;  ///< index = acceleration step · force steps + force step
+    double force(std::size_t index) const;
+    /// "acceleration=MIN:MAX:STEPS force=MIN:MAX:STEPS axes=linear position=B periods-max=N"
+    std::string describe() const;
+    static AttackGrid parse(const std::string& description);
+};
+
+struct AttackPoint {
+    std::size_t index = 0;
+    double acceleration = 0, force = 0;
+    AttackTransient transient;
+    double first_slip = -1;  ///< s from the bow's start to its first slip (−1: none)
+};
+
+/// Plays one attack on `model` (a bowed string with a hand on each axis); `pitch` is the
+/// string's first mode (0: found by modal analysis). With `sound`, the stroke's output.
+AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::size_t index,
+                              double pitch = 0, std::vector<double>* sound = nullptr);
+
+/// Plays the points whose index % shards == shard on `jobs` threads, calling
+/// `progress(done, total)` from the caller's thread. Sorted by index. Setting `*cancel`
+/// stops it (InputError "cancelled").
+std::vector<AttackPoint> play_attack(
+    const Model& model, const AttackGrid& grid, int jobs, int shard = 0, int shards = 1,
+    const std::function<void(std::size_t, std::size_t)>& progress = {},
+    const std::atomic<bool>* cancel = nullptr);
+
+/// A whole attack map: its grid, its points and the pitch its periods count.
+struct AttackMap {
+    AttackGrid grid;
+    std::vector<AttackPoint> points;
+    double pitch = 0;  ///< Hz, the string's first mode
+};
+
+/// The attack map as CSV: first line "# archet-attack " + grid.describe(), then comment
+/// lines (the protocol and the pitch, "f1 = … Hz"), the column names with their units, one
+/// row per point; and back.
+std::string format_attack(const AttackMap& map);
+AttackMap parse_attack(const std::string& text, const std::string& source);
+
+}  // namespace archet

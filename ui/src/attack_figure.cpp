@@ -1,0 +1,150 @@
+#include "archet/ui/attack_figure.hpp"
+
+#include <qcustomplot.h>
+
+#include <QVBoxLayout>
+#include <cmath>
+
+#include "archet/ui/nearest_point.hpp"
+#include "archet/ui/plot_palette.hpp"
+#include "archet/ui/widget_export.hpp"
+
+namespace archet::ui {
+
+namespace {
+
+// Transient lengths grouped as the diagrams in the literature shade them.
+struct Band {
+    double up_to;  ///< periods, inclusive
+    const char* label;
+    QColor colour;
+};
+const Band kBands[] = {{2, "1–2 periods", {120, 200, 120}},
+                       {5, "3–5 periods", {240, 200, 60}},
+                       {10, "6–10 periods", {240, 140, 40}},
+                       {1e9, "11 periods or more", {200, 60, 40}}};
+
+QCPScatterStyle::ScatterShape shape_of(Transient transient) {
+    switch (transient) {
+        case Transient::None:
+            return QCPScatterStyle::ssStar;
+        case Transient::MultipleSlip:
+            return QCPScatterStyle::ssCircle;
+        case Transient::Prolonged:
+            return QCPScatterStyle::ssSquare;
+        case Transient::Sliding:
+            break;
+    }
+    return QCPScatterStyle::ssTriangleInverted;
+}
+
+}  // namespace
+
+QString transient_name(Transient transient) {
+    switch (transient) {
+        case Transient::None:
+            return QObject::tr("perfect");
+        case Transient::MultipleSlip:
+            return QObject::tr("multiple slip");
+        case Transient::Prolonged:
+            return QObject::tr("prolonged periods");
+        case Transient::Sliding:
+            return QObject::tr("sliding");
+    }
+    return QObject::tr("unknown");
+}
+
+AttackFigure::AttackFigure(QWidget* parent) : QWidget(parent) {
+    plot_ = new QCustomPlot;
+    plot_->setMinimumSize(400, 300);
+    plot_->xAxis->setLabel(tr("acceleration of the hand (m/s²)"));
+    plot_->yAxis->setLabel(tr("bow force (N)"));
+    plot_->legend->setVisible(true);
+    plot_->legend->setFont(QFont(font().family(), 8));
+    plot_->plotLayout()->insertRow(0);
+    plot_->plotLayout()->addElement(0, 0, new QCPTextElement(plot_, QString()));
+    // The legend beside the diagram, at its top rather than spread down its height.
+    auto* side = new QCPLayoutGrid;
+    plot_->plotLayout()->addElement(1, 1, side);
+    plot_->plotLayout()->setColumnStretchFactor(1, 0.001);
+    side->addElement(0, 0, plot_->legend);
+    side->addElement(1, 0, new QCPLayoutElement(plot_));
+    side->setRowStretchFactor(0, 0.001);
+    follow_palette(*plot_);
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(0, 0, 0, 0);
+    layout->addWidget(plot_);
+    connect(plot_, &QCustomPlot::mousePress, this, [this](QMouseEvent* e) {
+        const long index = point_at(e->position().toPoint());
+        if (index >= 0) emit point_clicked(index);
+    });
+}
+
+void AttackFigure::show_attacks(const AttackGrid& grid, const std::vector<AttackPoint>& points,
+                                const QString& title) {
+    points_ = points;
+    plot_->clearGraphs();
+    if (auto* heading = qobject_cast<QCPTextElement*>(plot_->plotLayout()->element(0, 0)))
+        heading->setText(title.isEmpty() ? tr("Attacks") : tr("Attacks: %1").arg(title));
+    const auto scale = grid.log_axes ? QCPAxis::stLogarithmic : QCPAxis::stLinear;
+    for (QCPAxis* axis : {plot_->xAxis, plot_->yAxis}) {
+        axis->setScaleType(scale);
+        if (grid.log_axes)
+            axis->setTicker(QSharedPointer<QCPAxisTickerLog>(new QCPAxisTickerLog));
+        else
+            axis->setTicker(QSharedPointer<QCPAxisTicker>(new QCPAxisTicker));
+    }
+    // One scatter per kind and band of lengths, so that the legend names them.
+    auto add = [&](const QString& name, QCPScatterStyle::ScatterShape shape, QColor colour,
+                   auto&& chosen) {
+        QVector<double> x, y;
+        for (const auto& p : points)
+            if (chosen(p)) x << p.acceleration, y << p.force;
+        if (x.isEmpty()) return;
+        QCPGraph* g = plot_->addGraph();
+        g->setName(name);
+        g->setLineStyle(QCPGraph::lsNone);
+        g->setScatterStyle(QCPScatterStyle(shape, colour.darker(130), colour, 13));
+        g->setData(x, y);
+    };
+    add(transient_name(Transient::None), shape_of(Transient::None), QColor(30, 140, 60),
+        [](const AttackPoint& p) { return p.transient.kind == AttackKind::Perfect; });
+    for (Transient transient :
+         {Transient::MultipleSlip, Transient::Prolonged, Transient::Sliding}) {
+        double from = 0;
+        for (const Band& band : kBands) {
+            add(transient_name(transient) + ", " + tr(band.label), shape_of(transient), band.colour,
+                [&](const AttackPoint& p) {
+                    return p.transient.kind != AttackKind::Never &&
+                           p.transient.transient == transient && p.transient.periods > from &&
+                           p.transient.periods <= band.up_to;
+                });
+            from = band.up_to;
+        }
+        add(transient_name(transient) + ", " +
+                tr("no Helmholtz in %1 periods").arg(grid.periods_max),
+            shape_of(transient), QColor(150, 150, 150), [&](const AttackPoint& p) {
+                return p.transient.kind == AttackKind::Never && p.transient.transient == transient;
+            });
+    }
+    const double margin = grid.log_axes ? 1.15 : 1.0;
+    const double ax = grid.log_axes ? 0 : 0.05 * (grid.acceleration_max - grid.acceleration_min);
+    const double fy = grid.log_axes ? 0 : 0.05 * (grid.force_max - grid.force_min);
+    plot_->xAxis->setRange(grid.acceleration_min / margin - ax,
+                           grid.acceleration_max * margin + ax);
+    plot_->yAxis->setRange(grid.force_min / margin - fy, grid.force_max * margin + fy);
+    apply_palette(*plot_);
+    plot_->replot();
+}
+
+long AttackFigure::point_at(QPoint pixel) const {
+    return nearest_point(
+        *plot_, points_, pixel, [](const auto& p) { return p.acceleration; },
+        [](const auto& p) { return p.force; });
+}
+
+bool AttackFigure::save(const QString& path, QSize size) {
+    return save_widget_image(*this, path, size);
+}
+
+}  // namespace archet::ui
