@@ -14,6 +14,7 @@
 
 #include "archet/analysis/playability.hpp"
 #include "archet/ui/appearance.hpp"
+#include "archet/ui/attack_panel.hpp"
 #include "archet/ui/compare_view.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
@@ -138,6 +139,8 @@ void MainWindow::build_play_menu() {
     add_action(play, tr("Audio and &devices…"), QKeySequence(), &MainWindow::open_settings);
     add_action(play, tr("Playa&bility map…"), QKeySequence(Qt::CTRL | Qt::Key_M),
                &MainWindow::open_playability);
+    add_action(play, tr("&Attack map…"), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_M),
+               [this] { show_owned(new AttackPanel(document_->model(), this)); });
     add_action(play, tr("&Compare settings…"), QKeySequence(Qt::CTRL | Qt::Key_K),
                [this] { show_owned(new CompareView(document_->model(), this)); });
 }

@@ -22,6 +22,7 @@ namespace {
 
 constexpr int kSettle = 10;         // periods of steady motion that make it steady
 constexpr double kTolerance = 0.1;  // of the period, for a period to count as steady
+constexpr double kHeardFor = 0.6;   // s of sliding that an attack played to be heard lasts
 
 double string_pitch(const Model& model) {
     const double f1 = analyse_modes(model).fundamental;
@@ -166,20 +167,23 @@ AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::s
     SlipOnsets detector(fs);
     std::vector<double> onsets;
     double give_up = kNoSlipWait;  // s after the bow's start
+    bool judged = false;
+    // An attack to be heard plays on for a while after it is judged.
+    const std::size_t heard = sound ? static_cast<std::size_t>((kBowStart + kHeardFor) * fs) : 0;
     if (sound) sound->clear();
-    for (std::size_t i = 0; i < end; ++i) {
+    for (std::size_t i = 0; i < end && !(judged && i >= heard); ++i) {
         sim.step();
         if (sound) sound->push_back(sim.output());
-        if (i < start) continue;  // the bow has not moved yet
+        if (i < start || judged) continue;  // the bow has not moved yet, or it is over
         const double now = static_cast<double>(i + 1) / fs - kBowStart;
         if (detector.add(i, sim.model().bows[0].slip_velocity)) {
             onsets.push_back(detector.onset() - kBowStart);
             if (onsets.size() == 1)
                 give_up = unsettled_after(onsets.front(), period, grid.periods_max);
-            if (judge_transient(onsets, period, now, grid.periods_max, kSettle, kTolerance).decided)
-                break;
+            judged =
+                judge_transient(onsets, period, now, grid.periods_max, kSettle, kTolerance).decided;
         }
-        if (now > give_up) break;
+        judged = judged || now > give_up;
     }
     if (!onsets.empty()) p.first_slip = onsets.front();
     p.transient =
