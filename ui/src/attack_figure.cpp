@@ -121,8 +121,7 @@ void AttackFigure::show_attacks(const AttackGrid& grid, const std::vector<Attack
                 });
             from = band.up_to;
         }
-        add(transient_name(transient) + ", " +
-                tr("no Helmholtz in %1 periods").arg(grid.periods_max),
+        add(transient_name(transient) + ", " + tr("never in %1 periods").arg(grid.periods_max),
             shape_of(transient), QColor(150, 150, 150), [&](const AttackPoint& p) {
                 return p.transient.kind == AttackKind::Never && p.transient.transient == transient;
             });
