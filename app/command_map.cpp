@@ -46,6 +46,9 @@ void print_summary(const std::vector<MapPoint>& points) {
     std::map<std::string, int> counts;
     for (const auto& p : points) ++counts[to_string(p.analysis.regime)];
     for (const auto& [regime, n] : counts) std::cout << regime << ": " << n << "\n";
+    if (const HelmholtzPitch pitch = helmholtz_pitch(points); pitch.points > 0)
+        std::printf("helmholtz pitch: %.1f … %.1f cents against the first mode\n", pitch.flattest,
+                    pitch.sharpest);
 }
 
 int run_map(const MapArguments& a) {

@@ -104,6 +104,20 @@ TEST(PlayabilityMap, TheShippedStringShowsSchellengsPicture) {
     EXPECT_LT(b.maximum, 1.5) << "about 0.7 N for a violin-like string bowed at 0.1 m/s";
 }
 
+TEST(PlayabilityMap, TheHelmholtzPointsPitchRangeIsTheirsAlone) {
+    std::vector<MapPoint> points(4);
+    const double cents[] = {-5.2, 900, -6.5, -5.8};
+    const Regime regimes[] = {Regime::Helmholtz, Regime::MultipleSlip, Regime::Helmholtz,
+                              Regime::Helmholtz};
+    for (std::size_t i = 0; i < points.size(); ++i)
+        points[i].analysis.regime = regimes[i], points[i].analysis.pitch_cents = cents[i];
+    const HelmholtzPitch pitch = helmholtz_pitch(points);
+    EXPECT_EQ(pitch.points, 3);
+    EXPECT_EQ(pitch.flattest, -6.5);
+    EXPECT_EQ(pitch.sharpest, -5.2) << "the multiple slip point's 900 cents is not a pitch";
+    EXPECT_EQ(helmholtz_pitch({points[1]}).points, 0);
+}
+
 TEST(PlayabilityMap, ShardsMergeIntoTheWholeMap) {
     const Model model = load_model_file(test::resource("models/bowed-string-440.json"));
     const auto dir = test::temp_dir("map-shards");
@@ -118,6 +132,9 @@ TEST(PlayabilityMap, ShardsMergeIntoTheWholeMap) {
     };
     auto whole = run({"-o", (dir / "whole.csv").string()});
     ASSERT_EQ(whole.status, 0) << whole.err;
+    // Two of its points are in Helmholtz motion: their pitch range is said.
+    EXPECT_NE(whole.out.find("helmholtz: 2"), std::string::npos) << whole.out;
+    EXPECT_NE(whole.out.find("cents against the first mode"), std::string::npos) << whole.out;
     for (int s = 0; s < 3; ++s) {
         const auto r = run({"--shard", std::to_string(s) + "/3", "-o",
                             (dir / ("part" + std::to_string(s) + ".csv")).string()});

@@ -403,6 +403,21 @@ TEST(PlayabilityPanelTest, ComputesInTheBackgroundMarksTheGestureAndPlaysAClicke
     panel.listen(7);
     EXPECT_TRUE(test::wait_until([&] { return panel.player().position() > 1000u; }, 60000));
     panel.player().stop();
+    // Where the string plays in Helmholtz motion, the message says how flat it plays against
+    // the string's first mode.
+    MapGrid helmholtz;
+    helmholtz.force_min = 0.02, helmholtz.force_max = 0.067, helmholtz.force_steps = 3;
+    helmholtz.position_min = helmholtz.position_max = 0.12, helmholtz.position_steps = 1;
+    helmholtz.speed = 0.05, helmholtz.duration = 1.5;
+    panel.set_grid(helmholtz);
+    error = "not yet";
+    panel.compute();
+    ASSERT_TRUE(test::wait_until([&] { return error != "not yet"; }, 300000));
+    bool said = false;
+    for (const QLabel* label : panel.findChildren<QLabel*>())
+        said = said || (label->text().startsWith("3 of 3 points in Helmholtz motion, playing -") &&
+                        label->text().contains("cents against the string's first mode"));
+    EXPECT_TRUE(said);
 }
 
 TEST(ModesPanelTest, FindsTheStringsFundamental) {

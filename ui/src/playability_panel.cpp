@@ -137,12 +137,17 @@ void PlayabilityPanel::finished(std::vector<MapPoint> points, QString error) {
         points_ = std::move(points);
         figure_->show_map(grid_, points_, model_);
         figure_->mark(gesture_point_ ? gesture_point_() : std::nullopt);
-        int helmholtz = 0;
-        for (const auto& p : points_) helmholtz += p.analysis.regime == Regime::Helmholtz;
-        message_->setText(tr("%1 of %2 points in Helmholtz motion; the cross is where you bow now. "
-                             "Click a point to hear it.")
-                              .arg(helmholtz)
-                              .arg(points_.size()));
+        const HelmholtzPitch pitch = helmholtz_pitch(points_);
+        const QString flattening =
+            pitch.points == 0 ? QString()
+                              : tr(", playing %1 to %2 cents against the string's first mode")
+                                    .arg(pitch.flattest, 0, 'f', 1)
+                                    .arg(pitch.sharpest, 0, 'f', 1);
+        message_->setText(tr("%1 of %2 points in Helmholtz motion%3; the cross is where you bow "
+                             "now. Click a point to hear it.")
+                              .arg(pitch.points)
+                              .arg(points_.size())
+                              .arg(flattening));
     }
     emit computed(error);
 }

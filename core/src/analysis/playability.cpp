@@ -239,6 +239,18 @@ std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs
         cancel);
 }
 
+HelmholtzPitch helmholtz_pitch(const std::vector<MapPoint>& points) {
+    HelmholtzPitch h;
+    for (const auto& p : points) {
+        if (p.analysis.regime != Regime::Helmholtz) continue;
+        const double cents = p.analysis.pitch_cents;
+        h.flattest = h.points ? std::min(h.flattest, cents) : cents;
+        h.sharpest = h.points ? std::max(h.sharpest, cents) : cents;
+        ++h.points;
+    }
+    return h;
+}
+
 double force_for_press(const Model& model, double press) {
     return press * press_stiffness(model);
 }

@@ -69,6 +69,14 @@ std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs
                                const std::function<void(std::size_t, std::size_t)>& progress = {},
                                const std::atomic<bool>* cancel = nullptr);
 
+/// How flat or sharp a map's Helmholtz points play against the string's first mode: the
+/// pitch flattening that grows with bow force.
+struct HelmholtzPitch {
+    int points = 0;  ///< Helmholtz points in the map (the range is 0 … 0 without any)
+    double flattest = 0, sharpest = 0;  ///< cents
+};
+HelmholtzPitch helmholtz_pitch(const std::vector<MapPoint>& points);
+
 /// The steady normal force (N) a press of the hand's pressure axis gives, and its bow
 /// position β (the bowed mass's place along the string).
 double force_for_press(const Model& model, double press);
