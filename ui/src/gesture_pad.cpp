@@ -70,6 +70,7 @@ void GesturePad::move_to(QPointF point) {
 }
 
 void GesturePad::mousePressEvent(QMouseEvent* e) {
+    emit grabbed();
     move_to(e->position());
 }
 

@@ -3,7 +3,10 @@
 #include <QApplication>
 #include <QClipboard>
 #include <QCloseEvent>
+#include <QDoubleSpinBox>
+#include <QHBoxLayout>
 #include <QLabel>
+#include <QPushButton>
 #include <QScrollArea>
 #include <QSettings>
 #include <QSplitter>
@@ -23,6 +26,7 @@
 #include "archet/ui/modes_panel.hpp"
 #include "archet/ui/recording_clock.hpp"
 #include "archet/ui/scope_panel.hpp"
+#include "archet/ui/stroke_driver.hpp"
 #include "archet/ui/takes_panel.hpp"
 
 // The window's parts, a file each: this one builds the window and keeps its layout;
@@ -82,6 +86,7 @@ void MainWindow::build_panels() {
     side_layout->addWidget(
         new QLabel(tr("<b>Gesture pad</b> — drag across to bow, down to press")));
     side_layout->addWidget(pad_, 2);
+    side_layout->addLayout(build_stroke_row());
     side_layout->addWidget(build_tabs(), 3);
     auto* split = new QSplitter;
     split->setObjectName("main-side");
@@ -91,6 +96,32 @@ void MainWindow::build_panels() {
     split->setStretchFactor(1, 1);
     setCentralWidget(split);
     splitters_ = {left, split};
+}
+
+// A stroke from rest at a chosen acceleration, as the attack map plays them.
+QHBoxLayout* MainWindow::build_stroke_row() {
+    stroke_ = new StrokeDriver(*pad_, this);
+    auto* acceleration = new QDoubleSpinBox;
+    acceleration->setObjectName("stroke-acceleration");
+    acceleration->setRange(0.1, 100), acceleration->setDecimals(1), acceleration->setValue(8);
+    acceleration->setSuffix(tr(" m/s²"));
+    auto* button = new QPushButton(tr("Stroke"));
+    button->setObjectName("stroke");
+    button->setToolTip(
+        tr("Slides the bow from where it is, from rest, with this acceleration, "
+           "at the pad's press (press first: the wheel, or Shift as you let go)"));
+    connect(button, &QPushButton::clicked, this, [this, acceleration] {
+        stroke_->running() ? stroke_->stop() : stroke_->start(acceleration->value());
+    });
+    connect(stroke_, &StrokeDriver::finished, button, [button] { button->setText(tr("Stroke")); });
+    connect(button, &QPushButton::clicked, this,
+            [this, button] { button->setText(stroke_->running() ? tr("Stop") : tr("Stroke")); });
+    auto* row = new QHBoxLayout;
+    row->addWidget(new QLabel(tr("From rest at")));
+    row->addWidget(acceleration);
+    row->addWidget(button);
+    row->addStretch();
+    return row;
 }
 
 QTabWidget* MainWindow::build_tabs() {

@@ -31,6 +31,8 @@ class GesturePad : public QWidget {
 
   signals:
     void moved(double slide, double press);
+    /// The player took the bow with the mouse (a stroke playing on its own yields to them).
+    void grabbed();
 
   protected:
     void paintEvent(QPaintEvent*) override;

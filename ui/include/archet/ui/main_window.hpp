@@ -19,6 +19,7 @@
 #include "archet/ui/engine_client.hpp"
 
 class QAction;
+class QHBoxLayout;
 class QSplitter;
 class QTabWidget;
 class QLabel;
@@ -30,6 +31,7 @@ namespace archet::ui {
 class ElidedLabel;
 class RecordingClock;
 class GesturePad;
+class StrokeDriver;
 class GraphView;
 class Inspector;
 class LibraryPanel;
@@ -64,6 +66,8 @@ class MainWindow : public QMainWindow {
     Inspector& inspector() { return *inspector_; }
     ModesPanel& modes() { return *modes_; }
     GesturePad& pad() { return *pad_; }
+    /// Plays a stroke from rest at a chosen acceleration on the pad (the attack map's gesture).
+    StrokeDriver& stroke() { return *stroke_; }
     ScopePanel& scopes() { return *scopes_; }
     TakesPanel& takes() { return *takes_; }
     LibraryPanel& library() { return *library_; }
@@ -94,6 +98,7 @@ class MainWindow : public QMainWindow {
     // Building the window (main_window.cpp).
     void build_panels();
     QTabWidget* build_tabs();
+    QHBoxLayout* build_stroke_row();
     void build_status_bar();
     void connect_panels();
     void save_layout();
@@ -137,6 +142,7 @@ class MainWindow : public QMainWindow {
     ModesPanel* modes_;
     ScopePanel* scopes_;
     GesturePad* pad_;
+    StrokeDriver* stroke_;
     TakesPanel* takes_;
     LibraryPanel* library_;
     QLabel* engine_state_;
