@@ -11,7 +11,6 @@
 #include <optional>
 
 #include "archet/analysis/attack.hpp"
-#include "archet/analysis/modal_analysis.hpp"
 #include "archet/common/grid_sweep.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/common/input_limits.hpp"
@@ -71,9 +70,8 @@ AttackGrid grid_from(const AttackArguments& a) {
     if (!(grid.acceleration_min > 0 && grid.acceleration_max >= grid.acceleration_min &&
           grid.acceleration_max <= 1000 && grid.acceleration_steps >= 1))
         throw InputError("--acceleration", "expected 0 < MIN ≤ MAX ≤ 1000 and STEPS ≥ 1 (m/s²)");
-    if (!(grid.force_min > 0 && grid.force_max >= grid.force_min && grid.force_max <= 100 &&
-          grid.force_steps >= 1))
-        throw InputError("--force", "expected 0 < MIN ≤ MAX ≤ 100 and STEPS ≥ 1 (N)");
+    if (const std::string problem = grid.problem(); !problem.empty())
+        throw InputError("--force", "expected " + problem);
     if (static_cast<double>(grid.acceleration_steps) * grid.force_steps > a.max_points)
         throw InputError("--force", std::to_string(grid.acceleration_steps) + " × " +
                                         std::to_string(grid.force_steps) +
@@ -94,13 +92,13 @@ int run_attack(const AttackArguments& a) {
     const Model model = load_validated_model(a.model, {});
     const int jobs = a.jobs > 0 ? a.jobs : hardware_jobs();
     const bool show = ::isatty(STDERR_FILENO);
-    const auto points =
+    const AttackMap map =
         play_attack(model, grid, jobs, shard, shards, [&](std::size_t done, std::size_t total) {
             if (show) std::fprintf(stderr, "\rattack %zu / %zu", done, total);
         });
     if (show) std::fputc('\n', stderr);
-    write_file_atomically(a.output,
-                          format_attack({grid, points, analyse_modes(model).fundamental}));
+    write_file_atomically(a.output, format_attack(map));
+    const auto& points = map.points;
     if (!a.png.empty()) write_png(a.png, grid, points, model.name);
     print_summary(points);
     std::cout << "wrote " << a.output << " (" << points.size() << " of " << grid.size() << " points"
@@ -151,7 +149,9 @@ void add_attack_command(CLI::App& app, Action& action) {
     cmd->add_option("--max-points", a->max_points,
                     "Largest grid accepted (acceleration steps × force steps)")
         ->capture_default_str();
-    cmd->add_option("--jobs", a->jobs, "Threads (0: every core)")->capture_default_str();
+    cmd->add_option("--jobs", a->jobs, "Threads (0: every core)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1024));
     cmd->add_option("--shard", a->shard, "Play only shard I of N (I/N): points with index % N == I")
         ->capture_default_str();
     cmd->add_option("-o,--output", a->output, "The attack map's CSV file");

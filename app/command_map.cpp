@@ -140,7 +140,9 @@ void add_map_command(CLI::App& app, Action& action) {
     cmd->add_option("--max-points", a->max_points,
                     "Largest grid accepted (force steps × position steps), a bound on the work")
         ->capture_default_str();
-    cmd->add_option("--jobs", a->jobs, "Threads (0: every core)")->capture_default_str();
+    cmd->add_option("--jobs", a->jobs, "Threads (0: every core)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1024));
     cmd->add_option("--shard", a->shard,
                     "Render only shard I of N (I/N): points with index % N == I")
         ->capture_default_str();

@@ -68,10 +68,13 @@ TEST(AttackJudge, NeverOnlyOnceNoLaterStartCouldCount) {
     const AttackTransient too_late =
         judge_transient(onsets_after(double_slips, 12), kPeriod, 1.0, 10);
     EXPECT_EQ(too_late.kind, AttackKind::Never);
-    // One slip and no grip again: the bow slides.
+    // One slip and no grip again: the bow slides. No slip at all: it is stuck.
     const AttackTransient sliding = judge_transient({0.003}, kPeriod, 1.0, 25);
     EXPECT_EQ(sliding.transient, Transient::Sliding);
     EXPECT_EQ(sliding.kind, AttackKind::Never);
+    const AttackTransient stuck = judge_transient({}, kPeriod, 1.0, 25);
+    EXPECT_EQ(stuck.transient, Transient::Stuck);
+    EXPECT_EQ(stuck.kind, AttackKind::Never);
 }
 
 // The perfect attacks at one acceleration: [first, last] indices into the forces, or none.
@@ -96,7 +99,9 @@ TEST(AttackMap, TheShippedStringHasAWedgeOfPerfectAttacks) {
     AttackGrid grid;
     grid.acceleration_min = 16, grid.acceleration_max = 32, grid.acceleration_steps = 2;
     grid.force_min = 0.05, grid.force_max = 0.17, grid.force_steps = 25;
-    const std::vector<AttackPoint> points = play_attack(model, grid, 2);
+    const AttackMap map = play_attack(model, grid, 2);
+    EXPECT_NEAR(map.pitch, 220, 1e-6) << "periods of the string's own first mode";
+    const std::vector<AttackPoint>& points = map.points;
     ASSERT_EQ(points.size(), grid.size());
     const std::size_t n = static_cast<std::size_t>(grid.force_steps);
     const PerfectBand slow = perfect_band(points, 0, n), fast = perfect_band(points, n, n);
@@ -149,7 +154,11 @@ TEST(AttackMap, TheCsvReadsBackAsItWasWritten) {
              {"# archet-attack acceleration=1:2:2 force=0.1:0.2:2\n# f1 = 220 Hz\nindex\n"
               "9,1,0.1,perfect,0,0,none,3\n",
               "outside the grid"},
-             {"# archet-attack acceleration=1:2:2 force=0.1:0.2:2 colour=red\n", "colour=red"}}) {
+             {"# archet-attack acceleration=1:2:2 force=0.1:0.2:2 colour=red\n", "colour=red"},
+             {"# archet-attack acceleration=1:2:0 force=0.1:0.2:2\n# f1 = 220 Hz\n",
+              "STEPS ≥ 1 for the acceleration"},
+             {"# archet-attack acceleration=1:2:2 force=0.1:0.2:2 periods-max=1e30\n",
+              "periods-max from 1 to 1000"}}) {
         try {
             parse_attack(bad, "bad.csv");
             ADD_FAILURE() << "accepted: " << bad;
@@ -196,6 +205,7 @@ TEST(AttackMap, ShardsMergeIntoTheWholeMapAndBadGridsAreRefused) {
              {{"--axes", "polar"}, "expected linear or log"},
              {{"--shard", "2/2"}, "0 ≤ I < N"},
              {{"--periods-max", "0"}, "--periods-max"},
+             {{"--jobs", "100000"}, "--jobs"},
              {{"--acceleration", "1:2:100000", "--force", "0.1:1:100000"},
               "more than --max-points"}}) {
         SCOPED_TRACE(arguments[0]);

@@ -19,10 +19,10 @@ struct Band {
     const char* label;
     QColor colour;
 };
-const Band kBands[] = {{2, "1–2 periods", {120, 200, 120}},
-                       {5, "3–5 periods", {240, 200, 60}},
-                       {10, "6–10 periods", {240, 140, 40}},
-                       {1e9, "11 periods or more", {200, 60, 40}}};
+const Band kBands[] = {{2, "up to 2 periods", {120, 200, 120}},
+                       {5, "2–5 periods", {240, 200, 60}},
+                       {10, "5–10 periods", {240, 140, 40}},
+                       {1e9, "over 10 periods", {200, 60, 40}}};
 
 QCPScatterStyle::ScatterShape shape_of(Transient transient) {
     switch (transient) {
@@ -33,9 +33,11 @@ QCPScatterStyle::ScatterShape shape_of(Transient transient) {
         case Transient::Prolonged:
             return QCPScatterStyle::ssSquare;
         case Transient::Sliding:
+            return QCPScatterStyle::ssTriangleInverted;
+        case Transient::Stuck:
             break;
     }
-    return QCPScatterStyle::ssTriangleInverted;
+    return QCPScatterStyle::ssTriangle;
 }
 
 }  // namespace
@@ -50,6 +52,8 @@ QString transient_name(Transient transient) {
             return QObject::tr("prolonged periods");
         case Transient::Sliding:
             return QObject::tr("sliding");
+        case Transient::Stuck:
+            return QObject::tr("stuck (no slip)");
     }
     return QObject::tr("unknown");
 }
@@ -110,7 +114,7 @@ void AttackFigure::show_attacks(const AttackGrid& grid, const std::vector<Attack
     add(transient_name(Transient::None), shape_of(Transient::None), QColor(30, 140, 60),
         [](const AttackPoint& p) { return p.transient.kind == AttackKind::Perfect; });
     for (Transient transient :
-         {Transient::MultipleSlip, Transient::Prolonged, Transient::Sliding}) {
+         {Transient::MultipleSlip, Transient::Prolonged, Transient::Sliding, Transient::Stuck}) {
         double from = 0;
         for (const Band& band : kBands) {
             add(transient_name(transient) + ", " + tr(band.label), shape_of(transient), band.colour,

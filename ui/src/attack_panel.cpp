@@ -115,30 +115,31 @@ AttackGrid AttackPanel::grid_from_fields() const {
 
 void AttackPanel::compute() {
     if (busy()) return;
-    grid_ = grid_from_fields();
-    progress_->setMaximum(static_cast<int>(grid_.size()));
+    const AttackGrid grid = grid_from_fields();
+    progress_->setMaximum(static_cast<int>(grid.size()));
     progress_->setValue(0);
     compute_->setEnabled(false), cancel_button_->setEnabled(true);
-    message_->setText(
-        tr("computing %1 on every core…")
-            .arg(QString::fromStdString(count_of(grid_.size(), "attack", "attacks"))));
+    message_->setText(tr("computing %1 on every core…")
+                          .arg(QString::fromStdString(count_of(grid.size(), "attack", "attacks"))));
     job_.start(
-        [model = model_, grid = grid_](BackgroundJob::Control& control) {
+        [model = model_, grid](BackgroundJob::Control& control) {
             return play_attack(
                 model, grid, hardware_jobs(), 0, 1,
                 [&control](std::size_t done, std::size_t total) { control.progress(done, total); },
                 &control.cancel_flag());
         },
-        [this](std::vector<AttackPoint> points) { finished(std::move(points), {}); },
+        [this](AttackMap map) { finished(std::move(map), {}); },
         [this](const QString& error) { finished({}, error); });
 }
 
-void AttackPanel::finished(std::vector<AttackPoint> points, QString error) {
+void AttackPanel::finished(AttackMap map, QString error) {
     compute_->setEnabled(true), cancel_button_->setEnabled(false);
     if (!error.isEmpty()) {
         message_->setText(error);
     } else {
-        points_ = std::move(points);
+        // Clicks play points of the grid the figure shows, set only now.
+        grid_ = map.grid, pitch_ = map.pitch;
+        points_ = std::move(map.points);
         figure_->show_attacks(grid_, points_, QString::fromStdString(model_.name));
         int perfect = 0;
         for (const auto& p : points_) perfect += p.transient.kind == AttackKind::Perfect;
@@ -151,11 +152,11 @@ void AttackPanel::finished(std::vector<AttackPoint> points, QString error) {
 }
 
 void AttackPanel::listen(long index) {
-    if (index < 0 || static_cast<std::size_t>(index) >= grid_.size()) return;
+    if (index < 0 || static_cast<std::size_t>(index) >= points_.size()) return;
     try {
         std::vector<double> sound;
         const AttackPoint p =
-            play_attack_point(model_, grid_, static_cast<std::size_t>(index), 0, &sound);
+            play_attack_point(model_, grid_, static_cast<std::size_t>(index), pitch_, &sound);
         player_.play(sound, model_.sample_rate);
         const QString length =
             p.transient.kind == AttackKind::Never

@@ -108,8 +108,8 @@ QHBoxLayout* MainWindow::build_stroke_row() {
     auto* button = new QPushButton(tr("Stroke"));
     button->setObjectName("stroke");
     button->setToolTip(
-        tr("Slides the bow from where it is, from rest, with this acceleration, "
-           "at the pad's press (press first: the wheel, or Shift as you let go)"));
+        tr("Slides the bow from where it is, from rest, with this acceleration of the pad's "
+           "slide axis, at the pad's press (press first: the wheel, or Shift as you let go)"));
     connect(button, &QPushButton::clicked, this, [this, acceleration] {
         stroke_->running() ? stroke_->stop() : stroke_->start(acceleration->value());
     });

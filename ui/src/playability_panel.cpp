@@ -111,21 +111,25 @@ MapGrid PlayabilityPanel::grid_from_fields() const {
 
 void PlayabilityPanel::compute() {
     if (busy()) return;
-    grid_ = grid_from_fields();
-    progress_->setMaximum(static_cast<int>(grid_.size()));
+    const MapGrid grid = grid_from_fields();
+    progress_->setMaximum(static_cast<int>(grid.size()));
     progress_->setValue(0);
     compute_->setEnabled(false), cancel_button_->setEnabled(true);
     message_->setText(tr("computing %1 on every core…")
-                          .arg(QString::fromStdString(count_of(grid_.size(), "point", "points"))));
+                          .arg(QString::fromStdString(count_of(grid.size(), "point", "points"))));
     job_.start(
-        [model = model_, grid = grid_](BackgroundJob::Control& control) {
+        [model = model_, grid](BackgroundJob::Control& control) {
             const int cores = hardware_jobs();
             return play_map(
                 model, grid, cores, 0, 1,
                 [&control](std::size_t done, std::size_t total) { control.progress(done, total); },
                 &control.cancel_flag());
         },
-        [this](std::vector<MapPoint> points) { finished(std::move(points), {}); },
+        // Clicks play points of the grid the figure shows, which changes only now.
+        [this, grid](std::vector<MapPoint> points) {
+            grid_ = grid;
+            finished(std::move(points), {});
+        },
         [this](const QString& error) { finished({}, error); });
 }
 
@@ -153,7 +157,7 @@ void PlayabilityPanel::finished(std::vector<MapPoint> points, QString error) {
 }
 
 void PlayabilityPanel::listen(long index) {
-    if (index < 0 || static_cast<std::size_t>(index) >= grid_.size()) return;
+    if (index < 0 || static_cast<std::size_t>(index) >= points_.size()) return;
     try {
         std::vector<double> sound;
         const MapPoint p =

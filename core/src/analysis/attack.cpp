@@ -11,6 +11,7 @@
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/grid_sweep.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/common/number_text.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/model/model_variants.hpp"
 #include "archet/physics/compiled_model.hpp"
@@ -62,6 +63,8 @@ const char* to_string(Transient transient) {
             return "prolonged";
         case Transient::Sliding:
             return "sliding";
+        case Transient::Stuck:
+            return "stuck";
     }
     return "?";
 }
@@ -98,7 +101,8 @@ AttackTransient judge_transient(const std::vector<double>& onsets, double period
                                 int periods_max, int settle, double tolerance) {
     AttackTransient t;
     t.periods = periods_max;
-    if (onsets.empty()) return t;  // no slip yet: the caller's wait decides
+    if (onsets.empty()) return t;      // no slip yet: the caller's wait decides
+    t.transient = Transient::Sliding;  // unless a period of it says otherwise
     const double first = onsets.front(), latest_start = first + periods_max * period;
     auto interval = [&](std::size_t i) { return onsets[i + 1] - onsets[i]; };
     auto steady = [&](std::size_t i) {
@@ -176,7 +180,12 @@ AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::s
         if (sound) sound->push_back(sim.output());
         if (i < start || judged) continue;  // the bow has not moved yet, or it is over
         const double now = static_cast<double>(i + 1) / fs - kBowStart;
-        if (detector.add(i, sim.model().bows[0].slip_velocity)) {
+        const double slip = sim.model().bows[0].slip_velocity;
+        if (!std::isfinite(slip))
+            throw InputError(model.name, "stopped being finite bowed at " +
+                                             format_number(p.acceleration) + " m/s² and " +
+                                             format_number(p.force) + " N");
+        if (detector.add(i, slip)) {
             onsets.push_back(detector.onset() - kBowStart);
             if (onsets.size() == 1)
                 give_up = unsettled_after(onsets.front(), period, grid.periods_max);
@@ -192,10 +201,11 @@ AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::s
     return p;
 }
 
-std::vector<AttackPoint> play_attack(const Model& model, const AttackGrid& grid, int jobs,
-                                     int shard, int shards,
-                                     const std::function<void(std::size_t, std::size_t)>& progress,
-                                     const std::atomic<bool>* cancel) {
+AttackMap play_attack(const Model& model, const AttackGrid& grid, int jobs, int shard, int shards,
+                      const std::function<void(std::size_t, std::size_t)>& progress,
+                      const std::atomic<bool>* cancel) {
+    if (const std::string problem = grid.problem(); !problem.empty())
+        throw InputError(model.name, "cannot play this grid: " + problem);
     shard_points(grid.size(), shard, shards);  // a bad shard is refused before anything runs
     // Everything a point needs is checked before the threads start.
     Model checked = model;
@@ -204,10 +214,12 @@ std::vector<AttackPoint> play_attack(const Model& model, const AttackGrid& grid,
     const double pitch = string_pitch(checked);
     force_for_press(checked, 1.0);
     slide_scale(checked);
-    return sweep_grid<AttackPoint>(
+    AttackMap map{grid, {}, pitch};
+    map.points = sweep_grid<AttackPoint>(
         model.name, grid.size(), jobs, shard, shards,
         [&](std::size_t index) { return play_attack_point(model, grid, index, pitch); }, progress,
         cancel);
+    return map;
 }
 
 }  // namespace archet

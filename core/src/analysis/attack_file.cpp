@@ -1,6 +1,7 @@
 // An attack map's grid and its CSV: written by `archet attack`, read back to merge shards and
 // to draw the diagram.
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -73,11 +74,24 @@ AttackGrid AttackGrid::parse(const std::string& text) {
         else if (key == "position")
             g.position = number(key, value);
         else if (key == "periods-max")
-            g.periods_max = static_cast<int>(number(key, value));
+            g.periods_max = static_cast<int>(std::clamp(number(key, value), 0.0, 1e6));
         else
             throw InputError(word, "is not part of an attack grid");
     }
     return g;
+}
+
+std::string AttackGrid::problem() const {
+    auto range = [](double lo, double hi, int steps, double most) {
+        return lo > 0 && hi >= lo && hi <= most && steps >= 1;
+    };
+    if (!range(acceleration_min, acceleration_max, acceleration_steps, 1000))
+        return "0 < MIN ≤ MAX ≤ 1000 and STEPS ≥ 1 for the acceleration (m/s²)";
+    if (!range(force_min, force_max, force_steps, 100))
+        return "0 < MIN ≤ MAX ≤ 100 and STEPS ≥ 1 for the force (N)";
+    if (!(position >= 0 && position < 0.5)) return "a bow position β from 0 to 0.5";
+    if (periods_max < 1 || periods_max > 1000) return "periods-max from 1 to 1000";
+    return {};
 }
 
 std::string format_attack(const AttackMap& map) {
@@ -106,6 +120,8 @@ AttackMap parse_attack(const std::string& text, const std::string& source) {
     AttackMap map;
     map.grid = AttackGrid::parse(line.substr(16));
     const AttackGrid& grid = map.grid;
+    if (const std::string problem = grid.problem(); !problem.empty())
+        throw InputError(source, "has a grid that cannot be: it needs " + problem);
     int row = 1;
     bool header = false;
     while (std::getline(lines, line)) {

@@ -106,8 +106,9 @@ template <int W, bool kWithLength, bool kWithGrounds>
     forces[W - 1] = link_force<kWithLength>(x[0] - x[1], xp[0] - xp[1], k[0], z[0],
                                             kWithLength ? length[0] : 0.0);
     // Whole rounds only: the last one runs up to W − 1 MATs past MAT n into the zeros kept
-    // after the storage, whose zero coefficients keep them zero, and each round also reads
-    // the vector after its own from x and x⁻ (CompiledLevel::kReadAhead ≥ 2W − 1).
+    // after the storage, whose zero coefficients keep them zero (while the motion is finite:
+    // a blown-up level, which is never stepped again, may leave NaN there), and each round
+    // also reads the vector after its own from x and x⁻ (CompiledLevel::kReadAhead ≥ 2W − 1).
     static_assert(CompiledLevel::kReadAhead >= 2 * W - 1);
     V xs = load<V>(x + 1), xps = load<V>(xp + 1);
     for (int s = 1; s <= n; s += W) {

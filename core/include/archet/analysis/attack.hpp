@@ -20,6 +20,7 @@ enum class Transient {
     MultipleSlip,  ///< a period with more than one slip (too little force)
     Prolonged,     ///< a period longer than the string's (too much force)
     Sliding,       ///< the bow slipped once and never gripped again (far too little force)
+    Stuck,         ///< the bow never slipped: it dragged the string along (far too much force)
 };
 const char* to_string(Transient transient);
 /// Throws InputError for an unknown name.
@@ -38,7 +39,7 @@ AttackKind attack_kind_from_string(const std::string& name);
 
 struct AttackTransient {
     AttackKind kind = AttackKind::Never;
-    Transient transient = Transient::Sliding;
+    Transient transient = Transient::Stuck;
     double periods = 0;    ///< from the first slip to steady Helmholtz motion, in periods of f1
     int slips = 0;         ///< slips in that transient (in the periods allowed, for Never)
     bool decided = false;  ///< the slips seen so far settle it
@@ -77,6 +78,9 @@ struct AttackGrid {
     /// "acceleration=MIN:MAX:STEPS force=MIN:MAX:STEPS axes=linear position=B periods-max=N"
     std::string describe() const;
     static AttackGrid parse(const std::string& description);
+    /// Why this grid cannot be played (e.g. "0 < MIN ≤ MAX ≤ 1000 and STEPS ≥ 1 for the
+    /// acceleration (m/s²)"), or empty when it can.
+    std::string problem() const;
 };
 
 struct AttackPoint {
@@ -91,20 +95,20 @@ struct AttackPoint {
 AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::size_t index,
                               double pitch = 0, std::vector<double>* sound = nullptr);
 
-/// Plays the points whose index % shards == shard on `jobs` threads, calling
-/// `progress(done, total)` from the caller's thread. Sorted by index. Setting `*cancel`
-/// stops it (InputError "cancelled").
-std::vector<AttackPoint> play_attack(
-    const Model& model, const AttackGrid& grid, int jobs, int shard = 0, int shards = 1,
-    const std::function<void(std::size_t, std::size_t)>& progress = {},
-    const std::atomic<bool>* cancel = nullptr);
-
 /// A whole attack map: its grid, its points and the pitch its periods count.
 struct AttackMap {
     AttackGrid grid;
     std::vector<AttackPoint> points;
     double pitch = 0;  ///< Hz, the string's first mode
 };
+
+/// Plays the points whose index % shards == shard on `jobs` threads, calling
+/// `progress(done, total)` from the caller's thread. Sorted by index. Setting `*cancel`
+/// stops it (InputError "cancelled").
+AttackMap play_attack(const Model& model, const AttackGrid& grid, int jobs, int shard = 0,
+                      int shards = 1,
+                      const std::function<void(std::size_t, std::size_t)>& progress = {},
+                      const std::atomic<bool>* cancel = nullptr);
 
 /// The attack map as CSV: first line "# archet-attack " + grid.describe(), then comment
 /// lines (the protocol and the pitch, "f1 = … Hz"), the column names with their units, one

@@ -41,10 +41,11 @@ class AttackPanel : public QDialog {
 
   private:
     AttackGrid grid_from_fields() const;
-    void finished(std::vector<AttackPoint> points, QString error);
+    void finished(AttackMap map, QString error);
 
     Model model_;
-    AttackGrid grid_;
+    AttackGrid grid_;   ///< the grid the figure shows
+    double pitch_ = 0;  ///< the string's first mode its periods count
     QDoubleSpinBox *acceleration_min_, *acceleration_max_, *force_min_, *force_max_;
     QSpinBox *acceleration_steps_, *force_steps_, *periods_max_;
     QCheckBox* log_axes_;

@@ -49,7 +49,7 @@ class PlayabilityPanel : public QDialog {
     void finished(std::vector<MapPoint> points, QString error);
 
     Model model_;
-    MapGrid grid_;
+    MapGrid grid_;  ///< the grid the figure shows
     std::function<std::optional<std::pair<double, double>>()> gesture_point_;
     QDoubleSpinBox *force_min_, *force_max_, *position_min_, *position_max_, *speed_, *duration_;
     QSpinBox *force_steps_, *position_steps_;
