@@ -6,7 +6,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
+#include <mutex>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -28,11 +31,41 @@ std::filesystem::path test_data(const std::string& relative) {
     return source_dir() / "tests" / "data" / relative;
 }
 
+namespace {
+// The folders this test process made, removed when it exits normally; a crash leaves them to
+// look at, and so does ARCHET_KEEP_TEST_FILES=1. Only the process that made them removes
+// them: a forked child that exits must not take its parent's files.
+class MadeFolders {
+  public:
+    void add(const std::filesystem::path& dir) {
+        const std::lock_guard<std::mutex> lock(mutex_);
+        paths_.insert(dir);
+    }
+    ~MadeFolders() {
+        if (::getpid() != maker_ || std::getenv("ARCHET_KEEP_TEST_FILES")) return;
+        for (const auto& dir : paths_) {
+            std::error_code ignored;
+            std::filesystem::remove_all(dir, ignored);
+        }
+    }
+
+  private:
+    std::mutex mutex_;
+    std::set<std::filesystem::path> paths_;
+    const pid_t maker_ = ::getpid();
+};
+MadeFolders& made_folders() {
+    static MadeFolders folders;
+    return folders;
+}
+}  // namespace
+
 std::filesystem::path temp_dir(const std::string& name) {
     auto dir = std::filesystem::temp_directory_path() /
                ("archet-test-" + name + "-" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
+    made_folders().add(dir);
     return dir;
 }
 

@@ -18,7 +18,8 @@ std::filesystem::path source_dir();
 std::filesystem::path resource(const std::string& relative);   ///< under resources/
 std::filesystem::path test_data(const std::string& relative);  ///< under tests/data/
 
-/// A fresh empty folder for one test.
+/// A fresh empty folder for one test, removed when the test process exits normally (kept
+/// after a crash, or with ARCHET_KEEP_TEST_FILES=1).
 std::filesystem::path temp_dir(const std::string& name);
 
 struct CommandResult {
