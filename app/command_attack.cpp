@@ -27,8 +27,8 @@ namespace archet::cli {
 namespace {
 
 struct AttackArguments {
-    std::string model, acceleration = "0.5:8:8", force = "0.05:2:8", axes = "linear", output, png,
-                       shard = "0/1";
+    std::string model, acceleration = "2:40:12", force = "0.01:0.4:12", axes = "linear", output,
+                       png, shard = "0/1";
     double position = 0;
     int periods_max = 25, jobs = 0;
     std::size_t max_points = limits::kMapPoints;
@@ -56,7 +56,7 @@ AttackGrid grid_from(const AttackArguments& a) {
         try {
             return AttackGrid::parse(key + "=" + value);
         } catch (const InputError&) {
-            throw InputError(option, "\"" + value + "\": expected MIN:MAX:STEPS, e.g. 0.5:8:8");
+            throw InputError(option, "\"" + value + "\": expected MIN:MAX:STEPS, e.g. 2:40:12");
         }
     };
     AttackGrid grid = range("--acceleration", "acceleration", a.acceleration);

@@ -47,12 +47,12 @@ QHBoxLayout* range_row(QWidget* lo, QWidget* hi, QWidget* steps) {
 AttackPanel::AttackPanel(const Model& model, QWidget* parent) : QDialog(parent), model_(model) {
     setWindowTitle(tr("Attack map — %1").arg(QString::fromStdString(model.name)));
     const AttackGrid d;
-    acceleration_min_ = number(0.01, 1000, 2, 2, tr(" m/s²"));
-    acceleration_max_ = number(0.01, 1000, 40, 2, tr(" m/s²"));
-    acceleration_steps_ = count(1, 60, 12);
-    force_min_ = number(1e-4, 100, 0.01, 4, tr(" N"));
-    force_max_ = number(1e-4, 100, 0.4, 3, tr(" N"));
-    force_steps_ = count(1, 60, 12);
+    acceleration_min_ = number(0.01, 1000, d.acceleration_min, 2, tr(" m/s²"));
+    acceleration_max_ = number(0.01, 1000, d.acceleration_max, 2, tr(" m/s²"));
+    acceleration_steps_ = count(1, 60, d.acceleration_steps);
+    force_min_ = number(1e-4, 100, d.force_min, 4, tr(" N"));
+    force_max_ = number(1e-4, 100, d.force_max, 3, tr(" N"));
+    force_steps_ = count(1, 60, d.force_steps);
     periods_max_ = count(1, 1000, d.periods_max);
     log_axes_ = new QCheckBox(tr("logarithmic steps and axes"));
     compute_ = new QPushButton(tr("Compute"));

@@ -64,10 +64,10 @@ inline constexpr double kPressRamp = 0.02, kBowStart = 0.05, kNoSlipWait = 1.0;
 Gesture attack_gesture(double press, double acceleration, double step, double duration);
 
 struct AttackGrid {
-    double acceleration_min = 0.5, acceleration_max = 8;  ///< m/s², of the hand
-    int acceleration_steps = 8;
-    double force_min = 0.05, force_max = 2;  ///< N, the bow's steady normal force
-    int force_steps = 8;
+    double acceleration_min = 2, acceleration_max = 40;  ///< m/s², of the hand
+    int acceleration_steps = 12;
+    double force_min = 0.01, force_max = 0.4;  ///< N, the bow's steady normal force
+    int force_steps = 12;
     bool log_axes = false;  ///< log-spaced grid (else linear)
     double position = 0;    ///< β; 0 keeps the model's own bow position
     int periods_max = 25;   ///< longest transient counted
