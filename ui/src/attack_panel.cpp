@@ -13,52 +13,23 @@
 #include "archet/common/number_text.hpp"
 #include "archet/common/parallel_for.hpp"
 #include "archet/ui/attack_figure.hpp"
+#include "archet/ui/sweep_form.hpp"
 
 namespace archet::ui {
-
-namespace {
-
-QDoubleSpinBox* number(double lo, double hi, double value, int decimals, const QString& suffix) {
-    auto* box = new QDoubleSpinBox;
-    box->setRange(lo, hi);
-    box->setDecimals(decimals);
-    box->setValue(value);
-    box->setSuffix(suffix);
-    return box;
-}
-
-QSpinBox* count(int lo, int hi, int value) {
-    auto* box = new QSpinBox;
-    box->setRange(lo, hi);
-    box->setValue(value);
-    return box;
-}
-
-// MIN … MAX in STEPS, on one row.
-QHBoxLayout* range_row(QWidget* lo, QWidget* hi, QWidget* steps) {
-    auto* h = new QHBoxLayout;
-    h->addWidget(lo), h->addWidget(new QLabel("…")), h->addWidget(hi);
-    h->addWidget(new QLabel(QObject::tr("in"))), h->addWidget(steps);
-    return h;
-}
-
-}  // namespace
 
 AttackPanel::AttackPanel(const Model& model, QWidget* parent) : QDialog(parent), model_(model) {
     setWindowTitle(tr("Attack map — %1").arg(QString::fromStdString(model.name)));
     const AttackGrid d;
-    acceleration_min_ = number(0.01, 1000, d.acceleration_min, 2, tr(" m/s²"));
-    acceleration_max_ = number(0.01, 1000, d.acceleration_max, 2, tr(" m/s²"));
-    acceleration_steps_ = count(1, 60, d.acceleration_steps);
-    force_min_ = number(1e-4, 100, d.force_min, 4, tr(" N"));
-    force_max_ = number(1e-4, 100, d.force_max, 3, tr(" N"));
-    force_steps_ = count(1, 60, d.force_steps);
-    periods_max_ = count(1, 1000, d.periods_max);
+    acceleration_min_ = number_box(0.01, 1000, d.acceleration_min, 2, tr(" m/s²"));
+    acceleration_max_ = number_box(0.01, 1000, d.acceleration_max, 2, tr(" m/s²"));
+    acceleration_steps_ = count_box(1, 60, d.acceleration_steps);
+    force_min_ = number_box(1e-4, 100, d.force_min, 4, tr(" N"));
+    force_max_ = number_box(1e-4, 100, d.force_max, 3, tr(" N"));
+    force_steps_ = count_box(1, 60, d.force_steps);
+    periods_max_ = count_box(1, 1000, d.periods_max);
     log_axes_ = new QCheckBox(tr("logarithmic steps and axes"));
-    compute_ = new QPushButton(tr("Compute"));
-    cancel_button_ = new QPushButton(tr("Cancel"));
-    cancel_button_->setEnabled(false);
-    progress_ = new QProgressBar;
+    const SweepButtons buttons = sweep_buttons(job_, this);
+    compute_ = buttons.compute, cancel_button_ = buttons.cancel, progress_ = buttons.progress;
     message_ = new QLabel(
         tr("The bow presses for 50 ms, then the hand accelerates steadily; each point counts the "
            "periods until Helmholtz motion. Click a point to hear its attack."));
@@ -73,21 +44,14 @@ AttackPanel::AttackPanel(const Model& model, QWidget* parent) : QDialog(parent),
     counting->addWidget(periods_max_), counting->addWidget(new QLabel(tr("periods at most"))),
         counting->addStretch(), counting->addWidget(log_axes_);
     ranges->addRow(tr("Transient counted up to"), counting);
-    auto* buttons = new QHBoxLayout;
-    buttons->addWidget(compute_), buttons->addWidget(cancel_button_),
-        buttons->addWidget(progress_, 1);
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(ranges);
-    layout->addLayout(buttons);
+    layout->addLayout(buttons.row);
     layout->addWidget(message_);
     layout->addWidget(figure_, 1);
     connect(compute_, &QPushButton::clicked, this, &AttackPanel::compute);
     connect(cancel_button_, &QPushButton::clicked, this, &AttackPanel::cancel);
     connect(figure_, &AttackFigure::point_clicked, this, &AttackPanel::listen);
-    connect(&job_, &BackgroundJob::progressed, this, [this](std::size_t done, std::size_t total) {
-        progress_->setMaximum(static_cast<int>(total));
-        progress_->setValue(static_cast<int>(done));
-    });
     resize(1000, 800);
 }
 

@@ -27,6 +27,7 @@
 #include "archet/ui/recording_clock.hpp"
 #include "archet/ui/scope_panel.hpp"
 #include "archet/ui/stroke_driver.hpp"
+#include "archet/ui/sweep_form.hpp"
 #include "archet/ui/takes_panel.hpp"
 
 // The window's parts, a file each: this one builds the window and keeps its layout;
@@ -101,10 +102,8 @@ void MainWindow::build_panels() {
 // A stroke from rest at a chosen acceleration, as the attack map plays them.
 QHBoxLayout* MainWindow::build_stroke_row() {
     stroke_ = new StrokeDriver(*pad_, this);
-    auto* acceleration = new QDoubleSpinBox;
+    auto* acceleration = number_box(0.1, 100, 8, 1, tr(" m/s²"));
     acceleration->setObjectName("stroke-acceleration");
-    acceleration->setRange(0.1, 100), acceleration->setDecimals(1), acceleration->setValue(8);
-    acceleration->setSuffix(tr(" m/s²"));
     auto* button = new QPushButton(tr("Stroke"));
     button->setObjectName("stroke");
     button->setToolTip(

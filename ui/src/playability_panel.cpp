@@ -13,19 +13,9 @@
 #include "archet/common/number_text.hpp"
 #include "archet/common/parallel_for.hpp"
 #include "archet/ui/playability_figure.hpp"
+#include "archet/ui/sweep_form.hpp"
 
 namespace archet::ui {
-
-namespace {
-QDoubleSpinBox* number(double lo, double hi, double value, int decimals, const QString& suffix) {
-    auto* box = new QDoubleSpinBox;
-    box->setRange(lo, hi);
-    box->setDecimals(decimals);
-    box->setValue(value);
-    box->setSuffix(suffix);
-    return box;
-}
-}  // namespace
 
 PlayabilityPanel::PlayabilityPanel(
     const Model& model, std::function<std::optional<std::pair<double, double>>()> gesture_point,
@@ -33,55 +23,36 @@ PlayabilityPanel::PlayabilityPanel(
     : QDialog(parent), model_(model), gesture_point_(std::move(gesture_point)) {
     setWindowTitle(tr("Playability map — %1").arg(QString::fromStdString(model.name)));
     const MapGrid d;
-    force_min_ = number(1e-4, 10, 0.002, 4, tr(" N"));
-    force_max_ = number(1e-4, 10, 2.0, 3, tr(" N"));
-    force_steps_ = new QSpinBox;
-    force_steps_->setRange(1, 60);
-    force_steps_->setValue(12);
-    position_min_ = number(0.01, 0.49, 0.05, 3, {});
-    position_max_ = number(0.01, 0.49, 0.25, 3, {});
-    position_steps_ = new QSpinBox;
-    position_steps_->setRange(1, 40);
-    position_steps_->setValue(8);
-    speed_ = number(0.005, 2, d.speed, 3, tr(" m/s"));
-    duration_ = number(0.2, 10, d.duration, 2, tr(" s"));
-    compute_ = new QPushButton(tr("Compute"));
-    cancel_button_ = new QPushButton(tr("Cancel"));
-    cancel_button_->setEnabled(false);
-    progress_ = new QProgressBar;
+    force_min_ = number_box(1e-4, 10, 0.002, 4, tr(" N"));
+    force_max_ = number_box(1e-4, 10, 2.0, 3, tr(" N"));
+    force_steps_ = count_box(1, 60, 12);
+    position_min_ = number_box(0.01, 0.49, 0.05, 3, {});
+    position_max_ = number_box(0.01, 0.49, 0.25, 3, {});
+    position_steps_ = count_box(1, 40, 8);
+    speed_ = number_box(0.005, 2, d.speed, 3, tr(" m/s"));
+    duration_ = number_box(0.2, 10, d.duration, 2, tr(" s"));
+    const SweepButtons buttons = sweep_buttons(job_, this);
+    compute_ = buttons.compute, cancel_button_ = buttons.cancel, progress_ = buttons.progress;
     message_ = new QLabel(tr("A steady stroke on every point; click a point to hear it."));
     message_->setWordWrap(true);
     figure_ = new PlayabilityFigure;
     refresh_ = new QTimer(this);
 
     auto* ranges = new QFormLayout;
-    auto row = [](QWidget* a, QWidget* b, QWidget* c) {
-        auto* h = new QHBoxLayout;
-        h->addWidget(a), h->addWidget(new QLabel("…")), h->addWidget(b);
-        h->addWidget(new QLabel(QObject::tr("in"))), h->addWidget(c);
-        return h;
-    };
-    ranges->addRow(tr("Bow force (log steps)"), row(force_min_, force_max_, force_steps_));
-    ranges->addRow(tr("Bow position β"), row(position_min_, position_max_, position_steps_));
+    ranges->addRow(tr("Bow force (log steps)"), range_row(force_min_, force_max_, force_steps_));
+    ranges->addRow(tr("Bow position β"), range_row(position_min_, position_max_, position_steps_));
     auto* speed_row = new QHBoxLayout;
     speed_row->addWidget(speed_), speed_row->addWidget(new QLabel(tr("for"))),
         speed_row->addWidget(duration_);
     ranges->addRow(tr("Bow speed"), speed_row);
-    auto* buttons = new QHBoxLayout;
-    buttons->addWidget(compute_), buttons->addWidget(cancel_button_),
-        buttons->addWidget(progress_, 1);
     auto* layout = new QVBoxLayout(this);
     layout->addLayout(ranges);
-    layout->addLayout(buttons);
+    layout->addLayout(buttons.row);
     layout->addWidget(message_);
     layout->addWidget(figure_, 1);
     connect(compute_, &QPushButton::clicked, this, &PlayabilityPanel::compute);
     connect(cancel_button_, &QPushButton::clicked, this, &PlayabilityPanel::cancel);
     connect(figure_, &PlayabilityFigure::point_clicked, this, &PlayabilityPanel::listen);
-    connect(&job_, &BackgroundJob::progressed, this, [this](std::size_t done, std::size_t total) {
-        progress_->setMaximum(static_cast<int>(total));
-        progress_->setValue(static_cast<int>(done));
-    });
     // The player's bow moves while the map is shown: its cross follows.
     connect(refresh_, &QTimer::timeout, this, [this] {
         if (!points_.empty()) figure_->mark(gesture_point_ ? gesture_point_() : std::nullopt);
