@@ -21,17 +21,16 @@
 #include "figure_application.hpp"
 #include "model_loading.hpp"
 #include "option_checks.hpp"
+#include "sweep_options.hpp"
 
 namespace archet::cli {
 
 namespace {
 
-struct AttackArguments {
-    std::string model, acceleration = "2:40:12", force = "0.01:0.4:12", axes = "linear", output,
-                       png, shard = "0/1";
+struct AttackArguments : SweepOptions {
+    std::string model, acceleration = "2:40:12", force = "0.01:0.4:12", axes = "linear";
     double position = 0;
-    int periods_max = 25, jobs = 0;
-    std::size_t max_points = limits::kMapPoints;
+    int periods_max = 25;
     std::vector<std::string> parts;
 };
 
@@ -72,13 +71,7 @@ AttackGrid grid_from(const AttackArguments& a) {
         throw InputError("--acceleration", "expected 0 < MIN ≤ MAX ≤ 1000 and STEPS ≥ 1 (m/s²)");
     if (const std::string problem = grid.problem(); !problem.empty())
         throw InputError("--force", "expected " + problem);
-    if (static_cast<double>(grid.acceleration_steps) * grid.force_steps > a.max_points)
-        throw InputError("--force", std::to_string(grid.acceleration_steps) + " × " +
-                                        std::to_string(grid.force_steps) +
-                                        " points is more than --max-points " +
-                                        std::to_string(a.max_points) +
-                                        "; use fewer STEPS, or raise --max-points and share the "
-                                        "work with --shard");
+    a.check_size(grid.acceleration_steps, grid.force_steps, "--force");
     return grid;
 }
 
@@ -86,11 +79,9 @@ int run_attack(const AttackArguments& a) {
     if (a.model.empty()) throw InputError("MODEL", "give a model file (or: archet attack merge)");
     if (a.output.empty()) throw InputError("--output", "give the attack map's CSV file");
     const AttackGrid grid = grid_from(a);
-    int shard = 0, shards = 1;
-    if (std::sscanf(a.shard.c_str(), "%d/%d", &shard, &shards) != 2)
-        throw InputError("--shard", "expected I/N, e.g. 3/16");
+    const auto [shard, shards] = a.shard_of();
     const Model model = load_validated_model(a.model, {});
-    const int jobs = a.jobs > 0 ? a.jobs : hardware_jobs();
+    const int jobs = a.threads();
     const bool show = ::isatty(STDERR_FILENO);
     const AttackMap map =
         play_attack(model, grid, jobs, shard, shards, [&](std::size_t done, std::size_t total) {
@@ -146,16 +137,8 @@ void add_attack_command(CLI::App& app, Action& action) {
                     "Longest transient counted, in periods (longer ones are \"never\")")
         ->capture_default_str()
         ->check(CLI::Range(1, 1000));
-    cmd->add_option("--max-points", a->max_points,
-                    "Largest grid accepted (acceleration steps × force steps)")
-        ->capture_default_str();
-    cmd->add_option("--jobs", a->jobs, "Threads (0: every core)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1024));
-    cmd->add_option("--shard", a->shard, "Play only shard I of N (I/N): points with index % N == I")
-        ->capture_default_str();
-    cmd->add_option("-o,--output", a->output, "The attack map's CSV file");
-    cmd->add_option("--png", a->png, "Draw the diagram as a PNG too");
+    add_sweep_options(*cmd, *a, "acceleration steps × force steps", "The attack map's CSV file",
+                      "Draw the diagram as a PNG too");
     cmd->callback([&action, a] {
         if (!action) action = [a] { return run_attack(*a); };
     });

@@ -20,16 +20,15 @@
 #include "figure_application.hpp"
 #include "model_loading.hpp"
 #include "option_checks.hpp"
+#include "sweep_options.hpp"
 
 namespace archet::cli {
 
 namespace {
 
-struct MapArguments {
-    std::string model, force = "0.003:1:8", position = "0.06:0.2:5", output, png, shard = "0/1";
+struct MapArguments : SweepOptions {
+    std::string model, force = "0.003:1:8", position = "0.06:0.2:5";
     double speed = 0.1, duration = 1.0;
-    int jobs = 0;
-    std::size_t max_points = limits::kMapPoints;
     std::vector<std::string> parts;
 };
 
@@ -74,18 +73,10 @@ int run_map(const MapArguments& a) {
         throw InputError("--position", "expected 0 < MIN ≤ MAX < 0.5 and STEPS ≥ 1 (β)");
     if (!(grid.speed > 0)) throw InputError("--speed", "must be a positive bow speed (m/s)");
     if (!(grid.duration >= 0.2)) throw InputError("--duration", "must be at least 0.2 s");
-    if (static_cast<double>(grid.force_steps) * grid.position_steps > a.max_points)
-        throw InputError("--force", std::to_string(grid.force_steps) + " × " +
-                                        std::to_string(grid.position_steps) +
-                                        " points is more than --max-points " +
-                                        std::to_string(a.max_points) +
-                                        "; use fewer STEPS, or raise --max-points and share the "
-                                        "work with --shard");
-    int shard = 0, shards = 1;
-    if (std::sscanf(a.shard.c_str(), "%d/%d", &shard, &shards) != 2)
-        throw InputError("--shard", "expected I/N, e.g. 3/16");
+    a.check_size(grid.force_steps, grid.position_steps, "--force");
+    const auto [shard, shards] = a.shard_of();
     const Model model = load_validated_model(a.model, {});
-    const int jobs = a.jobs > 0 ? a.jobs : hardware_jobs();
+    const int jobs = a.threads();
     const bool show = ::isatty(STDERR_FILENO);
     const auto points =
         play_map(model, grid, jobs, shard, shards, [&](std::size_t done, std::size_t total) {
@@ -137,17 +128,8 @@ void add_map_command(CLI::App& app, Action& action) {
     cmd->add_option("--duration", a->duration, "Seconds of steady bowing per point")
         ->capture_default_str()
         ->check(finite_range(0.2, 60, "s"));
-    cmd->add_option("--max-points", a->max_points,
-                    "Largest grid accepted (force steps × position steps), a bound on the work")
-        ->capture_default_str();
-    cmd->add_option("--jobs", a->jobs, "Threads (0: every core)")
-        ->capture_default_str()
-        ->check(CLI::Range(0, 1024));
-    cmd->add_option("--shard", a->shard,
-                    "Render only shard I of N (I/N): points with index % N == I")
-        ->capture_default_str();
-    cmd->add_option("-o,--output", a->output, "The map's CSV file");
-    cmd->add_option("--png", a->png, "Draw the map as a PNG too");
+    add_sweep_options(*cmd, *a, "force steps × position steps", "The map's CSV file",
+                      "Draw the map as a PNG too");
     cmd->callback([&action, a] {
         if (!action) action = [a] { return run_map(*a); };
     });
