@@ -9,6 +9,7 @@
 #include <QAction>
 #include <QDir>
 #include <QElapsedTimer>
+#include <QLabel>
 #include <QMenuBar>
 #include <QProgressBar>
 #include <QPushButton>
@@ -66,6 +67,23 @@ TEST(AttackPanelTest, ComputesInTheBackgroundAndPlaysAClickedAttack) {
     panel.listen(5);
     EXPECT_TRUE(test::wait_until([&] { return panel.player().position() > 1000u; }, 60000));
     panel.player().stop();
+    // While another grid computes, a click still plays the point the figure shows.
+    AttackGrid other = wedge_grid();
+    other.acceleration_min = 2, other.acceleration_steps = 30, other.force_steps = 30;
+    panel.set_grid(other);
+    error = "not yet";
+    panel.compute();
+    ASSERT_TRUE(panel.busy());
+    panel.listen(5);
+    bool shown_point = false;
+    for (const QLabel* label : panel.findChildren<QLabel*>())
+        shown_point =
+            shown_point ||
+            label->text().startsWith(QString("%1 m/s², %2 N:").arg(p.acceleration).arg(p.force));
+    EXPECT_TRUE(shown_point) << "point 5 of the grid drawn, not of the one computing";
+    panel.player().stop();
+    panel.cancel();
+    ASSERT_TRUE(test::wait_until([&] { return error != "not yet"; }, 300000));
 }
 
 TEST(AttackPanelTest, ACancelStopsTheSweepAndSaysSo) {
