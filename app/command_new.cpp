@@ -71,6 +71,14 @@ void add_new_command(CLI::App& app, Action& action) {
             ->capture_default_str();
     bowed->add_flag("--point-bow", o->point_bow,
                     "The bow rubs one mass (the paper's) instead of a hair-wide contact point");
+    bowed->add_flag("--finger", o->finger,
+                    "Add a finger (\"finger\") pressed on the string: move it with "
+                    "finger.position, lift it with finger.pressure");
+    bowed
+        ->add_option("--finger-position", o->finger_position,
+                     "Where the finger stops the string: the sounding share of its length, "
+                     "from the bridge (1 = open; 2/3 a fifth up, 1/2 an octave)")
+        ->capture_default_str();
     bowed->add_option("--stroke-speed", o->stroke_speed, "Bow speed of the embedded stroke (m/s)")
         ->capture_default_str();
     bowed->add_option("--sample-rate", o->sample_rate, "Audio rate level (Hz)")

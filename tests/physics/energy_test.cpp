@@ -10,6 +10,7 @@
 #include "archet/builders/string_body.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/physics/compiled_model.hpp"
+#include "energy_books.hpp"
 #include "test_support.hpp"
 
 namespace archet {
@@ -63,30 +64,8 @@ TEST(Energy, NaiveEnergyWithSquaredSpringTermIsNotConserved) {
     EXPECT_GT(spread, 1e-3);
 }
 
-// The worst step-by-step imbalance of the books, stored change − (hand work − dissipation),
-// while the bow presses, over `steps` steps; and the largest stored energy, for scale.
-struct Books {
-    double worst = 0, scale = 0;
-};
-Books step_by_step_books(Simulation& sim, int steps) {
-    sim.enable_accounting(true);
-    double previous = sim.stored_energy(), dissipated_before = 0, work_before = 0;
-    Books books;
-    for (int i = 0; i < steps; ++i) {
-        sim.step();
-        double dissipated = 0;
-        for (double d : sim.dissipated_by_element()) dissipated += d;
-        const double stored = sim.stored_energy();
-        const double balance = (stored - previous) -
-                               ((sim.hand_work() - work_before) - (dissipated - dissipated_before));
-        // The pressure buffer's contact switching is the only non-conservative term left out.
-        if (sim.model().bows[0].normal > 0 && i > 2000)
-            books.worst = std::max(books.worst, std::abs(balance));
-        books.scale = std::max(books.scale, stored);
-        previous = stored, dissipated_before = dissipated, work_before = sim.hand_work();
-    }
-    return books;
-}
+using test::Books;
+using test::step_by_step_books;
 
 // The largest growth of stored energy beyond the hand's work over any haptic period.
 Books haptic_period_books(Simulation& sim, int divider, int periods) {

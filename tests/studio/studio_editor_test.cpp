@@ -336,6 +336,39 @@ TEST_F(Editor, TheInspectorRefusesAnUnstableValueAndSaysWhy) {
     EXPECT_EQ(document.model().find_lia("k2")->stiffness, 100) << "the applied edit undoes";
 }
 
+// A finger shows as a fingertip over the point it stops, between two masses; the inspector
+// moves it along the string and refuses a place off it.
+TEST(FingerInTheEditor, ItsFingertipSitsWhereItStopsAndTheInspectorMovesIt) {
+    BowedStringOptions o;
+    o.pitch = 440, o.finger = true, o.finger_position = 2.0 / 3.0, o.with_gesture = false;
+    ModelDocument document;
+    document.reset(build_bowed_string(o));
+    GraphView view(document);
+    view.resize(1000, 300);
+    view.show();
+    view.fit();
+    auto between = [&](double position) {
+        const Lia& finger = *document.model().find_lia("finger");
+        const double u = position * static_cast<double>(finger.along.size() - 1);
+        const auto first = static_cast<std::size_t>(u);
+        const QPointF a = view.node_position(QString::fromStdString(finger.along[first]));
+        const QPointF b = view.node_position(QString::fromStdString(finger.along[first + 1]));
+        return a.x() + (u - static_cast<double>(first)) * (b.x() - a.x());
+    };
+    EXPECT_NEAR(view.node_position("finger").x(), between(2.0 / 3.0), 1e-6);
+    Inspector inspector(document);
+    inspector.show_element("finger");
+    EXPECT_TRUE(inspector.edit("position", 0.5)) << inspector.warning().toStdString();
+    EXPECT_EQ(document.model().find_lia("finger")->finger_position, 0.5);
+    EXPECT_NEAR(view.node_position("finger").x(), between(0.5), 1e-6) << "it moved";
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("graph-finger.png"));
+    EXPECT_TRUE(inspector.edit("pressure", 0.03)) << "a light touch";
+    EXPECT_FALSE(inspector.edit("position", 1.5));
+    EXPECT_NE(inspector.warning().indexOf("at most 1"), -1) << inspector.warning().toStdString();
+    EXPECT_EQ(document.model().find_lia("finger")->finger_position, 0.5) << "refused: unchanged";
+}
+
 TEST(CompareViewTest, RendersTwoDampingsSideBySide) {
     CompareView view(load_model_file(test::resource("models/bowed-string-220-paper.json")));
     view.resize(1200, 800);

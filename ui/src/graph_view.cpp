@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <map>
 
+#include "archet/model/finger_contact.hpp"
 #include "archet/ui/model_document.hpp"
 
 namespace archet::ui {
@@ -110,6 +111,30 @@ void GraphView::set_tool(Tool tool, MatKind mat, LiaKind link) {
     setCursor(tool == Tool::Select ? Qt::ArrowCursor : Qt::CrossCursor);
 }
 
+// A finger: a fingertip above the point of its string it touches, between two of its MATs.
+void GraphView::add_finger(const Lia& finger, const std::map<std::string, QPointF>& at) {
+    if (finger.along.size() < 2) return;
+    const FingerContact contact = finger_contact(finger.finger_position, finger.along.size());
+    const auto a = at.find(finger.along[contact.first]);
+    const auto b = at.find(finger.along[contact.first + 1]);
+    if (a == at.end() || b == at.end()) return;
+    const QPointF touch = a->second + contact.weight * (b->second - a->second);
+    const QPointF tip = touch + QPointF(0, -22);
+    const QColor ink(60, 110, 170);
+    scene_.addLine(QLineF(tip, touch), QPen(ink, 1.2 + 1.8 * finger.pressure))->setZValue(-1);
+    QPolygonF fingertip({{-7, -9}, {7, -9}, {0, 5}});
+    auto* item = scene_.addPolygon(fingertip, QPen(ink), QColor(170, 200, 235));
+    item->setPos(tip);
+    nodes_.push_back(item);
+    item->setData(kIdRole, QString::fromStdString(finger.id));
+    item->setFlag(QGraphicsItem::ItemIsSelectable);
+    item->setFlag(QGraphicsItem::ItemIgnoresTransformations);  // a fingertip at any zoom
+    item->setToolTip(tr("%1: finger at %2 of its string, pressure %3")
+                         .arg(QString::fromStdString(finger.id))
+                         .arg(finger.finger_position, 0, 'g', 4)
+                         .arg(finger.pressure, 0, 'g', 3));
+}
+
 void GraphView::rebuild() {
     const QStringList keep = selected_ids();
     const QSignalBlocker quiet(&scene_);
@@ -124,6 +149,10 @@ void GraphView::rebuild() {
         return r && r->divider > 1;
     };
     for (const auto& l : model.lias) {
+        if (l.kind == LiaKind::Finger) {
+            add_finger(l, at);
+            continue;
+        }
         if (!at.count(l.from) || !at.count(l.to)) continue;
         if (l.kind == LiaKind::BowFriction) {  // a diamond between bow and string
             const QPointF centre = (at[l.from] + at[l.to]) / 2 + QPointF(0, -12);

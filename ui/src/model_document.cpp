@@ -209,8 +209,14 @@ void ModelDocument::remove(const QStringList& ids) {
                (!l.press.empty() && gone.count(l.press)) ||
                (!l.surface.empty() && gone.count(l.surface));
     };
-    for (const auto& l : after.lias)
+    for (auto& l : after.lias) {
+        if (l.kind == LiaKind::Finger) {  // a finger keeps the rest of its string, if any
+            std::erase_if(l.along, [&](const std::string& id) { return gone.count(id) > 0; });
+            if (l.along.size() < 2) gone.insert(l.id);
+            continue;
+        }
         if (uses_gone(l)) gone.insert(l.id);
+    }
     std::erase_if(after.lias, [&](const Lia& l) { return gone.count(l.id) > 0; });
     std::erase_if(after.mats, [&](const Mat& m) { return gone.count(m.id) > 0; });
     for (auto& m : after.mats) {  // modal points reading a deleted mode lose it

@@ -11,13 +11,26 @@ namespace archet {
 Eigen::MatrixXd update_matrix(const LinearSystem& sys) {
     const int n = sys.size();
     const double dt = sys.dt;
-    const Eigen::MatrixXd inv_m = sys.mass.cwiseInverse().asDiagonal();
+    const Eigen::MatrixXd inv_m = sys.mass.cwiseInverse().asDiagonal();  // dense: used below
     const Eigen::MatrixXd k = Eigen::MatrixXd(sys.stiffness) * (dt * dt);
     const Eigen::MatrixXd z = Eigen::MatrixXd(sys.damping) * dt;
     Eigen::MatrixXd step = Eigen::MatrixXd::Zero(2 * n, 2 * n);
     step.topLeftCorner(n, n) = 2.0 * Eigen::MatrixXd::Identity(n, n) - inv_m * (k + z);
     step.topRightCorner(n, n) = inv_m * z - Eigen::MatrixXd::Identity(n, n);
     step.bottomLeftCorner(n, n) = Eigen::MatrixXd::Identity(n, n);
+    // Each finger then corrects the new positions as the simulation does (simulation_finger.cpp):
+    // F = α·u(x[n+1]) + β·u(x[n−1]) on its point u = gᵀx, which moves by T²M⁻¹g·F.
+    for (const FingerTerm& finger : sys.fingers) {
+        Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
+        for (auto [d, w] : finger.point) g[d] += w;
+        const Eigen::VectorXd moves = inv_m * g * (dt * dt);
+        const double c = g.dot(moves), k = finger.stiffness, zdt = finger.damping / dt;
+        const double alpha = -(k + zdt) / (2.0 + c * (k + zdt));
+        const double beta = -(k - zdt) / (2.0 + c * (k + zdt));
+        Eigen::RowVectorXd force = alpha * g.transpose() * step.topRows(n);
+        force.tail(n) += beta * g.transpose();
+        step.topRows(n) += moves * force;
+    }
     return step;
 }
 

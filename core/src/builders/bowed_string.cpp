@@ -140,6 +140,9 @@ void describe(Model& model, const BowedStringOptions& o, int n, const StringLoss
              << (o.body == "none" ? "heavy damped bridges, sound from the bridge force."
                                   : o.body + " body at the bridge, sound radiated by the body.");
     }
+    if (o.finger)
+        text << " A finger stops the string at " << fmt(o.finger_position)
+             << " of its length from the bridge (finger.position; 1 = open).";
     std::string description = text.str();
     description[0] = static_cast<char>(std::toupper(description[0]));
     model.name = name.str();
@@ -156,6 +159,7 @@ Model assemble(const BowedStringOptions& o, int n) {
     if (o.structure == Structure::Modal)
         make_modal(model, n, bowed_mass(o, n), losses, wide_bow(o));
     add_bow(model, o, n);
+    if (o.finger) add_finger(model, o, n);
     describe(model, o, n, losses, decays);
     return model;
 }
@@ -186,6 +190,11 @@ void check_options(const BowedStringOptions& o) {
                 "must be at least " + std::to_string(kMinMasses) + " (0: full bandwidth)");
     require(o.bow_position > 0 && o.bow_position < 0.5, "--bow-position",
             "beta must be in (0, 0.5)");
+    require(std::isfinite(o.finger_position) && o.finger_position > 0 && o.finger_position <= 1,
+            "--finger-position",
+            "must be above 0 and at most 1 (the sounding share of the string; 1: open)");
+    require(!o.finger || o.structure == Structure::Chain, "--finger",
+            "stops a chain of masses; leave out --structure modal");
     require(std::isfinite(o.string_damping), "--string-damping",
             "must be a finite number of N·s/m");
     require(std::isfinite(o.string_t60) && o.string_t60 >= 0 && o.string_t60 <= 600, "--string-t60",

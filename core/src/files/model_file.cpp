@@ -73,13 +73,19 @@ void read_parameters(JsonObjectReader& r, Element& e) {
             p.file_default ? r.number(p.info.name, *p.file_default) : r.number(p.info.name);
 }
 
-void read_modal_point(JsonObjectReader& r, Mat& m) {
-    const Json& modes = r.array("modes");
-    const Json& weights = r.array("weights");
-    for (const auto& id : modes) {
-        if (!id.is_string()) throw InputError(r.where(), "\"modes\" must list mass ids (strings)");
-        m.modes.push_back(id.get<std::string>());
+std::vector<std::string> read_ids(JsonObjectReader& r, const std::string& key) {
+    std::vector<std::string> ids;
+    for (const auto& id : r.array(key)) {
+        if (!id.is_string())
+            throw InputError(r.where(), "\"" + key + "\" must list mass ids (strings)");
+        ids.push_back(id.get<std::string>());
     }
+    return ids;
+}
+
+void read_modal_point(JsonObjectReader& r, Mat& m) {
+    m.modes = read_ids(r, "modes");
+    const Json& weights = r.array("weights");
     for (const auto& w : weights) {
         if (!w.is_number()) throw InputError(r.where(), "\"weights\" must be numbers");
         m.weights.push_back(w.get<double>());
@@ -111,12 +117,14 @@ Lia read_lia(const Json& item, std::size_t index) {
     l.id = r.text("id");
     l.kind = parse_enum(r.text("type"),
                         {LiaKind::Spring, LiaKind::Damper, LiaKind::SpringDamper, LiaKind::Buffer,
-                         LiaKind::BowFriction},
+                         LiaKind::BowFriction, LiaKind::Finger},
                         r.where(), "link type");
     l.rate = r.text("rate", "audio");
     if (l.kind == LiaKind::BowFriction) {  // its bow and string masses are `from` and `to`
         l.from = r.text("bow"), l.to = r.text("string");
         l.press = r.text("press"), l.surface = r.text("surface");
+    } else if (l.kind == LiaKind::Finger) {  // the string it stops, from the bridge to the nut
+        l.along = read_ids(r, "along");
     } else {
         l.from = r.text("from"), l.to = r.text("to");
     }
@@ -257,6 +265,8 @@ Json write_lia(const Lia& e) {
     if (e.kind == LiaKind::BowFriction) {
         j["bow"] = e.bow(), j["string"] = e.bowed_string(), j["press"] = e.press;
         j["surface"] = e.surface;
+    } else if (e.kind == LiaKind::Finger) {
+        j["along"] = e.along;
     } else {
         j["from"] = e.from, j["to"] = e.to;
     }

@@ -98,7 +98,22 @@ const std::vector<LiaParameter>& kind_parameters(LiaKind kind) {
         {{"mu_s", "", 0.0, true, 10.0, kFree}, R::MuStatic, &Lia::mu_static, std::nullopt},
         {{"mu_d", "", 0.0, false, 10.0, kFree}, R::MuDynamic, &Lia::mu_dynamic, std::nullopt},
         {{"v0", "m/s", 0.0, true, 100.0, kFree}, R::V0, &Lia::v0, std::nullopt}};
+    // A finger: its full stiffness and damping (pressure 1), where it touches and how hard.
+    // None bounds the step: the finger is solved implicitly (simulation_finger.cpp).
+    static const std::vector<LiaParameter> finger{
+        {{"stiffness", "N/m", 0.0, true, kStiffness, kFree},
+         R::Stiffness,
+         &Lia::stiffness,
+         std::nullopt},
+        {{"damping", "N·s/m", 0.0, false, kDamping, kFree}, R::Damping, &Lia::damping, 0.0},
+        {{"position", "", 0.0, false, 1.0, kFree},
+         R::FingerPosition,
+         &Lia::finger_position,
+         std::nullopt},
+        {{"pressure", "", 0.0, false, 1.0, kFree}, R::Pressure, &Lia::pressure, 1.0}};
     switch (kind) {
+        case LiaKind::Finger:
+            return finger;
         case LiaKind::Spring:
             return spring;
         case LiaKind::Damper:

@@ -5,6 +5,8 @@
 #include <queue>
 #include <unordered_map>
 
+#include "archet/model/finger_contact.hpp"
+
 namespace archet {
 
 namespace {
@@ -13,7 +15,8 @@ bool has_inertia(const Mat& m) {
 }
 }  // namespace
 
-LinearSystem assemble_linear_system(const Model& model, const std::string& rate_id) {
+LinearSystem assemble_linear_system(const Model& model, const std::string& rate_id,
+                                    Fingers fingers) {
     const RateLevel* level = nullptr;
     for (const auto& r : model.rates)
         if (rate_id.empty() ? (!level || r.divider < level->divider) : r.id == rate_id) level = &r;
@@ -64,10 +67,20 @@ LinearSystem assemble_linear_system(const Model& model, const std::string& rate_
     };
     for (const auto& l : model.lias) {
         if (l.rate != level->id) continue;
-        if (l.kind == LiaKind::BowFriction)
+        if (l.kind == LiaKind::BowFriction) {
             couple(combination(l.press), combination(l.surface), l.stiffness, l.damping);
-        else
+        } else if (l.kind == LiaKind::Finger) {
+            if (fingers == Fingers::Exclude) continue;
+            const FingerContact at = finger_contact(l.finger_position, l.along.size());
+            Combination point;
+            for (auto [d, w] : combination(l.along[at.first]))
+                point.emplace_back(d, (1 - at.weight) * w);
+            for (auto [d, w] : combination(l.along[at.first + 1]))
+                point.emplace_back(d, at.weight * w);
+            sys.fingers.push_back({point, l.pressure * l.stiffness, l.pressure * l.damping});
+        } else {
             couple(combination(l.from), combination(l.to), l.stiffness, l.damping);
+        }
     }
     for (const auto& m : model.mats)
         if (m.kind == MatKind::Oscillator && m.rate == level->id)
@@ -123,6 +136,12 @@ LinearSystem connected_part(const LinearSystem& sys, const std::string& dof) {
     };
     part.stiffness = restrict(sys.stiffness);
     part.damping = restrict(sys.damping);
+    for (const FingerTerm& finger : sys.fingers) {
+        FingerTerm kept{{}, finger.stiffness, finger.damping};
+        for (auto [d, w] : finger.point)
+            if (position[d] >= 0) kept.point.emplace_back(position[d], w);
+        if (!kept.point.empty()) part.fingers.push_back(std::move(kept));
+    }
     return part;
 }
 

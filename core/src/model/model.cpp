@@ -56,6 +56,8 @@ const char* to_string(LiaKind k) {
             return "buffer";
         case LiaKind::BowFriction:
             return "bow_friction";
+        case LiaKind::Finger:
+            return "finger";
     }
     return "?";
 }

@@ -176,12 +176,17 @@ class Checker {
     void check_lia(const Lia& l) {
         const std::string where = quoted("link", l.id);
         check_rate(where, l.rate);
-        for (double v : {l.stiffness, l.damping, l.length, l.mu_static, l.mu_dynamic, l.v0})
+        for (double v : {l.stiffness, l.damping, l.length, l.mu_static, l.mu_dynamic, l.v0,
+                         l.finger_position, l.pressure})
             if (!std::isfinite(v)) {
                 add(where, "has a non-finite parameter (NaN or infinity)");
                 return;
             }
         if (!in_ranges(where, parameter_values(l))) return;  // the table's ranges, per kind
+        if (l.kind == LiaKind::Finger) {
+            check_finger(where, l);
+            return;
+        }
         if (l.kind != LiaKind::BowFriction) {
             const Mat* a = mat_ref(where, "\"from\"", l.from);
             const Mat* b = mat_ref(where, "\"to\"", l.to);
@@ -219,6 +224,35 @@ class Checker {
         };
         if (ends[0] && ends[1] && !movable(ends[0]) && !movable(ends[1]))
             add(where, "the bow and the string cannot both be immovable; make one of them a mass");
+    }
+
+    // A finger's string: two MATs or more, each once, at the finger's rate, with inertia,
+    // fixed, or a modal point (a body's bridge); a gesture point has no place along a string.
+    void check_finger(const std::string& where, const Lia& l) {
+        if (l.along.size() < 2)
+            add(where, "\"along\" lists " + count_of(l.along.size(), "mass", "masses") +
+                           "; list the string's masses in order, from the bridge to the "
+                           "nut (two or more)");
+        std::set<std::string> seen;
+        bool movable = false;
+        for (const auto& id : l.along) {
+            if (!seen.insert(id).second)
+                add(where, "\"along\" lists mass " + quoted_text(id) + " twice; list each once");
+            const Mat* m = mat_ref(where, "\"along\"", id);
+            if (!m) continue;
+            if (m->kind == MatKind::Gesture)
+                add(where, "\"along\" lists " + quoted_text(id) +
+                               ", a gesture point; a finger touches the string's masses, "
+                               "oscillators, modal and fixed points");
+            else if (m->rate != l.rate)
+                add(where, "\"along\" lists " + quoted_text(id) + " at rate \"" + m->rate +
+                               "\" but the finger runs at \"" + l.rate +
+                               "\"; a finger and its string share one rate level");
+            movable = movable || m->kind != MatKind::Fixed;
+        }
+        if (l.along.size() >= 2 && seen.size() == l.along.size() && !movable)
+            add(where,
+                "\"along\" lists only fixed points; a finger must touch a string that moves");
     }
 
     // A link whose MATs tick at another rate acts through a held force or a held position: a

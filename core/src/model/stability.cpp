@@ -75,7 +75,8 @@ StabilityReport analyse_stability(const LinearSystem& sys, bool exact) {
 std::vector<StabilityReport> analyse_stability(const Model& model, bool exact) {
     std::vector<StabilityReport> reports;
     for (const auto& level : model.rates)
-        reports.push_back(analyse_stability(assemble_linear_system(model, level.id), exact));
+        reports.push_back(
+            analyse_stability(assemble_linear_system(model, level.id, Fingers::Exclude), exact));
     return reports;
 }
 

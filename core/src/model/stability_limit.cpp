@@ -38,7 +38,8 @@ std::optional<StabilityLimit> stability_limit(Model& model, const ParameterName&
     auto stable_at = [&](double v) {
         field = v;  // probed in place: no copy of the model
         try {
-            return analyse_stability(assemble_linear_system(model, rate)).stable();
+            return analyse_stability(assemble_linear_system(model, rate, Fingers::Exclude))
+                .stable();
         } catch (const std::exception&) {
             return true;  // nothing linear at that level moves: nothing to go unstable
         }

@@ -42,7 +42,7 @@ std::vector<std::string> string_points(const Model& model) {
     } else {
         std::multimap<std::string, std::string> neighbours;
         for (const auto& l : model.lias) {
-            if (l.kind == LiaKind::BowFriction) continue;
+            if (l.kind == LiaKind::BowFriction || l.kind == LiaKind::Finger) continue;
             neighbours.emplace(l.from, l.to);
             neighbours.emplace(l.to, l.from);
         }

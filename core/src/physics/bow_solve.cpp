@@ -24,9 +24,7 @@ void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
     const double* xp = lv.x_prev();
     double* xn = lv.x_next();
     // How far each side moves per newton over the step: T²/m, or its modes' for a modal point.
-    const double cb = bow.bow_point < 0 ? lv.coeff[bow.bow] : lv.modal_points[bow.bow_point].coeff;
-    const double cs =
-        bow.string_point < 0 ? lv.coeff[bow.string] : lv.modal_points[bow.string_point].coeff;
+    const double cb = response(lv, bow.bow), cs = response(lv, bow.string);
     const double csum = cb + cs;
     const double u_prev = (x[bow.bow] - xp[bow.bow]) - (x[bow.string] - xp[bow.string]);
     const double u_free = (xn[bow.bow] - x[bow.bow]) - (xn[bow.string] - x[bow.string]);
@@ -58,14 +56,8 @@ void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
             bow.dissipated = n * mu * q * lv.dt;  // |F|·|w|·T, w the mid-step velocity
         }
     }
-    if (bow.string_point < 0)
-        xn[bow.string] += f * cs;
-    else
-        apply_modal_force(lv, bow.string_point, f);
-    if (bow.bow_point < 0)
-        xn[bow.bow] -= f * cb;
-    else
-        apply_modal_force(lv, bow.bow_point, -f);
+    push(lv, bow.string, f);
+    push(lv, bow.bow, -f);
     lv.external[bow.string] += f;
     lv.external[bow.bow] -= f;
     const double u_next = u_free - f * csum;

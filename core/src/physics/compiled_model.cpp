@@ -232,6 +232,14 @@ void compile_links(CompiledModel& c, const Model& model,
             c.bows.push_back(compile_bow(c, l, li, level, dt));
             continue;
         }
+        if (l.kind == LiaKind::Finger) {  // acts on the new positions, like the bow
+            CompiledFinger f{level,      {}, l.stiffness, l.damping / dt, l.finger_position,
+                             l.pressure, li, 0.0};
+            for (const auto& id : l.along) f.along.push_back(slot_of(c, id).index);
+            c.levels[level].fingers.push_back(static_cast<int>(c.fingers.size()));
+            c.fingers.push_back(std::move(f));
+            continue;
+        }
         const bool contact = l.kind == LiaKind::Buffer;
         // A buffer with gap g acts while x(to) − x(from) < g, i.e. d − (−g) > 0.
         const double length = contact ? -l.gap() : l.length;
@@ -260,10 +268,6 @@ void compile_readouts(CompiledModel& c, const Model& model) {
         w.push_back(s.index);
         return static_cast<int>(w.size() - 1);
     };
-    for (auto& bow : c.bows) {
-        bow.bow_point = c.levels[bow.level].modal_point_of[bow.bow];
-        bow.string_point = c.levels[bow.level].modal_point_of[bow.string];
-    }
     for (const auto& p : model.probes) {
         CompiledProbe cp;
         cp.id = p.id;
@@ -364,6 +368,14 @@ ParameterSlot CompiledModel::resolve_parameter(const ParameterName& name) const 
                                    {R::MuDynamic, K::BowMuD},
                                    {R::V0, K::BowV0}};
         return {kinds.at(role), bows[b].level, b};
+    }
+    for (int f = 0; f < static_cast<int>(fingers.size()); ++f) {
+        if (fingers[f].element != li) continue;
+        const std::map<R, K> kinds{{R::Stiffness, K::FingerK},
+                                   {R::Damping, K::FingerZ},
+                                   {R::FingerPosition, K::FingerPosition},
+                                   {R::Pressure, K::FingerPressure}};
+        return {kinds.at(role), fingers[f].level, f};
     }
     const bool is_k = role == R::Stiffness, is_z = role == R::Damping;
     for (int lv = 0; lv < static_cast<int>(levels.size()); ++lv) {

@@ -37,6 +37,8 @@ void Simulation::account(CompiledLevel& lv) {
         if (p > 0.0 && bow.normal > 0.0) buffer = taken(bow.zbdt, bow.press, bow.surface);
         dissipated_[bow.element] += bow.dissipated + buffer;
     }
+    for (int f : lv.fingers)
+        dissipated_[model_.fingers[f].element] += finger_dissipation(lv, model_.fingers[f]);
 }
 
 double Simulation::hand_work() const {
@@ -76,6 +78,7 @@ double Simulation::stored_energy() const {
             if (p > 0 && pp > 0) e += 0.5 * bow.kb * p * pp;
             if (p > 0) e -= in_flight(bow.zbdt, bow.press, bow.surface);
         }
+        for (int f : lv.fingers) e += finger_stored_energy(lv, model_.fingers[f]);
     }
     for (const auto& l : model_.cross_links) {
         const double d =

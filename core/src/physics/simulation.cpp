@@ -243,6 +243,7 @@ void Simulation::integrate(CompiledLevel& lv) {
         }
         update_modal_points(lv);
     }
+    for (int f : lv.fingers) solve_finger(lv, model_.fingers[f]);
     for (int b : lv.bows) solve_bow(lv, model_.bows[b]);
     for (std::size_t w = 0; w < lv.watched.size(); ++w) {
         const int s = lv.watched[w];

@@ -5,6 +5,20 @@
 
 namespace archet {
 
+namespace {
+
+// A finger's field for a slot kind (Z is stored as Z/T, like every damper).
+template <class Finger>
+auto& finger_field(Finger& f, ParameterSlot::Kind kind) {
+    using K = ParameterSlot::Kind;
+    return kind == K::FingerK          ? f.k
+           : kind == K::FingerZ        ? f.zdt
+           : kind == K::FingerPosition ? f.position
+                                       : f.pressure;
+}
+
+}  // namespace
+
 void Simulation::write_slot(const ParameterSlot& s, double v) {
     using K = ParameterSlot::Kind;
     CompiledLevel& lv = model_.levels[s.level];
@@ -78,6 +92,12 @@ void Simulation::write_slot(const ParameterSlot& s, double v) {
         case K::FixedPosition:
             for (auto& b : lv.buffer) b[s.index] = v;
             break;
+        case K::FingerK:
+        case K::FingerZ:
+        case K::FingerPosition:
+        case K::FingerPressure:
+            finger_field(model_.fingers[s.index], s.kind) = s.kind == K::FingerZ ? v / lv.dt : v;
+            break;
     }
 }
 
@@ -130,6 +150,12 @@ double Simulation::read_slot(const ParameterSlot& s) const {
             return lv.gestures[s.index].force_scale;
         case K::FixedPosition:
             return lv.x()[s.index];
+        case K::FingerK:
+        case K::FingerPosition:
+        case K::FingerPressure:
+            return finger_field(model_.fingers[s.index], s.kind);
+        case K::FingerZ:
+            return model_.fingers[s.index].zdt * lv.dt;
     }
     return 0;
 }

@@ -16,13 +16,15 @@ struct DiscreteMode {
 };
 
 /// The one-step update [x[n+1]; x[n]] = U·[x[n]; x[n−1]] of the scheme for the system: with
-/// the damper force from x[n] − x[n−1], x[n+1] = (2I − M⁻¹(K·T² + Z·T))·x[n] + (M⁻¹Z·T − I)·x[n−1].
+/// the damper force from x[n] − x[n−1], x[n+1] = (2I − M⁻¹(K·T² + Z·T))·x[n] + (M⁻¹Z·T − I)·x[n−1],
+/// then corrected by each finger's implicit solve.
 Eigen::MatrixXd update_matrix(const LinearSystem& system);
 
 /// Oscillating modes sorted by frequency (real, non-oscillating roots are left out).
 std::vector<DiscreteMode> discrete_modes(const LinearSystem& system);
 
-/// Undamped discrete frequencies from the symmetric problem (fast, for tuning).
+/// Undamped discrete frequencies from the symmetric problem (fast, for tuning; fingers left
+/// out).
 std::vector<double> undamped_discrete_frequencies(const LinearSystem& system);
 
 }  // namespace archet

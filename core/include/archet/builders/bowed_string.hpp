@@ -34,6 +34,10 @@ struct BowedStringOptions {
     /// Keep β even where the embedded stroke finds no Helmholtz band (else the bow may move to
     /// the next mass or two, where it finds one).
     bool bow_position_fixed = false;
+    /// A finger ("finger") pressed on the string at `finger_position`, the share of the
+    /// string between the bridge and the finger (1: at the nut, the open string).
+    bool finger = false;
+    double finger_position = 1.0;
     double string_damping = -1.0;  ///< N·s/m per string link, set by hand; < 0: from the decays
     /// s, 60 dB decay of the first mode, every loss included; 0: a violin A string's at the
     /// pitch (paper: 4 s, from link damping alone).
@@ -87,6 +91,10 @@ Model build_bowed_string(const BowedStringOptions& options,
 /// ("hand_slide", "hand_press"), their links ("bow_hold", "press_hold") and "friction".
 void add_bow_module(Model& model, const BowedStringOptions& options,
                     const std::string& string_mass);
+
+/// Adds "finger", pressed at options.finger_position, along the string from "bridge" through
+/// s1…sN to "nut" (the chain structure's).
+void add_finger(Model& model, const BowedStringOptions& options, int masses);
 
 /// The largest number of masses a homogeneous chain can have at this pitch and rate
 /// (ω_max·T < 2), ignoring bridges and damping.

@@ -37,6 +37,8 @@ enum class ParameterRole {
     V0,
     PositionScale,
     ForceScale,
+    FingerPosition,  ///< where a finger touches its string, 0…1
+    Pressure,        ///< how hard a finger presses, 0…1
 };
 
 /// One row of the table: a parameter of one kind of `Element` (Mat or Lia).

@@ -50,11 +50,15 @@ enum class LiaKind {
     SpringDamper,  ///< F = K·(d − length) + Z·Δd/T
     Buffer,        ///< spring-damper acting only while the two MATs are in contact
     BowFriction,   ///< the quadripolar bow–string module (elastic buffer + friction)
+    Finger,        ///< a stiff, damped stop from a point along a string to ground
 };
 
 /// A LIA. For two-point links `from`/`to` are the MATs and d = x(from) − x(to).
 /// The bow module joins four MATs: `from` = bow mass on the sliding axis, `to` = bowed
 /// string mass, `press` = bow mass on the pressure axis, `surface` = what it presses on.
+/// A finger touches the string `along` (its MATs in order, from the bridge to the nut) at
+/// `finger_position` (0 at the first, 1 at the last, continuous: between two MATs it acts on
+/// both, weighted by the distance), with `pressure` × its stiffness and damping.
 struct Lia {
     std::string id;
     LiaKind kind = LiaKind::Spring;
@@ -70,6 +74,10 @@ struct Lia {
     double mu_static = 0.8;   ///< μs, friction coefficient when sticking
     double mu_dynamic = 0.3;  ///< μd, limit when sliding fast
     double v0 = 0.1;          ///< m/s, velocity scale of the decay from μs to μd
+    // Finger only:
+    std::vector<std::string> along;
+    double finger_position = 1.0;  ///< 0…1 along `along`
+    double pressure = 1.0;         ///< 0 (lifted) … 1 (pressed: full stiffness and damping)
     std::optional<std::pair<double, double>> display;
 
     // The bow module's and the buffer's names for the shared fields (the parameter table,

@@ -82,8 +82,7 @@ struct CompiledModalPoint {  ///< x = Σ weight·x(mode); a force F on it moves 
 struct CompiledBow {
     int level = 0;
     int bow = 0, string = 0, press = 0, surface = 0;
-    int bow_point = -1, string_point = -1;  ///< modal point of the bow / string MAT, or −1
-    double kb = 0, zbdt = 0;                ///< pressure buffer
+    double kb = 0, zbdt = 0;  ///< pressure buffer
     double mu_s = 0, mu_d = 0, v0 = 0;
     int element = -1;
     // State of the last step:
@@ -92,6 +91,17 @@ struct CompiledBow {
     double slip_velocity = 0;  ///< m/s, bow minus string, at the new step
     double dissipated = 0;     ///< J over the last step (never negative)
     bool sticking = false;
+};
+
+/// A finger: pressure × (k, Z) from its contact point to ground, the contact between two
+/// MATs of `along` (storage indices of its level) placed by finger_contact().
+struct CompiledFinger {
+    int level = 0;
+    std::vector<int> along;
+    double k = 0, zdt = 0;  ///< at full pressure
+    double position = 1, pressure = 1;
+    int element = -1;
+    double force = 0;  ///< N, on the contact point at the last step
 };
 
 struct CompiledLevel {
@@ -122,7 +132,8 @@ struct CompiledLevel {
     std::vector<CompiledGround> grounds;
     std::vector<double> ground_k, ground_zdt, ground_rest;  ///< per storage index, 0 if none
     std::vector<CompiledGesturePoint> gestures;
-    std::vector<int> bows;  ///< indices into CompiledModel::bows
+    std::vector<int> bows;     ///< indices into CompiledModel::bows
+    std::vector<int> fingers;  ///< indices into CompiledModel::fingers
     std::vector<CompiledModalPoint> modal_points;
     std::vector<int> modal_point_of;  ///< storage index → index into modal_points, or −1
     std::vector<int> touched;         ///< storage indices whose `external` must be cleared
@@ -162,7 +173,11 @@ struct ParameterSlot {
         BowV0,
         GesturePositionScale,
         GestureForceScale,
-        FixedPosition
+        FixedPosition,
+        FingerK,
+        FingerZ,
+        FingerPosition,
+        FingerPressure
     };
     Kind kind = Kind::Mass;
     int level = 0;
@@ -200,6 +215,7 @@ struct CompiledModel {
     std::vector<CompiledCrossLink> cross_links;  ///< the hand links first
     int hand_links = 0;                          ///< how many of cross_links are hand links
     std::vector<CompiledBow> bows;
+    std::vector<CompiledFinger> fingers;
     std::vector<CompiledControl> controls;
     std::vector<CompiledProbe> probes;
     std::vector<CompiledOutput> outputs;

@@ -89,6 +89,11 @@ class Simulation {
     double seen_position(MatSlot s, CompiledCrossLink::EndRate rate, bool between_steps) const;
     void integrate(CompiledLevel& level);
     void solve_bow(CompiledLevel& level, CompiledBow& bow);
+    void solve_finger(CompiledLevel& level, CompiledFinger& finger);
+    double response(const CompiledLevel& level, int storage) const;
+    void push(CompiledLevel& level, int storage, double force);
+    double finger_stored_energy(const CompiledLevel& level, const CompiledFinger& finger) const;
+    double finger_dissipation(CompiledLevel& level, const CompiledFinger& finger) const;
     void update_gesture_points(CompiledLevel& level);
     void update_modal_points(CompiledLevel& level);
     /// Adds the motion a force on a modal point causes over this step, to its modes and so to

@@ -9,6 +9,7 @@
 
 #include <QGraphicsView>
 #include <QStringList>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -66,6 +67,7 @@ class GraphView : public QGraphicsView {
 
   private:
     void rebuild();
+    void add_finger(const Lia& finger, const std::map<std::string, QPointF>& at);
     void apply_zoom();
     void zoom_about(double scale, QPoint view_point);
     void fit_scene_rect();

@@ -1,0 +1,67 @@
+// A finger stopping a string: one member of Simulation, in a file of its own because, like the
+// bow, it is solved on the predicted motion rather than in the explicit scheme.
+#include "archet/model/finger_contact.hpp"
+#include "archet/physics/simulation.hpp"
+
+namespace archet {
+
+// How far a MAT moves per newton over a step: T²/m, or its modes' for a modal point (a
+// body's bridge); and the move a force makes.
+double Simulation::response(const CompiledLevel& lv, int s) const {
+    const int point = lv.modal_point_of[s];
+    return point < 0 ? lv.coeff[s] : lv.modal_points[point].coeff;
+}
+
+void Simulation::push(CompiledLevel& lv, int s, double force) {
+    const int point = lv.modal_point_of[s];
+    if (point < 0)
+        lv.x_next()[s] += lv.coeff[s] * force;
+    else if (force != 0.0)
+        apply_modal_force(lv, point, force);
+}
+
+// The finger is a spring k and a damper Z from its contact point to ground, scaled by its
+// pressure. Its contact point u is the weighted position of the two MATs it lies between;
+// c = (1−w)²·T²/m_a + w²·T²/m_b is how far u moves per newton over a step. The force uses the
+// mean of the new and the previous position and the centred velocity (trapezoidal rule):
+//   F = −k·(u+ + u−)/2 − (Z/T)·(u+ − u−)/2,   u+ = ufree + c·F,
+// one linear equation in F. Its work over a step is exactly −¼k(u+² − u−²) − ¼(Z/T)(u+ − u−)²:
+// it stores ¼k(u[n]² + u[n−1]²) and dissipates the rest, so it is passive and stable for any
+// stiffness, and a pressed finger can be as stiff as a fingerboard without shortening the step.
+void Simulation::solve_finger(CompiledLevel& lv, CompiledFinger& finger) {
+    const FingerContact at = finger_contact(finger.position, finger.along.size());
+    const int a = finger.along[at.first], b = finger.along[at.first + 1];
+    const double wa = 1.0 - at.weight, wb = at.weight;
+    double* xn = lv.x_next();
+    const double* xp = lv.x_prev();
+    const double k = finger.pressure * finger.k, zdt = finger.pressure * finger.zdt;
+    const double c = wa * wa * response(lv, a) + wb * wb * response(lv, b);
+    const double u_free = wa * xn[a] + wb * xn[b];
+    const double u_before = wa * xp[a] + wb * xp[b];
+    const double f = -(k * (u_free + u_before) + zdt * (u_free - u_before)) / (2.0 + c * (k + zdt));
+    push(lv, a, wa * f);
+    push(lv, b, wb * f);
+    finger.force = f;
+}
+
+// The finger's stored energy ¼k(u[n]² + u[n−1]²) and, after a step, the energy its damper took
+// over it, ¼(Z/T)(u[n+1] − u[n−1])², both at its contact point now.
+double Simulation::finger_stored_energy(const CompiledLevel& lv,
+                                        const CompiledFinger& finger) const {
+    const FingerContact at = finger_contact(finger.position, finger.along.size());
+    const int a = finger.along[at.first], b = finger.along[at.first + 1];
+    const double u = (1.0 - at.weight) * lv.x()[a] + at.weight * lv.x()[b];
+    const double u_before = (1.0 - at.weight) * lv.x_prev()[a] + at.weight * lv.x_prev()[b];
+    return 0.25 * finger.pressure * finger.k * (u * u + u_before * u_before);
+}
+
+double Simulation::finger_dissipation(CompiledLevel& lv, const CompiledFinger& finger) const {
+    const FingerContact at = finger_contact(finger.position, finger.along.size());
+    const int a = finger.along[at.first], b = finger.along[at.first + 1];
+    const double wa = 1.0 - at.weight, wb = at.weight;
+    const double moved =
+        wa * (lv.x_next()[a] - lv.x_prev()[a]) + wb * (lv.x_next()[b] - lv.x_prev()[b]);
+    return 0.25 * finger.pressure * finger.zdt * moved * moved;
+}
+
+}  // namespace archet
