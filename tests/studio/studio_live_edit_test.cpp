@@ -24,6 +24,7 @@
 
 #include "archet/builders/bowed_string.hpp"
 #include "archet/files/model_file.hpp"
+#include "archet/files/take_file.hpp"
 #include "archet/model/stability_limit.hpp"
 #include "archet/sound_file_reader.hpp"
 #include "archet/ui/engine_client.hpp"
@@ -375,6 +376,34 @@ TEST_F(LiveEdit, ATakeRecordedAfterAnEditHoldsSound) {
     for (double s : take.samples) peak = std::max(peak, std::abs(s));
     EXPECT_GT(take.samples.size(), 24000u);
     EXPECT_GT(peak, 1e-3) << "the bowed string is heard in the take";
+}
+
+// The pad's keyboard row plays the finger: G stops the string a fifth up while the pad bows,
+// letting go opens it again, and the take holds both moves, to be re-rendered.
+TEST_F(LiveEdit, ThePadsKeyboardRowMovesTheFingerAndTheTakeKeepsIt) {
+    BowedStringOptions o;
+    o.pitch = 220, o.paper = true, o.finger = true;
+    const auto path = dir / "fingered.json";
+    write_file_atomically(path, format_model(build_bowed_string(o)));
+    ASSERT_TRUE(window->open_file(QString::fromStdString(path.string())));
+    ASSERT_TRUE(wait_until([&] { return loads == 2; }, 60000)) << said();
+    bow(*window, stroke, 0.5);
+    QTest::keyClick(window.get(), Qt::Key_R);
+    bow(*window, stroke, 0.3);
+    QTest::keyPress(&window->pad(), Qt::Key_G);
+    EXPECT_GT(bow(*window, stroke, 0.5), kBowedEnergy) << "the stopped string sounds";
+    QTest::keyRelease(&window->pad(), Qt::Key_G);
+    bow(*window, stroke, 0.3);
+    QTest::keyClick(window.get(), Qt::Key_R);
+    ASSERT_TRUE(wait_until([&] { return window->takes().takes().size() == 1; }, 60000)) << said();
+    const auto changes = read_parameter_changes(
+        dir / "takes" / window->takes().takes().front().toStdString() / "parameters.json");
+    ASSERT_EQ(changes.size(), 2u);
+    EXPECT_EQ(changes[0].parameter, "finger.position");
+    EXPECT_DOUBLE_EQ(changes[0].value, std::exp2(-7.0 / 12.0)) << "G: seven semitones up";
+    EXPECT_EQ(changes[1].value, 1.0) << "let go: the open string";
+    EXPECT_LT(changes[0].tick, changes[1].tick);
+    EXPECT_EQ(loads, 2) << "a performance, not an edit: no reload";
 }
 
 // The sample rate is the engine's: the studio's scopes, spectrum, fades and takes follow it.

@@ -1,5 +1,6 @@
 #include "archet/ui/gesture_pad.hpp"
 
+#include <QKeyEvent>
 #include <QMouseEvent>
 #include <QPainter>
 #include <QPainterPath>
@@ -34,7 +35,8 @@ GesturePad::GesturePad(QWidget* parent) : QWidget(parent) {
     setToolTip(
         tr("Drag across to bow, down to press the bow into the string (or use the "
            "wheel); let go to lift the bow, or hold Shift as you let go to keep it "
-           "pressed"));
+           "pressed. With a finger on the string, the keys A W S E D F T G Y H U J K stop it "
+           "a semitone higher each, from the open string to the octave"));
 }
 
 QRectF GesturePad::area() const {
@@ -94,6 +96,36 @@ void GesturePad::wheelEvent(QWheelEvent* e) {
     e->accept();
 }
 
+namespace {
+
+// The keyboard row, a semitone per key as on a piano's white and black keys: A W S E D F T G
+// Y H U J K, the open string to the octave.
+int semitones_of(int key) {
+    static const QString row = "AWSEDFTGYHUJK";
+    return key >= Qt::Key_A && key <= Qt::Key_Z ? static_cast<int>(row.indexOf(QChar(key))) : -1;
+}
+
+}  // namespace
+
+void GesturePad::keyPressEvent(QKeyEvent* e) {
+    const int n = semitones_of(e->key());
+    if (n < 0 || e->modifiers() & ~Qt::KeypadModifier) return QWidget::keyPressEvent(e);
+    if (e->isAutoRepeat()) return;
+    std::erase(held_, n);
+    held_.push_back(n);
+    update();
+    emit note(n);
+}
+
+void GesturePad::keyReleaseEvent(QKeyEvent* e) {
+    const int n = semitones_of(e->key());
+    if (n < 0 || e->isAutoRepeat()) return QWidget::keyReleaseEvent(e);
+    const bool sounding = !held_.empty() && held_.back() == n;
+    std::erase(held_, n);
+    update();
+    if (sounding) emit note(held_.empty() ? -1 : held_.back());  // back to the key still held
+}
+
 void GesturePad::paintEvent(QPaintEvent*) {
     QPainter p(this);
     p.setRenderHint(QPainter::Antialiasing);
@@ -124,6 +156,9 @@ void GesturePad::paintEvent(QPaintEvent*) {
                    .arg(press_ * 1000, 0, 'f', 2)
                    .arg(slide_force_, 0, 'f', 2)
                    .arg(press_force_, 0, 'f', 2));
+    if (!held_.empty())
+        p.drawText(QRectF(rect()).adjusted(12, 2, -12, 0), Qt::AlignRight | Qt::AlignTop,
+                   tr("finger: %1 semitones up").arg(held_.back()));
     if (!notice_.isEmpty()) {
         QColor veil = palette().window().color();
         veil.setAlpha(220);

@@ -5,6 +5,7 @@
 #include <QLabel>
 #include <QStatusBar>
 #include <algorithm>
+#include <cmath>
 
 #include "archet/model/model_parameters.hpp"
 #include "archet/ui/elided_label.hpp"
@@ -40,6 +41,7 @@ QString unplayable_reason(const Model& model) {
 
 void MainWindow::connect_engine() {
     connect(pad_, &GesturePad::moved, engine_, &EngineClient::gesture);
+    connect(pad_, &GesturePad::note, this, &MainWindow::finger_to);
     connect(document_, &ModelDocument::changed, this,
             [this](ModelDocument::Change change, const QString& element, const QString& name) {
                 model_changed(static_cast<int>(change), element, name);
@@ -88,6 +90,22 @@ void MainWindow::model_changed(int change, const QString& element, const QString
     if (parameter && !engine_behind_) return glide();
     engine_behind_ = false;
     engine_->load(model);
+}
+
+// A performance, not an edit: the engine's finger moves, the document (and its undo) stays.
+// A take records the move like any parameter change.
+void MainWindow::finger_to(int semitones) {
+    const auto& lias = document_->model().lias;
+    const auto finger = std::find_if(lias.begin(), lias.end(),
+                                     [](const Lia& l) { return l.kind == LiaKind::Finger; });
+    if (finger == lias.end()) {
+        statusBar()->showMessage(
+            tr("This string has no finger: build one with File → New bowed string… (Finger)"),
+            5000);
+        return;
+    }
+    const double position = semitones < 0 ? finger->finger_position : std::exp2(-semitones / 12.0);
+    engine_->send_parameter({finger->id, "position"}, position);
 }
 
 void MainWindow::toggle_play() {

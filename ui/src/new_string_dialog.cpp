@@ -46,6 +46,14 @@ NewStringDialog::NewStringDialog(QWidget* parent) : QDialog(parent) {
     bow_position_->setDecimals(3);
     bow_position_->setValue(defaults.bow_position);
     bow_position_->setToolTip(tr("β: distance of the bow from the bridge over the string length"));
+    finger_ = new QCheckBox(tr("A finger on the string (the pad's keys A W S E … K play it)"));
+    finger_->setToolTip(
+        tr("A finger pressed at the nut: move it with its position (the sounding share of the "
+           "string) in the inspector, or from the pad's keyboard row"));
+    connect(structure_, &QComboBox::currentIndexChanged, this, [this] {
+        finger_->setEnabled(structure_->currentData().toInt() ==
+                            static_cast<int>(Structure::Chain));
+    });
     make_loss_fields();
     lay_out();
 }
@@ -59,6 +67,7 @@ void NewStringDialog::lay_out() {
     form->addRow(tr("Masses"), masses_);
     form->addRow(tr("Body"), body_);
     form->addRow(tr("Bow position β"), bow_position_);
+    form->addRow(QString(), finger_);
     form->addRow(tr("Decay T60 at the pitch"), t60_);
     form->addRow(tr("Decay T60 high"), t60_high_);
     form->addRow(tr("… at"), t60_high_hz_);
@@ -119,6 +128,7 @@ BowedStringOptions NewStringDialog::options() const {
     o.body = body_->currentData().toString().toStdString();
     o.bow_position = bow_position_->value();
     o.bow_position_fixed = o.bow_position != BowedStringOptions{}.bow_position;
+    o.finger = finger_->isEnabled() && finger_->isChecked();
     o.string_t60 = t60_->value();
     o.string_t60_high = t60_high_->value();
     o.string_t60_high_hz = t60_high_hz_->value();

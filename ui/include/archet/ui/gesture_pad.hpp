@@ -1,10 +1,12 @@
 #pragma once
 // The mouse as the bow: dragging across the pad moves the sliding axis, dragging down (or the
 // wheel) presses the bow into the string. The force the model feeds back is drawn as arrows
-// at the bow: the visual stand-in for a force-feedback device.
+// at the bow: the visual stand-in for a force-feedback device. The keyboard's middle row
+// plays the left hand: A for the open string, W S E D F T G Y H U J K one semitone up each.
 
 #include <QString>
 #include <QWidget>
+#include <vector>
 
 namespace archet::ui {
 
@@ -33,6 +35,9 @@ class GesturePad : public QWidget {
     void moved(double slide, double press);
     /// The player took the bow with the mouse (a stroke playing on its own yields to them).
     void grabbed();
+    /// A key of the keyboard row: the finger to `semitones` above the open string (0…12), or
+    /// −1 when the last key held is let go (the open string).
+    void note(int semitones);
 
   protected:
     void paintEvent(QPaintEvent*) override;
@@ -41,6 +46,8 @@ class GesturePad : public QWidget {
     /// Letting go lifts the bow off the string (press back to 0), unless Shift holds it there.
     void mouseReleaseEvent(QMouseEvent*) override;
     void wheelEvent(QWheelEvent*) override;
+    void keyPressEvent(QKeyEvent*) override;
+    void keyReleaseEvent(QKeyEvent*) override;
 
   private:
     QRectF area() const;
@@ -51,6 +58,7 @@ class GesturePad : public QWidget {
     double slide_ = 0, press_ = 0;
     double slide_force_ = 0, press_force_ = 0;
     QString notice_;
+    std::vector<int> held_;  ///< semitones of the keys held, the last one sounding
 };
 
 }  // namespace archet::ui

@@ -132,6 +132,9 @@ class MainWindow : public QMainWindow {
     void toggle_play();
     void toggle_take();
     void model_changed(int change, const QString& element, const QString& name);
+    /// The pad's keyboard row: the model's finger to `semitones` above the open string (−1:
+    /// back to the open string), glided in like any parameter.
+    void finger_to(int semitones);
     void refresh();
     void show_status();
 

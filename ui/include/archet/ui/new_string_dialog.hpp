@@ -28,6 +28,7 @@ class NewStringDialog : public QDialog {
     QComboBox* tuning_;
     QComboBox* structure_;
     QCheckBox* paper_;
+    QCheckBox* finger_;
     QSpinBox* masses_;
     QComboBox* body_;
     QDoubleSpinBox* bow_position_;
