@@ -36,6 +36,16 @@ void add_engine_command(CLI::App& app, Action& action) {
                     "Seconds without the studio's heartbeat before the engine exits")
         ->check(finite_range(0.1, 86400.0, "s"))
         ->capture_default_str();
+    cmd->add_option("--osc", o->osc_port,
+                    "Listen for OSC on this UDP port (/archet/bow/slide, /archet/bow/press, "
+                    "/archet/finger, /archet/finger/pressure, /archet/param, /archet/record)")
+        ->check(CLI::Range(1, 65535));
+    cmd->add_option("--osc-host", o->osc_host,
+                    "Address the OSC port listens on (0.0.0.0: every interface)")
+        ->capture_default_str();
+    cmd->add_option("--osc-send", o->osc_send,
+                    "Send /archet/out/bow_force, /archet/out/friction and /archet/out/energy to "
+                    "this HOST:PORT, 20 times a second");
     cmd->add_option("--shape-every", o->shape_every, "Blocks between string-shape frames")
         ->capture_default_str();
     cmd->callback([&action, o] { action = [o] { return run_engine(*o); }; });

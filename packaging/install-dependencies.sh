@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   qt6-base-dev libqcustomplot-dev
   libjack-jackd2-dev librtaudio-dev jackd2 libevdev-dev libsdl2-dev
+  liblo-dev liblo-tools
   clang libclang-rt-14-dev dpkg-dev
 )
 

@@ -61,6 +61,22 @@ std::string ControlThread::nrt_open() {
             said += take_problem_ + "; ";
         }
     }
+    if (options_.osc_port > 0) {  // a port taken costs OSC, not the engine: it says so
+        try {
+            osc_ = std::make_unique<OscReceiver>(options_.osc_host, options_.osc_port);
+            said += "OSC on " + options_.osc_host + ":" + std::to_string(options_.osc_port) + "; ";
+        } catch (const std::exception& e) {
+            said += std::string("no OSC: ") + e.what() + "; ";
+        }
+    }
+    if (!options_.osc_send.empty()) {
+        try {
+            osc_out_ = std::make_unique<OscSender>(options_.osc_send);
+            said += "OSC out to " + options_.osc_send + "; ";
+        } catch (const std::exception& e) {
+            said += std::string("no OSC out: ") + e.what() + "; ";
+        }
+    }
     haptic_ = open_haptic_device(options_.haptic);
     std::string warning;
     output_ = open_audio_output(options_.audio, &warning);
@@ -104,11 +120,15 @@ void ControlThread::nrt_loop() {
         if (verdict != StudioWatch::Verdict::Stay) break;
         CommandFrame command;
         while (commands_.try_pop(command)) nrt_handle(command);
+        if (osc_) nrt_take_osc();
         nrt_collect_retired();
         nrt_collect_takes();
         if (bridge_.blown.exchange(false)) nrt_recover_from_blowup();
         if (std::chrono::steady_clock::now() - last_status > std::chrono::milliseconds(50)) {
             publisher_.nrt_publish(StatusKind::Heartbeat, 0, current_name_);
+            if (osc_out_)
+                osc_out_->send(bridge_.bow_force.load(), bridge_.friction.load(),
+                               bridge_.energy.load());
             last_status = std::chrono::steady_clock::now();
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(2));

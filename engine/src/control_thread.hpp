@@ -17,6 +17,8 @@
 
 #include "archet/audio_output.hpp"
 #include "archet/engine/engine_options.hpp"
+#include "archet/engine/osc_receiver.hpp"
+#include "archet/engine/osc_sender.hpp"
 #include "archet/haptic_choice.hpp"
 #include "archet/ipc/shared_segment.hpp"
 #include "archet/model/model.hpp"
@@ -57,6 +59,9 @@ class ControlThread {
     std::string nrt_finish_take(TakeRecorder& take);
     void nrt_collect_retired();
     void nrt_recover_from_blowup();
+    void nrt_take_osc();
+    void nrt_handle_osc(const ipc::OscCommand& c);
+    std::string nrt_finger_id() const;
 
     ipc::SharedSegment segment_;
     const EngineOptions options_;
@@ -66,6 +71,12 @@ class ControlThread {
     ThreadBridge bridge_;  ///< declared before what uses it, after the haptic device it holds
     StatusPublisher publisher_;
     std::optional<StudioWatch> watch_;
+    std::unique_ptr<OscReceiver> osc_;     ///< with --osc
+    std::unique_ptr<OscSender> osc_out_;   ///< with --osc-send
+    GestureSample osc_hand_{};             ///< where OSC last put the device's axes
+    bool osc_hand_moved_ = false;          ///< in the messages being handled
+    std::uint64_t osc_takes_ = 0;          ///< takes started from OSC, for their names
+    std::uint64_t osc_dropped_said_ = 0;   ///< dropped messages already reported
     std::unique_ptr<RealtimeThread> rt_;   ///< built once the device is open
     std::unique_ptr<AudioOutput> output_;  ///< destroyed first: it calls rt_
     double sample_rate_ = 48000;           ///< the device's clock, the master: set once open

@@ -49,6 +49,7 @@ struct ThreadBridge {
     std::atomic<bool> blown{false};  ///< the model blew up and is muted: control resets it
     std::atomic<std::uint64_t> tick{0}, blocks{0};  ///< for status frames
     std::atomic<double> energy{0};
+    std::atomic<double> bow_force{0}, friction{0};  ///< the first bow's, at the last block
 };
 
 }  // namespace archet

@@ -19,6 +19,7 @@
 
 #include "archet/files/take_file.hpp"
 #include "archet/link/engine_link.hpp"
+#include "engine_session.hpp"
 #include "take_file_support.hpp"
 #include "test_support.hpp"
 
@@ -36,102 +37,8 @@ using namespace std::chrono_literals;
 
 using test::wait_for;
 
-// The engine, playing a shipped model, with the status frames it has sent so far.
-/// Waits for what the machine's speed decides (TSan on two shared cores is slow).
-constexpr std::chrono::milliseconds kGenerous{60000};
-
-class EngineSession {
-  public:
-    EngineSession() : link_(options()) {}
-
-    static EngineLinkOptions options() {
-        EngineLinkOptions o;
-        o.archet_binary = ARCHET_BINARY;
-        o.takes = std::filesystem::temp_directory_path().string();  // test::temp_dir's folders
-        return o;
-    }
-
-    bool start(const std::string& model) {
-        link_.start();
-        if (!wait_for([&] { return link_.liveness() == EngineLink::Liveness::Running; }, kGenerous))
-            return false;
-        const auto loaded = link_.load_model(test::resource(model).string());
-        if (!await(StatusKind::ModelLoaded,
-                   [&](const StatusFrame& f) { return f.sequence == loaded; }))
-            return false;
-        link_.play();
-        return true;
-    }
-
-    // Plays `seconds` of sound (counted in the samples played, not in wall-clock time, which a
-    // slow machine stretches), the pad bowing at 0.1 m/s with a slow swell of pressure (or at
-    // `press`).
-    void bow(double seconds, double press = 0) {
-        const auto until = played_ + static_cast<std::uint64_t>(seconds * 48000);
-        bow_until([&] { return played_ >= until; }, press);
-    }
-    // Bows on until `done` (or a generous timeout): true if it holds.
-    bool bow_until(const std::function<bool()>& done, double press = 0) {
-        return wait_for(
-            [&] {
-                link_.gesture(0.1 * elapsed_,
-                              press > 0 ? press : 0.0015 + 0.0005 * std::sin(3 * elapsed_));
-                link_.heartbeat();
-                drain();
-                elapsed_ += 0.002;
-                return done();
-            },
-            kGenerous);
-    }
-
-    // Waits for a status frame of `kind` that `accept`s; remembers errors on the way.
-    bool await(StatusKind kind, const std::function<bool(const StatusFrame&)>& accept) {
-        return wait_for(
-            [&] {
-                link_.heartbeat();
-                StatusFrame f;
-                while (status_.try_pop(f)) {
-                    realtime_allocations_ = f.realtime_allocations;
-                    if (f.kind == static_cast<std::uint32_t>(StatusKind::Error))
-                        errors_.push_back(f.text);
-                    if (f.kind == static_cast<std::uint32_t>(kind) && accept(f)) return true;
-                }
-                drain();
-                return false;
-            },
-            kGenerous);
-    }
-
-    bool await_take_written(std::string* text = nullptr) {
-        return await(StatusKind::Take, [&](const StatusFrame& f) {
-            const std::string said = f.text;
-            if (text) *text = said;
-            return said.rfind("written ", 0) == 0 || said.rfind("take failed", 0) == 0;
-        });
-    }
-
-    EngineLink& link() { return link_; }
-    const std::vector<std::string>& errors() const { return errors_; }
-    std::uint64_t realtime_allocations() const { return realtime_allocations_; }
-
-  private:
-    void drain() {  // the studio reads its scopes, so the engine never waits on them
-        ProbeFrame p;
-        while (probes_.try_pop(p)) ++played_;
-        ShapeFrame s;
-        while (shapes_.try_pop(s)) {
-        }
-    }
-
-    EngineLink link_;
-    SpscRing<StatusFrame> status_ = link_.status();
-    SpscRing<ProbeFrame> probes_ = link_.probes();
-    SpscRing<ShapeFrame> shapes_ = link_.shapes();
-    std::vector<std::string> errors_;
-    std::uint64_t realtime_allocations_ = 0;  ///< as the newest status frame counts them
-    std::uint64_t played_ = 0;                ///< probe frames received: samples played
-    double elapsed_ = 0;
-};
+using test::EngineSession;
+using test::kGenerous;
 
 // Re-renders the take in `dir`/take and expects take.wav to the byte.
 void expect_replayed(const std::filesystem::path& dir, const char* why) {

@@ -36,6 +36,7 @@ void EngineClient::launch() {
     o.audio_device = options_.audio_device;
     o.block_frames = options_.buffer_frames;
     o.haptic = options_.haptic.toStdString();
+    o.osc_port = options_.osc_port;
     o.sample_rate = options_.sample_rate;
     o.takes = options_.takes.toStdString();
     try {
@@ -193,6 +194,7 @@ void EngineClient::poll() {
 // The engine refused a parameter the studio sent (it checks at the rate it runs at): the
 // model kept for a restart goes back to the value the engine still plays.
 void EngineClient::take_back_refused_parameter(std::uint32_t sequence) {
+    if (sequence == 0) return;  // not an answer to a command of ours (an OSC message's refusal)
     const auto sent = std::find_if(sent_parameters_.begin(), sent_parameters_.end(),
                                    [&](const SentParameter& p) { return p.sequence == sequence; });
     if (sent == sent_parameters_.end() || !model_) return;

@@ -41,6 +41,15 @@ SettingsDialog::SettingsDialog(const EngineClientOptions& current, QWidget* pare
     }
     haptic_->insertItem(1, tr("The pad sets the bow's position directly"), "none");
     haptic_->setCurrentIndex(std::max(0, haptic_->findData(current.haptic)));
+    osc_ = new QSpinBox;
+    osc_->setObjectName("osc");
+    osc_->setRange(0, 65535);
+    osc_->setSpecialValueText(tr("off"));
+    osc_->setValue(current.osc_port);
+    osc_->setToolTip(
+        tr("The UDP port the engine listens on for OSC from this machine's programs "
+           "(/archet/bow/slide, /archet/bow/press, /archet/finger, /archet/param, "
+           "/archet/record; see the user guide)"));
     auto* note =
         new QLabel(tr("Each axis's displacement and force scaling are the gesture "
                       "points' position_scale and force_scale: select a hand in the "
@@ -51,6 +60,7 @@ SettingsDialog::SettingsDialog(const EngineClientOptions& current, QWidget* pare
     form->addRow(tr("Buffer"), buffer_);
     form->addRow(tr("Sample rate"), rate_);
     form->addRow(tr("Bow held by"), haptic_);
+    form->addRow(tr("OSC port"), osc_);
     form->addRow(note);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
     connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
@@ -87,6 +97,7 @@ EngineClientOptions SettingsDialog::options() const {
     o.buffer_frames = buffer_->value();
     o.sample_rate = rate_->currentData().toDouble();
     o.haptic = haptic_->currentData().toString();
+    o.osc_port = osc_->value();
     return o;
 }
 

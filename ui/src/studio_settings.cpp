@@ -2,6 +2,7 @@
 
 #include <QFileInfo>
 #include <QSettings>
+#include <algorithm>
 
 namespace archet::ui {
 
@@ -13,6 +14,7 @@ EngineClientOptions restore_engine_options(EngineClientOptions o) {
     o.buffer_frames = s.value("buffer_frames", o.buffer_frames).toInt();
     o.sample_rate = s.value("sample_rate", o.sample_rate).toDouble();
     o.haptic = s.value("haptic", o.haptic).toString();
+    o.osc_port = std::clamp(s.value("osc_port", o.osc_port).toInt(), 0, 65535);
     return o;
 }
 
@@ -24,6 +26,7 @@ void save_engine_options(const EngineClientOptions& o) {
     s.setValue("buffer_frames", o.buffer_frames);
     s.setValue("sample_rate", o.sample_rate);
     s.setValue("haptic", o.haptic);
+    s.setValue("osc_port", o.osc_port);
 }
 
 QString last_model_path() {

@@ -72,6 +72,9 @@ void EngineLink::start() {
                                   "--studio-give-up",
                                   seconds(options_.studio_give_up)};
     if (!options_.takes.empty()) args.insert(args.end(), {"--takes", options_.takes});
+    if (options_.osc_port > 0)
+        args.insert(args.end(), {"--osc", std::to_string(options_.osc_port)});
+    if (!options_.osc_send.empty()) args.insert(args.end(), {"--osc-send", options_.osc_send});
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

@@ -21,6 +21,13 @@ struct EngineOptions {
     int studio_pid = 0;
     double studio_timeout = 2;   ///< s without the studio's heartbeat: fade out, play nothing
     double studio_give_up = 60;  ///< s without it: exit
+    /// OSC: the UDP port to listen on (0: none) and the address to bind (loopback: only this
+    /// machine's programs; 0.0.0.0: the network's too).
+    int osc_port = 0;
+    std::string osc_host = "127.0.0.1";
+    /// OSC out: "HOST:PORT" to send the bow force and the string's energy to, 20 times a
+    /// second (empty: none).
+    std::string osc_send;
     /// mlockall the process (the engine's own); off when a test runs the engine in-process.
     bool lock_memory = true;
 };

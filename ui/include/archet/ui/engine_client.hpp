@@ -33,6 +33,8 @@ struct EngineClientOptions {
     int poll_ms = 15;            ///< display rate
     /// The take folder: the engine is started with it and records takes only inside it.
     QString takes;
+    /// The UDP port the engine listens for OSC on, on this machine (0: none).
+    int osc_port = 0;
 };
 
 struct EngineStatus {

@@ -28,6 +28,7 @@ class SettingsDialog : public QDialog {
     EngineClientOptions current_;
     QComboBox* audio_;
     QSpinBox* buffer_;
+    QSpinBox* osc_;
     QComboBox* rate_;
     QComboBox* haptic_;
 };

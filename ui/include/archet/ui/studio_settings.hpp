@@ -8,7 +8,7 @@
 
 namespace archet::ui {
 
-/// `defaults` with the audio output, buffer, rate and haptic device saved last time.
+/// `defaults` with the audio output, buffer, rate, haptic device and OSC port saved last time.
 EngineClientOptions restore_engine_options(EngineClientOptions defaults);
 void save_engine_options(const EngineClientOptions& options);
 

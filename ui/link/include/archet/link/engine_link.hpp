@@ -39,6 +39,10 @@ struct EngineLinkOptions {
     /// frozen studio), plays again when it moves, and exits after `studio_give_up`.
     std::chrono::milliseconds studio_timeout{2000};
     std::chrono::milliseconds studio_give_up{60000};
+    /// OSC: the UDP port the engine listens on (0: none), on the loopback address, and the
+    /// HOST:PORT it sends the bow force and energy to (empty: none).
+    int osc_port = 0;
+    std::string osc_send;
 };
 
 class EngineLink {
