@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <QComboBox>
+#include <QSpinBox>
 
 #include "archet/audio_output.hpp"
 #include "archet/haptic_choice.hpp"
@@ -38,6 +39,17 @@ TEST(SettingsDevices, EveryHapticChoiceCarriesAnIdThatHapticOpens) {
     EXPECT_TRUE(haptic->itemText(at).startsWith(QString("sdl %1: ").arg(stick.index())))
         << haptic->itemText(at).toStdString();
     EXPECT_TRUE(haptic->itemText(at).endsWith("(positions only)"));
+}
+
+// The OSC port: off by default, and what the dialog shows is what the engine is started with.
+TEST(SettingsDevices, TheOscPortIsOffUntilChosen) {
+    SettingsDialog dialog(EngineClientOptions{});
+    auto* osc = dialog.findChild<QSpinBox*>("osc");
+    ASSERT_NE(osc, nullptr);
+    EXPECT_EQ(osc->text(), "off");
+    EXPECT_EQ(dialog.options().osc_port, 0);
+    osc->setValue(9000);
+    EXPECT_EQ(dialog.options().osc_port, 9000);
 }
 
 TEST(SettingsDevices, TheChoicesAreTheOnesArchetDevicesLists) {

@@ -226,9 +226,10 @@ TEST_F(Session, LayoutModelAndAudioSettingsComeBackAfterARestart) {
     EXPECT_EQ(last_model_path(), QFileInfo(shipped_220()).absoluteFilePath());
 
     EngineClientOptions o = engine_options();
-    o.buffer_frames = 256, o.sample_rate = 44100, o.haptic = "none";
+    o.buffer_frames = 256, o.sample_rate = 44100, o.haptic = "none", o.osc_port = 9000;
     save_engine_options(o);
     const EngineClientOptions restored = restore_engine_options(engine_options());
+    EXPECT_EQ(restored.osc_port, 9000);
     EXPECT_EQ(restored.buffer_frames, 256);
     EXPECT_EQ(restored.sample_rate, 44100);
     EXPECT_EQ(restored.haptic, "none");
