@@ -168,6 +168,7 @@ void ControlThread::nrt_handle(const CommandFrame& c) {
         case Opcode::Stop:
             return nrt_send({RealtimeCommand::Stop, {}, 0, 0, 0}, c);
         case Opcode::Gesture:
+            osc_hand_ = {d.slide, d.press};  // OSC moves one axis from where the pad left both
             return nrt_send({RealtimeCommand::Gesture, {}, 0, d.slide, d.press}, c);
         case Opcode::Quit:
             quit_ = true;

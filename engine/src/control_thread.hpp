@@ -73,7 +73,7 @@ class ControlThread {
     std::optional<StudioWatch> watch_;
     std::unique_ptr<OscReceiver> osc_;     ///< with --osc
     std::unique_ptr<OscSender> osc_out_;   ///< with --osc-send
-    GestureSample osc_hand_{};             ///< where OSC last put the device's axes
+    GestureSample osc_hand_{};             ///< where OSC or the pad last put the device's axes
     bool osc_hand_moved_ = false;          ///< in the messages being handled
     std::uint64_t osc_takes_ = 0;          ///< takes started from OSC, for their names
     std::uint64_t osc_dropped_said_ = 0;   ///< dropped messages already reported

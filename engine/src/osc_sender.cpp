@@ -1,6 +1,8 @@
 #include "archet/engine/osc_sender.hpp"
 
 #include <lo/lo.h>
+#include <netdb.h>
+#include <sys/socket.h>
 
 #include <charconv>
 
@@ -19,7 +21,18 @@ OscSender::OscSender(const std::string& destination) {
         throw InputError("--osc-send",
                          quoted_text(destination) + " is not HOST:PORT (e.g. localhost:9001)");
     const std::string host = destination.substr(0, colon);
-    address_ = lo_address_new(host.c_str(), std::to_string(port).c_str());
+    // Resolved once here: a name that does not resolve would make every send wait on it.
+    addrinfo hints{};
+    hints.ai_family = AF_UNSPEC, hints.ai_socktype = SOCK_DGRAM;
+    addrinfo* found = nullptr;
+    if (::getaddrinfo(host.c_str(), nullptr, &hints, &found) != 0 || !found)
+        throw InputError("--osc-send", "cannot find the host " + quoted_text(host));
+    char numeric[NI_MAXHOST];
+    const int named = ::getnameinfo(found->ai_addr, found->ai_addrlen, numeric, sizeof numeric,
+                                    nullptr, 0, NI_NUMERICHOST);
+    ::freeaddrinfo(found);
+    if (named != 0) throw InputError("--osc-send", "cannot find the host " + quoted_text(host));
+    address_ = lo_address_new(numeric, std::to_string(port).c_str());
     if (!address_) throw InputError("--osc-send", "cannot send to " + quoted_text(destination));
 }
 

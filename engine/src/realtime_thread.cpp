@@ -202,10 +202,9 @@ void RealtimeThread::rt_run_block(LoadedModel& m, float* out, int frames, int ch
     bridge_.tick.store(sim.tick(), std::memory_order_relaxed);
     const double energy = sim.stored_energy();
     bridge_.energy.store(energy, std::memory_order_relaxed);
-    if (!sim.model().bows.empty()) {
-        bridge_.bow_force.store(sim.model().bows[0].normal, std::memory_order_relaxed);
-        bridge_.friction.store(sim.model().bows[0].friction, std::memory_order_relaxed);
-    }
+    const bool bowed = !sim.model().bows.empty();
+    bridge_.bow_force.store(bowed ? sim.model().bows[0].normal : 0.0, std::memory_order_relaxed);
+    bridge_.friction.store(bowed ? sim.model().bows[0].friction : 0.0, std::memory_order_relaxed);
     if (!std::isfinite(energy) || energy > kRunawayEnergy) return rt_mute(out, end);
     rt_publish_shape(m);
 }

@@ -156,6 +156,23 @@ TEST(EngineOsc, ThousandsOfMessagesCostTheRealTimeThreadNoAllocation) {
     EXPECT_TRUE(osc.engine.errors().empty()) << osc.engine.errors().front();
 }
 
+// OSC moves one axis from where the pad left both: a sender of the slide alone keeps the
+// pad's press, and the bow stays on the string.
+TEST(EngineOsc, OneAxisFromOscKeepsThePadsOther) {
+    const auto dir = test::temp_dir("engine-osc-axis");
+    OscEngine osc;
+    ASSERT_TRUE(osc.start(dir));
+    osc.engine.bow(0.3, 0.0015);  // the pad presses the bow in
+    const auto until = osc.engine.played() + 24000;
+    ASSERT_TRUE(osc.engine.play_until([&] { return osc.engine.played() >= until; },
+                                      [&](double t) {
+                                          lo_send(osc.to, "/archet/bow/slide", "f",
+                                                  static_cast<float>(0.05 * t));
+                                      }));
+    EXPECT_GT(osc.engine.latest().values[4], 0.01) << "still pressed: the pad's press was kept";
+    EXPECT_TRUE(osc.engine.errors().empty()) << osc.engine.errors().front();
+}
+
 // With --osc-send the engine tells a visualiser what the bow does: the bow force and the
 // string's energy, about 20 times a second, as they are (positive when bowed).
 TEST(EngineOsc, SendsTheBowForceAndTheEnergyToAVisualiser) {

@@ -13,6 +13,7 @@
 #include <QDir>
 #include <QGraphicsView>
 #include <QLabel>
+#include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTableWidget>
 #include <QTest>
@@ -27,6 +28,7 @@
 #include "archet/model/model_parameters.hpp"
 #include "archet/ui/compare_figure.hpp"
 #include "archet/ui/compare_view.hpp"
+#include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
 #include "archet/ui/inspector.hpp"
 #include "archet/ui/main_window.hpp"
@@ -367,6 +369,25 @@ TEST(FingerInTheEditor, ItsFingertipSitsWhereItStopsAndTheInspectorMovesIt) {
     EXPECT_FALSE(inspector.edit("position", 1.5));
     EXPECT_NE(inspector.warning().indexOf("at most 1"), -1) << inspector.warning().toStdString();
     EXPECT_EQ(document.model().find_lia("finger")->finger_position, 0.5) << "refused: unchanged";
+}
+
+// The pad's keyboard row is the pad's while it has the keyboard: F plays the fourth there (it is
+// Freeze elsewhere), and a key let go after the pad lost the keyboard does not leave the finger
+// down.
+TEST(GesturePadKeys, FIsTheFourthOnThePadAndLosingTheKeyboardLiftsTheFinger) {
+    MainWindow window(test::editor_alone());
+    window.show();
+    ASSERT_TRUE(QTest::qWaitForWindowExposed(&window));
+    window.activateWindow();
+    window.pad().setFocus();
+    QSignalSpy notes(&window.pad(), &GesturePad::note);
+    QTest::keyPress(&window.pad(), Qt::Key_F);
+    ASSERT_EQ(notes.count(), 1) << "F reached the pad";
+    EXPECT_EQ(notes[0][0].toInt(), 5);
+    window.graph().setFocus();
+    QTest::qWait(20);
+    ASSERT_EQ(notes.count(), 2);
+    EXPECT_EQ(notes[1][0].toInt(), -1) << "back to the open string";
 }
 
 TEST(CompareViewTest, RendersTwoDampingsSideBySide) {

@@ -107,6 +107,26 @@ int semitones_of(int key) {
 
 }  // namespace
 
+bool GesturePad::event(QEvent* e) {
+    if (e->type() == QEvent::ShortcutOverride) {
+        const auto* key = static_cast<QKeyEvent*>(e);
+        if (semitones_of(key->key()) >= 0 && !(key->modifiers() & ~Qt::KeypadModifier)) {
+            e->accept();
+            return true;
+        }
+    }
+    return QWidget::event(e);
+}
+
+void GesturePad::focusOutEvent(QFocusEvent* e) {
+    if (!held_.empty()) {
+        held_.clear();
+        update();
+        emit note(-1);
+    }
+    QWidget::focusOutEvent(e);
+}
+
 void GesturePad::keyPressEvent(QKeyEvent* e) {
     const int n = semitones_of(e->key());
     if (n < 0 || e->modifiers() & ~Qt::KeypadModifier) return QWidget::keyPressEvent(e);

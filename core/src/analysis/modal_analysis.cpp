@@ -11,6 +11,8 @@
 #include "archet/analysis/discrete_modes.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/common/number_text.hpp"
+#include "archet/model/finger_contact.hpp"
+#include "archet/model/string_points.hpp"
 
 namespace archet {
 
@@ -47,7 +49,28 @@ std::map<std::string, std::vector<std::pair<int, double>>> modal_point_reads(
     return points;
 }
 
-// Supports are oscillators standing on their own (bridges) or read by a body's bridge point;
+// The string beyond a pressed finger (pressure of ½ or more), on the side away from the bow:
+// it rings on its own, and its modes are not the played string's partials.
+std::set<std::string> behind_fingers(const Model& model) {
+    std::set<std::string> behind;
+    std::set<std::string> bowed;
+    for (const auto& l : model.lias)
+        if (l.kind == LiaKind::BowFriction) bowed.insert(bowed_centre(model, l));
+    for (const auto& l : model.lias) {
+        if (l.kind != LiaKind::Finger || l.pressure < 0.5 || l.along.size() < 2) continue;
+        const FingerContact at = finger_contact(l.finger_position, l.along.size());
+        std::size_t bow = l.along.size();
+        for (std::size_t i = 0; i < l.along.size(); ++i)
+            if (bowed.count(l.along[i])) bow = i;
+        if (bow == l.along.size()) continue;  // no bow on this string: nothing to call behind
+        for (std::size_t i = 0; i < l.along.size(); ++i)
+            if (bow <= at.first ? i > at.first + 1 : i < at.first) behind.insert(l.along[i]);
+    }
+    return behind;
+}
+
+// Supports are the string behind a finger, and oscillators standing on their own (bridges) or
+// read by a body's bridge point;
 // the string's modes are those its bowed point reads (any modal point's when nothing bows).
 // A support has a spring to ground; a string mass with only a damper to its rest point (σ0
 // losses) is still the string.
@@ -59,11 +82,13 @@ std::vector<bool> support_dofs(const LinearSystem& sys, const Model& model) {
     for (const auto& m : model.mats)
         if (m.kind == MatKind::ModalPoint && (bowed.empty() || bowed.count(m.id)))
             string_modes.insert(m.modes.begin(), m.modes.end());
+    const std::set<std::string> behind = behind_fingers(model);
     std::vector<bool> support(sys.size(), false);
     for (int i = 0; i < sys.size(); ++i) {
         const Mat* m = model.find_mat(sys.dofs[i]);
         support[i] =
-            m && m->kind == MatKind::Oscillator && m->stiffness > 0 && !string_modes.count(m->id);
+            behind.count(sys.dofs[i]) > 0 ||
+            (m && m->kind == MatKind::Oscillator && m->stiffness > 0 && !string_modes.count(m->id));
     }
     return support;
 }

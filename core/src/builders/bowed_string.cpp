@@ -190,9 +190,8 @@ void check_options(const BowedStringOptions& o) {
                 "must be at least " + std::to_string(kMinMasses) + " (0: full bandwidth)");
     require(o.bow_position > 0 && o.bow_position < 0.5, "--bow-position",
             "beta must be in (0, 0.5)");
-    require(std::isfinite(o.finger_position) && o.finger_position > 0 && o.finger_position <= 1,
-            "--finger-position",
-            "must be above 0 and at most 1 (the sounding share of the string; 1: open)");
+    require(std::isfinite(o.finger_position) && o.finger_position >= 0 && o.finger_position <= 1,
+            "--finger-position", "must be 0 to 1 (the sounding share of the string; 1: open)");
     require(!o.finger || o.structure == Structure::Chain, "--finger",
             "stops a chain of masses; leave out --structure modal");
     require(std::isfinite(o.string_damping), "--string-damping",

@@ -250,6 +250,22 @@ class Checker {
                                "\"; a finger and its string share one rate level");
             movable = movable || m->kind != MatKind::Fixed;
         }
+        // Two points that share modes would move together under the finger's force, which
+        // its solve takes as two independent responses: one modal point per finger.
+        const auto modal = std::count_if(l.along.begin(), l.along.end(), [&](const auto& id) {
+            const auto found = mats_.find(id);
+            return found != mats_.end() && found->second->kind == MatKind::ModalPoint;
+        });
+        if (modal > 1)
+            add(where, "\"along\" lists " + std::to_string(modal) +
+                           " modal points; a finger may touch one (a body's bridge)");
+        for (const auto& id : l.along)
+            if (const auto found = mats_.find(id);
+                found != mats_.end() && found->second->kind == MatKind::ModalPoint)
+                for (const auto& mode : found->second->modes)
+                    if (seen.count(mode))
+                        add(where, "\"along\" lists " + quoted_text(mode) + ", a mode of " +
+                                       quoted_text(id) + " it also lists; list one of them");
         if (l.along.size() >= 2 && seen.size() == l.along.size() && !movable)
             add(where,
                 "\"along\" lists only fixed points; a finger must touch a string that moves");

@@ -41,6 +41,9 @@ void Simulation::solve_finger(CompiledLevel& lv, CompiledFinger& finger) {
     const double f = -(k * (u_free + u_before) + zdt * (u_free - u_before)) / (2.0 + c * (k + zdt));
     push(lv, a, wa * f);
     push(lv, b, wb * f);
+    // A modal point may read these masses (a wide bow's contact): it follows them.
+    if (!lv.modal_points.empty() && lv.modal_point_of[a] < 0 && lv.modal_point_of[b] < 0)
+        update_modal_points(lv);
     finger.force = f;
 }
 

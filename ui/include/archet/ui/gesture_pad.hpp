@@ -46,8 +46,12 @@ class GesturePad : public QWidget {
     /// Letting go lifts the bow off the string (press back to 0), unless Shift holds it there.
     void mouseReleaseEvent(QMouseEvent*) override;
     void wheelEvent(QWheelEvent*) override;
+    /// The row's keys are the pad's while it has the keyboard (F is not Freeze then).
+    bool event(QEvent*) override;
     void keyPressEvent(QKeyEvent*) override;
     void keyReleaseEvent(QKeyEvent*) override;
+    /// Keys let go elsewhere never come back: the finger returns to the open string.
+    void focusOutEvent(QFocusEvent*) override;
 
   private:
     QRectF area() const;
