@@ -8,6 +8,17 @@
 
 namespace archet {
 
+namespace {
+
+template <class T>
+T read_as(const char* bytes) {
+    T value;
+    std::memcpy(&value, bytes, sizeof value);
+    return value;
+}
+
+}  // namespace
+
 std::variant<ipc::OscCommand, std::string> decode_osc_packet(const std::uint8_t* data,
                                                              std::size_t size) {
     if (size == 0 || size > kMaxOscPacket)
@@ -26,26 +37,29 @@ std::variant<ipc::OscCommand, std::string> decode_osc_packet(const std::uint8_t*
     const int argc = lo_message_get_argc(message.get());
     if (!path || !types) return std::string("a malformed OSC message");
     std::vector<ipc::OscArgument> arguments;
+    // liblo's arguments lie in its buffer at 4-byte alignment: read their bytes, not the union
+    // (whose 8-byte members would be read misaligned).
     for (int i = 0; i < argc; ++i) {
+        const auto* bytes = reinterpret_cast<const char*>(argv[i]);
         ipc::OscArgument a;
         a.type = types[i];
         switch (types[i]) {
             case LO_FLOAT:
-                a.number = argv[i]->f;
+                a.number = read_as<float>(bytes);
                 break;
             case LO_DOUBLE:
-                a.number = argv[i]->d;
+                a.number = read_as<double>(bytes);
                 break;
             case LO_INT32:
-                a.number = argv[i]->i;
+                a.number = read_as<std::int32_t>(bytes);
                 break;
             case LO_INT64:
-                a.number = static_cast<double>(argv[i]->h);
+                a.number = static_cast<double>(read_as<std::int64_t>(bytes));
                 break;
             case LO_STRING:
             case LO_SYMBOL:
                 a.type = 's';
-                a.text = &argv[i]->s;
+                a.text = bytes;  // liblo checked its terminator
                 break;
             default:
                 break;  // kept with its tag: decode_osc names it in its refusal
