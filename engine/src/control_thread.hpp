@@ -61,7 +61,6 @@ class ControlThread {
     void nrt_recover_from_blowup();
     void nrt_take_osc();
     void nrt_handle_osc(const ipc::OscCommand& c);
-    std::string nrt_finger_id() const;
 
     ipc::SharedSegment segment_;
     const EngineOptions options_;

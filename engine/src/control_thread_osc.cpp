@@ -92,14 +92,14 @@ void ControlThread::nrt_handle_osc(const OscCommand& osc) {
             return;
         case K::Finger:
         case K::FingerPressure: {
-            const std::string finger = nrt_finger_id();
-            if (finger.empty())
+            const Lia* finger = first_finger(current_model_);
+            if (!finger)
                 return nrt_fail(c,
                                 "OSC: /archet/finger: this model has no finger "
                                 "(archet new bowed-string --finger adds one)");
             c.value = osc.value;
             return nrt_set_live_parameter(
-                c, {finger, osc.kind == K::Finger ? "position" : "pressure"});
+                c, {finger->id, osc.kind == K::Finger ? "position" : "pressure"});
         }
         case K::Parameter:
             c.value = osc.value;
@@ -120,13 +120,6 @@ void ControlThread::nrt_handle_osc(const OscCommand& osc) {
         case K::RecordStop:
             return nrt_send({RealtimeCommand::StopTake, {}, 0, 0, 0}, c);
     }
-}
-
-// The id of the loaded model's first finger, or empty.
-std::string ControlThread::nrt_finger_id() const {
-    for (const Lia& l : current_model_.lias)
-        if (l.kind == LiaKind::Finger) return l.id;
-    return {};
 }
 
 }  // namespace archet

@@ -150,10 +150,9 @@ TEST(Finger, KeepsTheEnergyBooksExactAndDissipates) {
     const test::Books books = test::step_by_step_books(sim, 48000);
     ASSERT_GT(books.scale, 0);
     EXPECT_LT(books.worst, 1e-9 * books.scale);
-    const auto& lias = sim.model().source.lias;
-    const auto finger = std::find_if(lias.begin(), lias.end(),
-                                     [](const Lia& l) { return l.kind == LiaKind::Finger; });
-    EXPECT_GT(sim.dissipated_by_element()[finger - lias.begin()], 0.0) << "its damper works";
+    const Model& source = sim.model().source;
+    EXPECT_GT(sim.dissipated_by_element()[first_finger(source) - source.lias.data()], 0.0)
+        << "its damper works";
 }
 
 // A finger position envelope: `from` until `start`, then to `to` over `seconds` (0: a jump).

@@ -95,10 +95,8 @@ void MainWindow::model_changed(int change, const QString& element, const QString
 // A performance, not an edit: the engine's finger moves, the document (and its undo) stays.
 // A take records the move like any parameter change.
 void MainWindow::finger_to(int semitones) {
-    const auto& lias = document_->model().lias;
-    const auto finger = std::find_if(lias.begin(), lias.end(),
-                                     [](const Lia& l) { return l.kind == LiaKind::Finger; });
-    if (finger == lias.end()) {
+    const Lia* finger = first_finger(document_->model());
+    if (!finger) {
         statusBar()->showMessage(
             tr("This string has no finger: build one with File → New bowed string… (Finger)"),
             5000);

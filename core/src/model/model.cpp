@@ -44,6 +44,12 @@ const char* to_string(MatKind k) {
     return "?";
 }
 
+const Lia* first_finger(const Model& model) {
+    for (const auto& l : model.lias)
+        if (l.kind == LiaKind::Finger) return &l;
+    return nullptr;
+}
+
 const char* to_string(LiaKind k) {
     switch (k) {
         case LiaKind::Spring:

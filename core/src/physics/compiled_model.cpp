@@ -234,7 +234,7 @@ void compile_links(CompiledModel& c, const Model& model,
         }
         if (l.kind == LiaKind::Finger) {  // acts on the new positions, like the bow
             CompiledFinger f{level,      {}, l.stiffness, l.damping / dt, l.finger_position,
-                             l.pressure, li, 0.0};
+                             l.pressure, li};
             for (const auto& id : l.along) f.along.push_back(slot_of(c, id).index);
             c.levels[level].fingers.push_back(static_cast<int>(c.fingers.size()));
             c.fingers.push_back(std::move(f));

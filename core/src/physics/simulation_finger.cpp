@@ -5,6 +5,22 @@
 
 namespace archet {
 
+namespace {
+
+// Where a finger touches now: between storage a and b, with weights wa + wb = 1.
+struct Touch {
+    int a, b;
+    double wa, wb;
+    double at(const double* x) const { return wa * x[a] + wb * x[b]; }
+};
+
+Touch touch_of(const CompiledFinger& finger) {
+    const FingerContact c = finger_contact(finger.position, finger.along.size());
+    return {finger.along[c.first], finger.along[c.first + 1], 1.0 - c.weight, c.weight};
+}
+
+}  // namespace
+
 // How far a MAT moves per newton over a step: T²/m, or its modes' for a modal point (a
 // body's bridge); and the move a force makes.
 double Simulation::response(const CompiledLevel& lv, int s) const {
@@ -29,41 +45,32 @@ void Simulation::push(CompiledLevel& lv, int s, double force) {
 // it stores ¼k(u[n]² + u[n−1]²) and dissipates the rest, so it is passive and stable for any
 // stiffness, and a pressed finger can be as stiff as a fingerboard without shortening the step.
 void Simulation::solve_finger(CompiledLevel& lv, CompiledFinger& finger) {
-    const FingerContact at = finger_contact(finger.position, finger.along.size());
-    const int a = finger.along[at.first], b = finger.along[at.first + 1];
-    const double wa = 1.0 - at.weight, wb = at.weight;
-    double* xn = lv.x_next();
-    const double* xp = lv.x_prev();
+    const Touch t = touch_of(finger);
     const double k = finger.pressure * finger.k, zdt = finger.pressure * finger.zdt;
-    const double c = wa * wa * response(lv, a) + wb * wb * response(lv, b);
-    const double u_free = wa * xn[a] + wb * xn[b];
-    const double u_before = wa * xp[a] + wb * xp[b];
+    const double c = t.wa * t.wa * response(lv, t.a) + t.wb * t.wb * response(lv, t.b);
+    const double u_free = t.at(lv.x_next());
+    const double u_before = t.at(lv.x_prev());
     const double f = -(k * (u_free + u_before) + zdt * (u_free - u_before)) / (2.0 + c * (k + zdt));
-    push(lv, a, wa * f);
-    push(lv, b, wb * f);
+    push(lv, t.a, t.wa * f);
+    push(lv, t.b, t.wb * f);
     // A modal point may read these masses (a wide bow's contact): it follows them.
-    if (!lv.modal_points.empty() && lv.modal_point_of[a] < 0 && lv.modal_point_of[b] < 0)
+    if (!lv.modal_points.empty() && lv.modal_point_of[t.a] < 0 && lv.modal_point_of[t.b] < 0)
         update_modal_points(lv);
-    finger.force = f;
 }
 
 // The finger's stored energy ¼k(u[n]² + u[n−1]²) and, after a step, the energy its damper took
 // over it, ¼(Z/T)(u[n+1] − u[n−1])², both at its contact point now.
 double Simulation::finger_stored_energy(const CompiledLevel& lv,
                                         const CompiledFinger& finger) const {
-    const FingerContact at = finger_contact(finger.position, finger.along.size());
-    const int a = finger.along[at.first], b = finger.along[at.first + 1];
-    const double u = (1.0 - at.weight) * lv.x()[a] + at.weight * lv.x()[b];
-    const double u_before = (1.0 - at.weight) * lv.x_prev()[a] + at.weight * lv.x_prev()[b];
+    const Touch t = touch_of(finger);
+    const double u = t.at(lv.x()), u_before = t.at(lv.x_prev());
     return 0.25 * finger.pressure * finger.k * (u * u + u_before * u_before);
 }
 
-double Simulation::finger_dissipation(CompiledLevel& lv, const CompiledFinger& finger) const {
-    const FingerContact at = finger_contact(finger.position, finger.along.size());
-    const int a = finger.along[at.first], b = finger.along[at.first + 1];
-    const double wa = 1.0 - at.weight, wb = at.weight;
-    const double moved =
-        wa * (lv.x_next()[a] - lv.x_prev()[a]) + wb * (lv.x_next()[b] - lv.x_prev()[b]);
+double Simulation::finger_dissipation(const CompiledLevel& lv, const CompiledFinger& finger) const {
+    const Touch t = touch_of(finger);
+    const double* xn = lv.x_next();
+    const double moved = t.wa * (xn[t.a] - lv.x_prev()[t.a]) + t.wb * (xn[t.b] - lv.x_prev()[t.b]);
     return 0.25 * finger.pressure * finger.zdt * moved * moved;
 }
 

@@ -42,7 +42,7 @@ void Simulation::for_each_state(Self& self, Field&& field) {
         field(b.sticking);
     }
     for (auto& f : self.model_.fingers)
-        field(f.k), field(f.zdt), field(f.position), field(f.pressure), field(f.force);
+        field(f.k), field(f.zdt), field(f.position), field(f.pressure);
     for (auto& l : self.model_.cross_links) {
         field(l.k), field(l.zdt), field(l.length), field(l.d_prev), field(l.force);
         field(l.d_before), field(l.acting), field(l.hand_seen), field(l.hand_force_sum);

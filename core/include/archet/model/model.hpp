@@ -151,6 +151,10 @@ struct Model {
     Lia* find_lia(const std::string& id);
 };
 
+/// The model's first finger (a link of kind Finger), or null: what the pad's keys, OSC and
+/// MIDI move.
+const Lia* first_finger(const Model& model);
+
 const char* to_string(MatKind);
 const char* to_string(LiaKind);
 const char* to_string(GestureAxis);

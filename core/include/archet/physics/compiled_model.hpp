@@ -101,7 +101,6 @@ struct CompiledFinger {
     double k = 0, zdt = 0;  ///< at full pressure
     double position = 1, pressure = 1;
     int element = -1;
-    double force = 0;  ///< N, on the contact point at the last step
 };
 
 struct CompiledLevel {
@@ -149,6 +148,7 @@ struct CompiledLevel {
     double* x_next() { return buffer[after(current)].data(); }
     const double* x() const { return buffer[current].data(); }
     const double* x_prev() const { return buffer[before(current)].data(); }
+    const double* x_next() const { return buffer[after(current)].data(); }
 };
 
 /// A runtime-settable parameter resolved to its array slot.

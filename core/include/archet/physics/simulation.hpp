@@ -93,7 +93,7 @@ class Simulation {
     double response(const CompiledLevel& level, int storage) const;
     void push(CompiledLevel& level, int storage, double force);
     double finger_stored_energy(const CompiledLevel& level, const CompiledFinger& finger) const;
-    double finger_dissipation(CompiledLevel& level, const CompiledFinger& finger) const;
+    double finger_dissipation(const CompiledLevel& level, const CompiledFinger& finger) const;
     void update_gesture_points(CompiledLevel& level);
     void update_modal_points(CompiledLevel& level);
     /// Adds the motion a force on a modal point causes over this step, to its modes and so to
