@@ -5,6 +5,7 @@
 
 #include "archet/common/input_error.hpp"
 #include "archet/model/model_parameters.hpp"
+#include "archet/physics/chain_kernel.hpp"
 
 namespace archet {
 
@@ -291,9 +292,12 @@ void compile_readouts(CompiledModel& c, const Model& model) {
         std::sort(lv.touched.begin(), lv.touched.end());
         lv.touched.erase(std::unique(lv.touched.begin(), lv.touched.end()), lv.touched.end());
         lv.watched_force.assign(lv.watched.size(), 0.0);
+        // The watched MATs' totals need their chain links; a touched MAT needs them only when
+        // the step updates it again whole (grounds in the chain loop, see integrate()).
         std::set<int> used;
-        for (const auto* mats : {&lv.touched, &lv.watched})
-            for (int s : *mats) used.insert({s - 1, s});
+        for (int s : lv.watched) used.insert({s - 1, s});
+        if (grounds_in_chain_loop(lv))
+            for (int s : lv.touched) used.insert({s - 1, s});
         lv.chain_forces_used.assign(used.begin(), used.end());
     }
 }

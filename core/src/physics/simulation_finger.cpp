@@ -21,21 +21,6 @@ Touch touch_of(const CompiledFinger& finger) {
 
 }  // namespace
 
-// How far a MAT moves per newton over a step: T²/m, or its modes' for a modal point (a
-// body's bridge); and the move a force makes.
-double Simulation::response(const CompiledLevel& lv, int s) const {
-    const int point = lv.modal_point_of[s];
-    return point < 0 ? lv.coeff[s] : lv.modal_points[point].coeff;
-}
-
-void Simulation::push(CompiledLevel& lv, int s, double force) {
-    const int point = lv.modal_point_of[s];
-    if (point < 0)
-        lv.x_next()[s] += lv.coeff[s] * force;
-    else if (force != 0.0)
-        apply_modal_force(lv, point, force);
-}
-
 // The finger is a spring k and a damper Z from its contact point to ground, scaled by its
 // pressure. Its contact point u is the weighted position of the two MATs it lies between;
 // c = (1−w)²·T²/m_a + w²·T²/m_b is how far u moves per newton over a step. The force uses the

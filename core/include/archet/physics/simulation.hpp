@@ -132,6 +132,22 @@ inline double Simulation::velocity(MatSlot s) const {
     return (lv.x()[s.index] - lv.x_prev()[s.index]) / lv.dt;
 }
 
+// Inline: the bow and the finger solve with them at every step.
+// How far MAT s moves per newton over a step: T²/m, or its modes' for a modal point.
+inline double Simulation::response(const CompiledLevel& lv, int s) const {
+    const int point = lv.modal_point_of[s];
+    return point < 0 ? lv.coeff[s] : lv.modal_points[point].coeff;
+}
+
+// Adds the motion a force on MAT s causes over this step.
+inline void Simulation::push(CompiledLevel& lv, int s, double force) {
+    const int point = lv.modal_point_of[s];
+    if (point < 0)
+        lv.x_next()[s] += lv.coeff[s] * force;
+    else if (force != 0.0)
+        apply_modal_force(lv, point, force);
+}
+
 // A faster link sees a slower MAT move along a straight line over the MAT's period, from
 // its previous position to its newest (a first-order hold): a gesture point then moves
 // smoothly at the link's rate instead of in steps its damper would feel as spikes. The
