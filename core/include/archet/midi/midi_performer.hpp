@@ -1,0 +1,75 @@
+#pragma once
+// A player who reads MIDI: notes stop the string with the model's finger and bow it, the pitch
+// wheel and vibrato move the finger, controllers set the bow's force and speed and any
+// parameter (midi_mapping.hpp). Fed the messages as they come and asked, at each round of the
+// engine's control thread, where the hand is and which parameters change: the same two ways
+// the gesture pad and OSC play a model, so takes record and re-render MIDI like them.
+//
+// Monophonic, as a bowed string is: the newest held note sounds; releasing it returns to the
+// one held before (legato, the bow keeps its direction); releasing the last lifts the bow. Each
+// new stroke bows the other way from the last, as a player changes bow.
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "archet/midi/midi_mapping.hpp"
+#include "archet/midi/midi_message.hpp"
+#include "archet/model/gesture.hpp"
+
+namespace archet::midi {
+
+/// What the performer needs of the model it plays.
+struct PerformedModel {
+    /// The finger's id, empty without one: notes then bow the open string at any pitch.
+    std::string finger;
+    double open_string_hz = 0;     ///< the string's first mode (> 0 when there is a finger)
+    double newtons_per_press = 1;  ///< bow force per metre of the hand's press axis
+};
+
+class MidiPerformer {
+  public:
+    MidiPerformer(MidiMapping mapping, PerformedModel model, GestureSample hand);
+
+    /// Takes a message; one that cannot be played (a note below the open string) is refused
+    /// with a sentence in the next round.
+    void receive(const MidiMessage& message);
+
+    struct Round {
+        GestureSample hand;  ///< where the hand is now
+        bool hand_moved = false;
+        std::vector<std::pair<ParameterName, double>> parameters;  ///< in the order to set them
+        std::vector<std::string> refusals;
+    };
+    /// Moves the bow and the vibrato on by `seconds` (the time since the last round).
+    Round advance(double seconds);
+
+    /// Where the finger stops the string for `note` (the sounding share, 0 … 1), or nothing
+    /// below the open string.
+    std::optional<double> finger_position(int note) const;
+    bool bowing() const { return !held_.empty(); }
+
+  private:
+    bool heard(const MidiMessage& m) const;
+    void control(int controller, int value);
+    void note_on(int note, int velocity);
+    void note_off(int note);
+    double force() const;
+
+    MidiMapping mapping_;
+    PerformedModel model_;
+    GestureSample hand_;
+    std::vector<int> held_;                              ///< notes held, oldest first
+    double direction_ = -1;                              ///< of the last stroke; the first goes +1
+    double velocity_force_ = 0, controlled_force_ = -1;  ///< N; −1: no controller has set it
+    double speed_;
+    double vibrato_depth_ = 0, vibrato_rate_ = 5, vibrato_phase_ = 0;
+    double bend_ = 0;         ///< semitones
+    double finger_set_ = -1;  ///< the finger position last sent (−1: none yet)
+    int sounding_ = -1;       ///< the note the finger stops, held or last released (−1: none)
+    bool lift_pending_ = false;
+    Round pending_;
+};
+
+}  // namespace archet::midi
