@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "archet/engine/realtime_engine.hpp"
+#include "archet/midi/midi_mapping.hpp"
 #include "audio_options.hpp"
 #include "commands.hpp"
 #include "option_checks.hpp"
@@ -46,9 +47,28 @@ void add_engine_command(CLI::App& app, Action& action) {
     cmd->add_option("--osc-send", o->osc_send,
                     "Send /archet/out/bow_force, /archet/out/friction and /archet/out/energy to "
                     "this HOST:PORT, 20 times a second");
+    cmd->add_option("--midi", o->midi,
+                    "MIDI in: virtual (a port archet:midi_in to connect controllers and "
+                    "sequencers to) or a part of an existing input port's name")
+        ->expected(0, 1)
+        ->default_str("virtual");
+    cmd->add_option("--midi-api", o->midi_api,
+                    "Where MIDI comes from: alsa (the sequencer) or jack")
+        ->check(CLI::IsMember({"alsa", "jack"}))
+        ->capture_default_str();
+    auto* map = cmd->add_option("--midi-map",
+                                "How MIDI plays the model: a mapping file (JSON, "
+                                "docs/midi.md; default: STK's Bowed's controllers)");
     cmd->add_option("--shape-every", o->shape_every, "Blocks between string-shape frames")
         ->capture_default_str();
-    cmd->callback([&action, o] { action = [o] { return run_engine(*o); }; });
+    cmd->callback([&action, o, map] {
+        const std::string map_file = map->count() > 0 ? map->as<std::string>() : "";
+        action = [o, map_file] {
+            // A bad map is refused before anything starts (status 2), naming the entry.
+            if (!map_file.empty()) o->midi_mapping = midi::load_midi_mapping(map_file);
+            return run_engine(*o);
+        };
+    });
 }
 
 }  // namespace archet::cli

@@ -69,6 +69,15 @@ std::string ControlThread::nrt_open() {
             said += std::string("no OSC: ") + e.what() + "; ";
         }
     }
+    if (!options_.midi.empty()) {  // as for OSC: a port that cannot be had costs MIDI alone
+        try {
+            midi_ =
+                std::make_unique<MidiReceiver>(MidiInputOptions{options_.midi_api, options_.midi});
+            said += "MIDI from " + midi_->description() + "; ";
+        } catch (const std::exception& e) {
+            said += std::string("no MIDI: ") + e.what() + "; ";
+        }
+    }
     if (!options_.osc_send.empty()) {
         try {
             osc_out_ = std::make_unique<OscSender>(options_.osc_send);
@@ -121,6 +130,7 @@ void ControlThread::nrt_loop() {
         CommandFrame command;
         while (commands_.try_pop(command)) nrt_handle(command);
         if (osc_) nrt_take_osc();
+        if (midi_) nrt_take_midi();
         nrt_collect_retired();
         nrt_collect_takes();
         if (bridge_.blown.exchange(false)) nrt_recover_from_blowup();
@@ -201,6 +211,7 @@ void ControlThread::nrt_load(const CommandFrame& c, const std::string& path) {
         current_resolver_ = loaded->resolver;
         current_model_ = std::move(model);
         current_name_ = current_model_.name;
+        if (midi_) nrt_prepare_performer();
         delete bridge_.pending.exchange(loaded.release());  // an unclaimed older one is dropped
     } catch (const std::exception& e) {
         nrt_fail(c, e.what());

@@ -17,10 +17,12 @@
 
 #include "archet/audio_output.hpp"
 #include "archet/engine/engine_options.hpp"
+#include "archet/engine/midi_receiver.hpp"
 #include "archet/engine/osc_receiver.hpp"
 #include "archet/engine/osc_sender.hpp"
 #include "archet/haptic_choice.hpp"
 #include "archet/ipc/shared_segment.hpp"
+#include "archet/midi/midi_performer.hpp"
 #include "archet/model/model.hpp"
 #include "archet/model/parameter_name.hpp"
 #include "archet/physics/compiled_model.hpp"
@@ -61,6 +63,9 @@ class ControlThread {
     void nrt_recover_from_blowup();
     void nrt_take_osc();
     void nrt_handle_osc(const ipc::OscCommand& c);
+    void nrt_prepare_performer();
+    void nrt_take_midi();
+    void nrt_say_midi(const std::string& what);
 
     ipc::SharedSegment segment_;
     const EngineOptions options_;
@@ -70,15 +75,19 @@ class ControlThread {
     ThreadBridge bridge_;  ///< declared before what uses it, after the haptic device it holds
     StatusPublisher publisher_;
     std::optional<StudioWatch> watch_;
-    std::unique_ptr<OscReceiver> osc_;     ///< with --osc
-    std::unique_ptr<OscSender> osc_out_;   ///< with --osc-send
-    GestureSample osc_hand_{};             ///< where OSC or the pad last put the device's axes
-    bool osc_hand_moved_ = false;          ///< in the messages being handled
-    std::uint64_t osc_takes_ = 0;          ///< takes started from OSC, for their names
-    std::uint64_t osc_dropped_said_ = 0;   ///< dropped messages already reported
-    std::unique_ptr<RealtimeThread> rt_;   ///< built once the device is open
-    std::unique_ptr<AudioOutput> output_;  ///< destroyed first: it calls rt_
-    double sample_rate_ = 48000;           ///< the device's clock, the master: set once open
+    std::unique_ptr<OscReceiver> osc_;    ///< with --osc
+    std::unique_ptr<OscSender> osc_out_;  ///< with --osc-send
+    GestureSample osc_hand_{};            ///< where OSC or the pad last put the device's axes
+    bool osc_hand_moved_ = false;         ///< in the messages being handled
+    std::uint64_t osc_takes_ = 0;         ///< takes started from OSC, for their names
+    std::uint64_t osc_dropped_said_ = 0;  ///< dropped messages already reported
+    std::unique_ptr<MidiReceiver> midi_;  ///< with --midi
+    std::optional<midi::MidiPerformer> performer_;  ///< plays the loaded model from MIDI
+    std::uint64_t midi_blocks_ = 0;                 ///< blocks played at the last MIDI round
+    std::uint64_t midi_dropped_said_ = 0;           ///< dropped messages already reported
+    std::unique_ptr<RealtimeThread> rt_;            ///< built once the device is open
+    std::unique_ptr<AudioOutput> output_;           ///< destroyed first: it calls rt_
+    double sample_rate_ = 48000;  ///< the device's clock, the master: set once open
     bool quit_ = false;
     std::uint64_t swaps_answered_ = 0;
     std::filesystem::path take_root_;    ///< canonical take directory (empty: no takes)

@@ -104,6 +104,13 @@ void RealtimeThread::rt_apply(const RealtimeCommand& r) {
             return;
         case RealtimeCommand::Gesture:
             rt_pad_ = {r.slide, r.press};  // with a simulated hand the pad is its target
+            rt_drive_speed_ = 0;
+            if (rt_running_ && !has_haptic_device_)
+                rt_running_->simulation->set_device_position(rt_pad_);
+            return;
+        case RealtimeCommand::BowDrive:
+            rt_pad_.press = r.press;
+            rt_drive_speed_ = r.value;
             if (rt_running_ && !has_haptic_device_)
                 rt_running_->simulation->set_device_position(rt_pad_);
             return;
@@ -147,6 +154,12 @@ double RealtimeThread::rt_cross_fade(double incoming) {
     return (1.0 - a) * outgoing + a * incoming;
 }
 
+// The driven bow one haptic period on, where the gesture points read it next.
+void RealtimeThread::rt_drive_bow(Simulation& sim, const LoadedModel& m) {
+    rt_pad_.slide += rt_drive_speed_ * m.haptic_dt;
+    if (!has_haptic_device_) sim.set_device_position(rt_pad_);
+}
+
 // The studio froze (fade out) or is back (fade in).
 double RealtimeThread::rt_studio_fade(double output) {
     if (rt_silent_ ? rt_studio_gain_ > 0 : rt_studio_gain_ < 1) {
@@ -170,6 +183,7 @@ void RealtimeThread::rt_run_block(LoadedModel& m, float* out, int frames, int ch
     float* const end = out + static_cast<std::ptrdiff_t>(frames) * channels;
     for (int i = 0; i < frames; ++i) {
         rt_smoother_.advance(sim);
+        if (rt_drive_speed_ != 0 && sim.tick() % m.haptic_divider == 0) rt_drive_bow(sim, m);
         if (m.haptic) m.haptic->before_step(sim, rt_pad_, rt_device_time());
         if (rt_recording_ && sim.tick() % m.haptic_divider == 0)  // the points read it now
             rt_recording_->gesture(sim.time() + m.haptic_dt, sim.device_position());

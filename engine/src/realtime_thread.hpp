@@ -53,6 +53,7 @@ class RealtimeThread final : public AudioRenderer {
     void rt_begin_take();
     void rt_end_take();
     double rt_cross_fade(double incoming);
+    void rt_drive_bow(Simulation& sim, const LoadedModel& m);
     double rt_studio_fade(double output);
     void rt_mute(float* from, float* to);
     void rt_run_block(LoadedModel& m, float* out, int frames, int channels);
@@ -83,7 +84,10 @@ class RealtimeThread final : public AudioRenderer {
     /// Samples played since the engine started, whatever the model. The device's clock: a new
     /// model's own time starts again at 0, the device's does not.
     std::uint64_t rt_device_ticks_ = 0;
-    GestureSample rt_pad_{};                   ///< the pad's latest position
+    GestureSample rt_pad_{};  ///< the pad's latest position
+    /// m/s: a BowDrive slides the pad's position on at each haptic tick (MIDI's bow), so the
+    /// hand moves smoothly at the points' own rate; 0 once the pad or OSC moves it.
+    double rt_drive_speed_ = 0;
     TakeRecorder* rt_waiting_take_ = nullptr;  ///< to begin when it can
     std::uint64_t rt_waiting_generation_ = 0;  ///< the model it was made for
     TakeRecorder* rt_recording_ = nullptr;     ///< the take being fed

@@ -18,7 +18,15 @@ class TakeRecorder;
 
 /// Work the control thread hands to the real-time thread.
 struct RealtimeCommand {
-    enum Kind : std::uint32_t { SetParameter, Gesture, Play, Stop, StartTake, StopTake } kind;
+    enum Kind : std::uint32_t {
+        SetParameter,
+        Gesture,
+        BowDrive,  ///< the bow slides on by itself at `value` m/s (signed), pressed at `press`
+        Play,
+        Stop,
+        StartTake,
+        StopTake
+    } kind;
     ParameterSlot slot;
     double value, slide, press;
     TakeRecorder* take = nullptr;  ///< StartTake: the recorder, owned by the real-time thread

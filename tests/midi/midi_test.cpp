@@ -123,7 +123,7 @@ TEST(MidiMapping, ABadFileNamesTheEntryAndWhatToChange) {
 
 // A 220 Hz string with a finger; a press of 1 mm is 0.1 N.
 MidiPerformer performer(MidiMapping m = default_midi_mapping()) {
-    return MidiPerformer(std::move(m), {"finger", 220.0, 100.0}, {});
+    return MidiPerformer(std::move(m), {"finger", 220.0, 100.0});
 }
 
 double finger_in(const MidiPerformer::Round& r) {
@@ -137,35 +137,34 @@ TEST(MidiPerformer, ANoteStopsTheStringAtItsPitchAndBowsItUntilReleased) {
     p.receive({K::NoteOn, 1, 64, 127});  // E4, a fifth above A3
     const auto r = p.advance(0.01);
     EXPECT_NEAR(finger_in(r), std::pow(2.0, -7.0 / 12), 1e-12);
-    EXPECT_TRUE(r.hand_moved);
-    EXPECT_NEAR(r.hand.press, 0.3 / 100.0, 1e-15) << "velocity 127: the map's top force";
-    EXPECT_NEAR(r.hand.slide, 0.1 * 0.01, 1e-15) << "at the map's bow speed";
+    EXPECT_TRUE(r.bow_changed);
+    EXPECT_NEAR(r.press, 0.2 / 100.0, 1e-15) << "velocity 127: the map's top force";
+    EXPECT_EQ(r.slide_speed, 0.1) << "at the map's bow speed";
     const auto later = p.advance(0.01);
-    EXPECT_NEAR(later.hand.slide, 0.002, 1e-15);
-    EXPECT_EQ(finger_in(later), -1) << "an unchanged finger is not sent again";
+    EXPECT_FALSE(later.bow_changed) << "an unchanged bow is not sent again";
+    EXPECT_EQ(finger_in(later), -1) << "nor an unchanged finger";
     p.receive({K::NoteOff, 1, 64, 0});
     const auto lifted = p.advance(0.01);
-    EXPECT_TRUE(lifted.hand_moved);
-    EXPECT_EQ(lifted.hand.press, 0.0);
-    EXPECT_EQ(lifted.hand.slide, later.hand.slide) << "the lifted bow stays where it was";
-    EXPECT_FALSE(p.advance(0.01).hand_moved);
+    EXPECT_TRUE(lifted.bow_changed);
+    EXPECT_EQ(lifted.press, 0.0);
+    EXPECT_EQ(lifted.slide_speed, 0.0) << "the lifted bow stays where it was";
+    EXPECT_FALSE(p.advance(0.01).bow_changed);
 }
 
 TEST(MidiPerformer, EachStrokeChangesBowAndALegatoNoteKeepsIt) {
     MidiPerformer p = performer();
     p.receive({K::NoteOn, 1, 57, 1});
-    const double down = p.advance(0.1).hand.slide;
-    EXPECT_GT(down, 0);
+    EXPECT_GT(p.advance(0.1).slide_speed, 0);
     p.receive({K::NoteOn, 1, 59, 100});  // slurred: same stroke, same force
     const auto slur = p.advance(0.1);
-    EXPECT_GT(slur.hand.slide, down);
-    EXPECT_NEAR(slur.hand.press, 0.03 / 100.0, 1e-15) << "velocity 1: the map's least force";
+    EXPECT_FALSE(slur.bow_changed);
+    EXPECT_NEAR(slur.press, 0.02 / 100.0, 1e-15) << "velocity 1: the map's least force";
     p.receive({K::NoteOff, 1, 59, 0});
     EXPECT_NEAR(finger_in(p.advance(0.01)), 1.0, 1e-12) << "back to the note still held";
     p.receive({K::NoteOff, 1, 57, 0});
-    const double top = p.advance(0.01).hand.slide;
+    EXPECT_EQ(p.advance(0.01).slide_speed, 0.0);
     p.receive({K::NoteOn, 1, 57, 64});
-    EXPECT_LT(p.advance(0.1).hand.slide, top) << "the next stroke bows the other way";
+    EXPECT_LT(p.advance(0.1).slide_speed, 0) << "the next stroke bows the other way";
 }
 
 TEST(MidiPerformer, ControllersSetForceSpeedAndVibratoAndTheWheelBends) {
@@ -174,8 +173,8 @@ TEST(MidiPerformer, ControllersSetForceSpeedAndVibratoAndTheWheelBends) {
     p.receive({K::Control, 1, 2, 127});          // bow force 0.5 N
     p.receive({K::ChannelPressure, 1, 0, 127});  // bow speed 0.4 m/s
     const auto r = p.advance(0.01);
-    EXPECT_NEAR(r.hand.press, 0.5 / 100.0, 1e-15);
-    EXPECT_NEAR(r.hand.slide, 0.4 * 0.01, 1e-15);
+    EXPECT_NEAR(r.press, 0.5 / 100.0, 1e-15);
+    EXPECT_NEAR(r.slide_speed, 0.4, 1e-15);
     p.receive({K::PitchBend, 1, 0, 8191});
     EXPECT_NEAR(finger_in(p.advance(0.01)), 0.5 * std::pow(2.0, -2.0 * 8191 / 8192 / 12), 1e-12);
     p.receive({K::PitchBend, 1, 0, 0});
@@ -208,7 +207,7 @@ TEST(MidiPerformer, OtherChannelsUnreachableNotesAndAMissingFingerAreSaid) {
 
     MidiMapping pressure = default_midi_mapping();
     pressure.controls.push_back({20, MidiTarget::FingerPressure, {}, 0.0, 1.0});
-    MidiPerformer open(pressure, {"", 0.0, 100.0}, {});
+    MidiPerformer open(pressure, {"", 0.0, 100.0});
     open.receive({K::NoteOn, 1, 30, 100});
     EXPECT_TRUE(open.bowing()) << "without a finger every note bows the open string";
     open.receive({K::Control, 1, 20, 100});

@@ -25,11 +25,8 @@ double scaled(const ControlRoute& r, int value) {
 
 }  // namespace
 
-MidiPerformer::MidiPerformer(MidiMapping mapping, PerformedModel model, GestureSample hand)
-    : mapping_(std::move(mapping)),
-      model_(std::move(model)),
-      hand_(hand),
-      speed_(mapping_.bow_speed) {}
+MidiPerformer::MidiPerformer(MidiMapping mapping, PerformedModel model)
+    : mapping_(std::move(mapping)), model_(std::move(model)), speed_(mapping_.bow_speed) {}
 
 bool MidiPerformer::heard(const MidiMessage& m) const {
     return mapping_.channel == 0 || m.channel == mapping_.channel;
@@ -80,9 +77,7 @@ void MidiPerformer::note_on(int note, int velocity) {
 }
 
 void MidiPerformer::note_off(int note) {
-    const bool was_bowing = !held_.empty();
     std::erase(held_, note);
-    if (was_bowing && held_.empty()) lift_pending_ = true;
     if (!held_.empty()) sounding_ = held_.back();
 }
 
@@ -125,15 +120,11 @@ double MidiPerformer::force() const {
 MidiPerformer::Round MidiPerformer::advance(double seconds) {
     Round round = std::move(pending_);
     pending_ = {};
-    if (!held_.empty()) {
-        hand_.slide += direction_ * speed_ * seconds;
-        hand_.press = force() / model_.newtons_per_press;
-        round.hand_moved = true;
-    } else if (lift_pending_) {
-        hand_.press = 0;
-        round.hand_moved = true;
-    }
-    lift_pending_ = false;
+    const double speed = held_.empty() ? 0.0 : direction_ * speed_;
+    const double press = held_.empty() ? 0.0 : force() / model_.newtons_per_press;
+    round.bow_changed = speed != slide_speed_ || press != press_;
+    round.slide_speed = slide_speed_ = speed;
+    round.press = press_ = press;
     vibrato_phase_ = std::fmod(vibrato_phase_ + 2 * std::numbers::pi * vibrato_rate_ * seconds,
                                2 * std::numbers::pi);
     if (!model_.finger.empty() && sounding_ >= 0) {
@@ -146,7 +137,6 @@ MidiPerformer::Round MidiPerformer::advance(double seconds) {
             finger_set_ = position;
         }
     }
-    round.hand = hand_;
     return round;
 }
 

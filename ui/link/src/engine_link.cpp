@@ -75,6 +75,9 @@ void EngineLink::start() {
     if (options_.osc_port > 0)
         args.insert(args.end(), {"--osc", std::to_string(options_.osc_port)});
     if (!options_.osc_send.empty()) args.insert(args.end(), {"--osc-send", options_.osc_send});
+    if (!options_.midi.empty())
+        args.insert(args.end(), {"--midi", options_.midi, "--midi-api", options_.midi_api});
+    if (!options_.midi_map.empty()) args.insert(args.end(), {"--midi-map", options_.midi_map});
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);

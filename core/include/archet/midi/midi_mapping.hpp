@@ -42,8 +42,8 @@ struct ControlRoute {
 struct MidiMapping {
     int channel = 0;                   ///< 0: every channel; 1 … 16: that one only
     double bend_range = 2;             ///< semitones either way at full bend
-    double velocity_force_min = 0.03;  ///< N, velocity 1
-    double velocity_force_max = 0.3;   ///< N, velocity 127
+    double velocity_force_min = 0.02;  ///< N, velocity 1
+    double velocity_force_max = 0.2;   ///< N, velocity 127 (the pad's usual press is 0.15 N)
     double bow_speed = 0.1;            ///< m/s, until a controller sets it
     std::vector<ControlRoute> controls;
 

@@ -2,8 +2,9 @@
 // A player who reads MIDI: notes stop the string with the model's finger and bow it, the pitch
 // wheel and vibrato move the finger, controllers set the bow's force and speed and any
 // parameter (midi_mapping.hpp). Fed the messages as they come and asked, at each round of the
-// engine's control thread, where the hand is and which parameters change: the same two ways
-// the gesture pad and OSC play a model, so takes record and re-render MIDI like them.
+// engine's control thread, how the bow moves (a speed and a press: the real-time thread slides
+// it on at the gesture points' own rate, smoothly) and which parameters change, as the pad and
+// OSC play a model, so takes record and re-render MIDI like them.
 //
 // Monophonic, as a bowed string is: the newest held note sounds; releasing it returns to the
 // one held before (legato, the bow keeps its direction); releasing the last lifts the bow. Each
@@ -16,7 +17,7 @@
 
 #include "archet/midi/midi_mapping.hpp"
 #include "archet/midi/midi_message.hpp"
-#include "archet/model/gesture.hpp"
+#include "archet/model/parameter_name.hpp"
 
 namespace archet::midi {
 
@@ -30,19 +31,20 @@ struct PerformedModel {
 
 class MidiPerformer {
   public:
-    MidiPerformer(MidiMapping mapping, PerformedModel model, GestureSample hand);
+    MidiPerformer(MidiMapping mapping, PerformedModel model);
 
     /// Takes a message; one that cannot be played (a note below the open string) is refused
     /// with a sentence in the next round.
     void receive(const MidiMessage& message);
 
     struct Round {
-        GestureSample hand;  ///< where the hand is now
-        bool hand_moved = false;
+        bool bow_changed = false;  ///< the two below differ from the last round's
+        double slide_speed = 0;    ///< m/s, signed by the stroke's direction; 0: not bowing
+        double press = 0;          ///< m on the hand's press axis; 0: lifted
         std::vector<std::pair<ParameterName, double>> parameters;  ///< in the order to set them
         std::vector<std::string> refusals;
     };
-    /// Moves the bow and the vibrato on by `seconds` (the time since the last round).
+    /// Moves the vibrato on by `seconds` (the time since the last round).
     Round advance(double seconds);
 
     /// Where the finger stops the string for `note` (the sounding share, 0 … 1), or nothing
@@ -59,7 +61,7 @@ class MidiPerformer {
 
     MidiMapping mapping_;
     PerformedModel model_;
-    GestureSample hand_;
+    double slide_speed_ = 0, press_ = 0;                 ///< as last sent
     std::vector<int> held_;                              ///< notes held, oldest first
     double direction_ = -1;                              ///< of the last stroke; the first goes +1
     double velocity_force_ = 0, controlled_force_ = -1;  ///< N; −1: no controller has set it
@@ -68,7 +70,6 @@ class MidiPerformer {
     double bend_ = 0;         ///< semitones
     double finger_set_ = -1;  ///< the finger position last sent (−1: none yet)
     int sounding_ = -1;       ///< the note the finger stops, held or last released (−1: none)
-    bool lift_pending_ = false;
     Round pending_;
 };
 

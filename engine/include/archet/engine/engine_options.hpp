@@ -5,6 +5,7 @@
 #include <string>
 
 #include "archet/audio_output.hpp"
+#include "archet/midi/midi_mapping.hpp"
 
 namespace archet {
 
@@ -28,6 +29,11 @@ struct EngineOptions {
     /// OSC out: "HOST:PORT" to send the bow force and the string's energy to, 20 times a
     /// second (empty: none).
     std::string osc_send;
+    /// MIDI in: "" (none), "virtual" (a port archet:midi_in others connect to) or a part of
+    /// an existing input port's name; through the ALSA sequencer or JACK; played by this map.
+    std::string midi;
+    std::string midi_api = "alsa";
+    midi::MidiMapping midi_mapping = midi::default_midi_mapping();
     /// mlockall the process (the engine's own); off when a test runs the engine in-process.
     bool lock_memory = true;
 };

@@ -43,6 +43,11 @@ struct EngineLinkOptions {
     /// HOST:PORT it sends the bow force and energy to (empty: none).
     int osc_port = 0;
     std::string osc_send;
+    /// MIDI in: "" (none), "virtual" or a part of a port's name; its API (alsa, jack) and
+    /// mapping file (empty: the default map).
+    std::string midi;
+    std::string midi_api = "alsa";
+    std::string midi_map;
 };
 
 class EngineLink {

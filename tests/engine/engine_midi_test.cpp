@@ -1,0 +1,154 @@
+// MIDI into a real engine process, from a JACK MIDI keyboard written here on a JACK server of
+// the test's own (dummy driver): a note stops the fingered string at its pitch and bows it in
+// Helmholtz motion, a take made from MIDI re-renders to the byte, thousands of controller
+// messages cost the real-time thread no allocation, and a bad mapping file is refused before
+// anything starts.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "archet/analysis/bowing_analysis.hpp"
+#include "archet/builders/bowed_string.hpp"
+#include "archet/files/model_file.hpp"
+#include "engine_session.hpp"
+#include "jack_dummy.hpp"
+#include "jack_midi_keyboard.hpp"
+#include "test_support.hpp"
+
+namespace archet {
+namespace {
+
+using ipc::StatusFrame;
+using ipc::StatusKind;
+using test::EngineSession;
+
+class EngineMidi : public test::JackDummy {
+  protected:
+    static EngineSession::EngineLinkOptions with_midi() {
+        auto o = EngineSession::options();
+        o.midi = "virtual", o.midi_api = "jack";
+        return o;
+    }
+    // The fingered paper string at 220 Hz (A3), the engine listening, the keyboard plugged in.
+    void start() {
+        dir_ = test::temp_dir("engine-midi");
+        BowedStringOptions o;
+        o.pitch = 220, o.paper = true, o.finger = true;
+        write_file_atomically(dir_ / "fingered.json", format_model(build_bowed_string(o)));
+        engine_ = std::make_unique<EngineSession>(with_midi());
+        ASSERT_TRUE(engine_->start_file(dir_ / "fingered.json"));
+        keyboard_ = std::make_unique<test::JackMidiKeyboard>();
+        ASSERT_TRUE(test::wait_for([&] { return keyboard_->connect("archet"); }, test::kGenerous))
+            << "the engine's MIDI input did not appear on JACK; errors: "
+            << (engine_->errors().empty() ? "none" : engine_->errors().back());
+    }
+    // Plays on for `seconds` of sound.
+    bool play(double seconds) {
+        const auto until = engine_->played() + static_cast<std::uint64_t>(seconds * 48000);
+        return engine_->play_until([&] { return engine_->played() >= until; }, [](double) {});
+    }
+
+    std::filesystem::path dir_;
+    std::unique_ptr<EngineSession> engine_;
+    std::unique_ptr<test::JackMidiKeyboard> keyboard_;
+};
+
+// The column `name` of a take's probes.csv.
+std::vector<double> probe_column(const std::filesystem::path& csv, const std::string& name) {
+    std::istringstream in(test::read_file(csv));
+    std::string line, cell;
+    std::getline(in, line);
+    int column = -1, i = 0;
+    for (std::istringstream header(line); std::getline(header, cell, ','); ++i)
+        if (cell == name) column = i;
+    std::vector<double> values;
+    while (column >= 0 && std::getline(in, line)) {
+        std::istringstream row(line);
+        for (int c = 0; c <= column; ++c) std::getline(row, cell, ',');
+        values.push_back(std::stod(cell));
+    }
+    return values;
+}
+
+TEST_F(EngineMidi, ANoteIsBowedAtItsPitchAndItsTakeReRendersToTheByte) {
+    ASSERT_NO_FATAL_FAILURE(start());
+    const auto folder = dir_ / "take";
+    engine_->link().start_take(folder.string());
+    ASSERT_TRUE(engine_->await(StatusKind::Take, [&](const StatusFrame& f) {
+        return std::string(f.text).rfind("recording ", 0) == 0;
+    })) << (engine_->errors().empty() ? "" : engine_->errors().back());
+    ASSERT_TRUE(keyboard_->note_on(64, 64));  // E4, a fifth above the open A3, mezzo forte
+    ASSERT_TRUE(play(1.5));
+    EXPECT_GT(engine_->latest().values[4], 0.01) << "the note pressed the bow in";
+    ASSERT_TRUE(keyboard_->note_off(64));
+    ASSERT_TRUE(play(0.3));
+    EXPECT_LT(engine_->latest().values[4], 1e-9) << "its release lifted the bow";
+    engine_->link().stop_take();
+    std::string said;
+    ASSERT_TRUE(engine_->await_take_written(&said)) << said;
+    EXPECT_TRUE(engine_->errors().empty()) << engine_->errors().front();
+
+    // Helmholtz motion at the stopped string's pitch, half a second from 0.8 s into the note.
+    const std::vector<double> slip = probe_column(folder / "probes.csv", "slip_v");
+    const std::vector<double> normal = probe_column(folder / "probes.csv", "normal_force");
+    std::size_t first = 0;
+    while (first < normal.size() && normal[first] <= 0) ++first;
+    ASSERT_GT(normal.size(), first + 62400) << "the note was recorded for 1.3 s";
+    const double fifth = 220 * std::pow(2.0, 7.0 / 12);
+    const BowingAnalysis a = analyse_bowing(slip, 48000, fifth, first + 38400, first + 62400);
+    EXPECT_TRUE(a.helmholtz()) << a.slips_per_period << " slips a period, spread "
+                               << a.period_spread;
+    EXPECT_LT(std::abs(a.pitch_cents), 15) << a.pitch_cents << " cents against E4";
+
+    const auto r = test::run_archet(
+        {"render", "--take", folder.string(), "-o", (dir_ / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir_ / "again.wav"), test::read_file(folder / "take.wav"))
+        << "the take made from MIDI re-renders to the byte";
+}
+
+TEST_F(EngineMidi, ThousandsOfControllerMessagesCostTheRealTimeThreadNoAllocation) {
+    ASSERT_NO_FATAL_FAILURE(start());
+    ASSERT_TRUE(keyboard_->note_on(69, 90));
+    for (int i = 0; i < 5000; ++i) {
+        // Faster than any controller (200 messages a millisecond), not faster than the
+        // engine's queue can hold between two rounds.
+        if (i % 400 == 0) ASSERT_TRUE(play(0.002));
+        ASSERT_TRUE(keyboard_->control(2, 20 + i % 60));  // bow force
+        if (i % 10 == 0) keyboard_->send({0xE0, 0, static_cast<std::uint8_t>(64 + i % 8)});
+        if (i % 100 == 0) keyboard_->control(1, i % 128);  // vibrato depth
+    }
+    ASSERT_TRUE(play(0.5));
+    ASSERT_TRUE(engine_->await(StatusKind::Heartbeat, [](const StatusFrame&) { return true; }));
+    EXPECT_EQ(engine_->realtime_allocations(), 0u);
+    EXPECT_GT(engine_->latest().values[4], 0.01) << "still bowing";
+    EXPECT_TRUE(engine_->errors().empty()) << engine_->errors().front();
+}
+
+TEST_F(EngineMidi, ANoteOutOfReachIsSaidAndChangesNothing) {
+    ASSERT_NO_FATAL_FAILURE(start());
+    ASSERT_TRUE(keyboard_->note_on(40, 100));  // E2, below the open A3
+    ASSERT_TRUE(engine_->await(StatusKind::Error, [](const StatusFrame&) { return true; }));
+    EXPECT_NE(engine_->errors().back().find("note 40"), std::string::npos)
+        << engine_->errors().back();
+    ASSERT_TRUE(play(0.2));
+    EXPECT_LT(engine_->latest().values[4], 1e-9) << "the bow stayed off the string";
+}
+
+TEST(EngineMidiOptions, ABadMappingFileIsRefusedBeforeAnythingStarts) {
+    const auto dir = test::temp_dir("engine-midi-map");
+    const auto map = dir / "map.json";
+    std::ofstream(map) << R"({"format": "archet-midi-map", "controls": [
+        {"controller": 2, "target": "bow_presure", "range": [0, 1]}]})";
+    const auto r =
+        test::run_archet({"engine", "--shm", "/archet-none", "--midi", "--midi-map", map.string()});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("controls[0].target"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("bow_force"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace archet
