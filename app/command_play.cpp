@@ -24,6 +24,7 @@
 #include "archet/haptic_choice.hpp"
 #include "archet/haptic_loop.hpp"
 #include "archet/interruption.hpp"
+#include "archet/midi_ports.hpp"
 #include "archet/output_limiter.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
@@ -226,7 +227,7 @@ void add_play_command(CLI::App& app, Action& action) {
 
 void add_devices_command(CLI::App& app, Action& action) {
     auto* cmd = app.add_subcommand(
-        "devices", "List the audio outputs and haptic devices Archet can play with");
+        "devices", "List the audio outputs, haptic devices and MIDI sources Archet can play with");
     cmd->callback([&action] {
         action = [] {
             for (const AudioApiDevices& api : list_audio_devices())
@@ -245,6 +246,13 @@ void add_devices_command(CLI::App& app, Action& action) {
                 for (const HapticDeviceInfo& d : haptic)
                     if (d.backend == backend) std::cout << describe(d) << "\n", found = true;
                 if (!found) std::cout << none << "\n";
+            }
+            // MIDI sources, under the names --midi takes (any part of one).
+            for (const std::string& api : midi_apis()) {
+                const std::vector<std::string> ports = list_midi_inputs(api);
+                for (const std::string& port : ports)
+                    std::cout << "midi " << api << ": " << port << "\n";
+                if (ports.empty()) std::cout << "midi " << api << ": no MIDI source found\n";
             }
             return 0;
         };

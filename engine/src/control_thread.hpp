@@ -65,6 +65,7 @@ class ControlThread {
     void nrt_handle_osc(const ipc::OscCommand& c);
     void nrt_prepare_performer();
     void nrt_take_midi();
+    void nrt_show_controllers(const std::vector<midi::MidiMessage>& messages);
     void nrt_say_midi(const std::string& what);
 
     ipc::SharedSegment segment_;

@@ -3,6 +3,7 @@
 // hand's motion and parameter changes, which go the way the pad's and OSC's go: checked here,
 // glided in on the real-time thread, recorded by a take.
 #include <cstdio>
+#include <map>
 
 #include "archet/analysis/modal_analysis.hpp"
 #include "archet/analysis/playability.hpp"
@@ -50,6 +51,21 @@ void ControlThread::nrt_say_midi(const std::string& what) {
     nrt_fail({}, "MIDI: " + what);
 }
 
+// The studio hears which controllers moved (the newest value of each this round): its MIDI
+// learn assigns the one the player moves.
+void ControlThread::nrt_show_controllers(const std::vector<midi::MidiMessage>& messages) {
+    std::map<int, const midi::MidiMessage*> newest;
+    for (const auto& m : messages) {
+        if (m.kind == midi::MidiMessage::Kind::Control)
+            newest[m.number] = &m;
+        else if (m.kind == midi::MidiMessage::Kind::ChannelPressure)
+            newest[midi::kChannelPressure] = &m;
+    }
+    for (const auto& [controller, m] : newest)
+        publisher_.nrt_publish(StatusKind::Midi, static_cast<std::uint32_t>(controller),
+                               midi::describe(*m));
+}
+
 // The messages since the last round, then the performer's vibrato moved on by the sound played
 // since (the audio clock, so it keeps pace with the sound even when this thread is late).
 void ControlThread::nrt_take_midi() {
@@ -64,6 +80,7 @@ void ControlThread::nrt_take_midi() {
     const double seconds =
         static_cast<double>(blocks - midi_blocks_) * output_->buffer_frames() / sample_rate_;
     midi_blocks_ = blocks;
+    nrt_show_controllers(messages);
     if (!performer_) return;
     for (const auto& m : messages) performer_->receive(m);
     midi::MidiPerformer::Round round = performer_->advance(seconds);

@@ -98,14 +98,4 @@ std::string MidiReceiver::take_problem() {
     return std::exchange(problem_, {});
 }
 
-std::vector<std::string> MidiReceiver::ports(const std::string& api) {
-    std::vector<std::string> names;
-    try {
-        RtMidiIn in(api_named(api), "archet-list");
-        for (unsigned i = 0; i < in.getPortCount(); ++i) names.push_back(in.getPortName(i));
-    } catch (const RtMidiError&) {
-    }
-    return names;
-}
-
 }  // namespace archet

@@ -138,6 +138,18 @@ TEST_F(EngineMidi, ANoteOutOfReachIsSaidAndChangesNothing) {
     EXPECT_LT(engine_->latest().values[4], 1e-9) << "the bow stayed off the string";
 }
 
+// The studio hears which controller moved (its MIDI learn assigns it), mapped or not.
+TEST_F(EngineMidi, TheStudioIsToldWhichControllerMoved) {
+    ASSERT_NO_FATAL_FAILURE(start());
+    ASSERT_TRUE(keyboard_->control(74, 90));
+    std::string said;
+    ASSERT_TRUE(engine_->await(StatusKind::Midi, [&](const StatusFrame& f) {
+        said = f.text;
+        return f.sequence == 74;
+    }));
+    EXPECT_EQ(said, "CC 74 = 90 (channel 1)");
+}
+
 TEST(EngineMidiOptions, ABadMappingFileIsRefusedBeforeAnythingStarts) {
     const auto dir = test::temp_dir("engine-midi-map");
     const auto map = dir / "map.json";

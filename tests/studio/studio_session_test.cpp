@@ -227,9 +227,13 @@ TEST_F(Session, LayoutModelAndAudioSettingsComeBackAfterARestart) {
 
     EngineClientOptions o = engine_options();
     o.buffer_frames = 256, o.sample_rate = 44100, o.haptic = "none", o.osc_port = 9000;
+    o.midi = "virtual", o.midi_api = "jack", o.midi_map = "/tmp/map.json";
     save_engine_options(o);
     const EngineClientOptions restored = restore_engine_options(engine_options());
     EXPECT_EQ(restored.osc_port, 9000);
+    EXPECT_EQ(restored.midi, "virtual");
+    EXPECT_EQ(restored.midi_api, "jack");
+    EXPECT_EQ(restored.midi_map, "/tmp/map.json");
     EXPECT_EQ(restored.buffer_frames, 256);
     EXPECT_EQ(restored.sample_rate, 44100);
     EXPECT_EQ(restored.haptic, "none");

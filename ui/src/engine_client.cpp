@@ -37,6 +37,9 @@ void EngineClient::launch() {
     o.block_frames = options_.buffer_frames;
     o.haptic = options_.haptic.toStdString();
     o.osc_port = options_.osc_port;
+    o.midi = options_.midi.toStdString();
+    o.midi_api = options_.midi_api.toStdString();
+    o.midi_map = options_.midi_map.toStdString();
     o.sample_rate = options_.sample_rate;
     o.takes = options_.takes.toStdString();
     try {
@@ -241,6 +244,9 @@ void EngineClient::read_status() {
                 break;
             case ipc::StatusKind::Take:
                 emit message("take " + text);
+                break;
+            case ipc::StatusKind::Midi:
+                emit midi_controller(static_cast<int>(f.sequence), text);
                 break;
         }
     }

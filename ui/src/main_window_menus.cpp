@@ -13,12 +13,14 @@
 #include <optional>
 
 #include "archet/analysis/playability.hpp"
+#include "archet/midi/midi_mapping.hpp"
 #include "archet/ui/appearance.hpp"
 #include "archet/ui/attack_panel.hpp"
 #include "archet/ui/compare_view.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
 #include "archet/ui/help_texts.hpp"
+#include "archet/ui/midi_learn_dialog.hpp"
 #include "archet/ui/model_document.hpp"
 #include "archet/ui/playability_panel.hpp"
 #include "archet/ui/scope_panel.hpp"
@@ -137,6 +139,7 @@ void MainWindow::build_play_menu() {
         add_action(play, tr("&Record take"), QKeySequence(Qt::Key_R), &MainWindow::toggle_take);
     play->addSeparator();
     add_action(play, tr("Audio and &devices…"), QKeySequence(), &MainWindow::open_settings);
+    add_action(play, tr("&MIDI learn…"), QKeySequence(), &MainWindow::open_midi_learn);
     add_action(play, tr("Playa&bility map…"), QKeySequence(Qt::CTRL | Qt::Key_M),
                &MainWindow::open_playability);
     add_action(play, tr("&Attack map…"), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_M),
@@ -167,6 +170,36 @@ void MainWindow::open_settings() {
     if (dialog.exec() != QDialog::Accepted) return;
     engine_->reconfigure(dialog.options());
     save_engine_options(dialog.options());
+}
+
+// The mapping the engine plays MIDI with, edited by moving the controllers; once saved, the
+// engine restarts with it (the model and what plays carry over).
+void MainWindow::open_midi_learn() {
+    EngineClientOptions options = engine_->options();
+    if (options.midi.isEmpty()) {
+        statusBar()->showMessage(
+            tr("MIDI input is off: choose a MIDI input in Play → Audio and devices first"), 10000);
+        return;
+    }
+    midi::MidiMapping mapping = midi::default_midi_mapping();
+    if (!options.midi_map.isEmpty()) {
+        try {
+            mapping = midi::load_midi_mapping(options.midi_map.toStdString());
+        } catch (const std::exception& e) {
+            statusBar()->showMessage(
+                tr("%1; starting from STK's Bowed's map").arg(QString::fromUtf8(e.what())), 10000);
+        }
+    }
+    auto* dialog = new MidiLearnDialog(mapping, document_->model(), this);
+    connect(engine_, &EngineClient::midi_controller, dialog, &MidiLearnDialog::heard);
+    connect(dialog, &QDialog::accepted, this, [this, dialog] {
+        EngineClientOptions o = engine_->options();
+        o.midi_map = dialog->saved_path();
+        engine_->reconfigure(o);
+        save_engine_options(o);
+        statusBar()->showMessage(tr("MIDI plays with %1 now").arg(o.midi_map), 5000);
+    });
+    show_owned(dialog);
 }
 
 void MainWindow::open_playability() {

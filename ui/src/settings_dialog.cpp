@@ -2,12 +2,18 @@
 
 #include <QComboBox>
 #include <QDialogButtonBox>
+#include <QFileDialog>
 #include <QFormLayout>
+#include <QHBoxLayout>
 #include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
 #include <QSpinBox>
 
 #include "archet/audio_output.hpp"
 #include "archet/haptic_choice.hpp"
+#include "archet/midi/midi_mapping.hpp"
+#include "archet/midi_ports.hpp"
 
 namespace archet::ui {
 
@@ -50,6 +56,12 @@ SettingsDialog::SettingsDialog(const EngineClientOptions& current, QWidget* pare
         tr("The UDP port the engine listens on for OSC from this machine's programs "
            "(/archet/bow/slide, /archet/bow/press, /archet/finger, /archet/param, "
            "/archet/record; see the user guide)"));
+    midi_ = new QComboBox;
+    midi_->setObjectName("midi");
+    add_midi_choices(current);
+    midi_->setToolTip(
+        tr("Notes stop the string with the model's finger and bow it; controllers set the bow's "
+           "force and speed, vibrato and any parameter (Play → MIDI learn…)"));
     auto* note =
         new QLabel(tr("Each axis's displacement and force scaling are the gesture "
                       "points' position_scale and force_scale: select a hand in the "
@@ -61,6 +73,9 @@ SettingsDialog::SettingsDialog(const EngineClientOptions& current, QWidget* pare
     form->addRow(tr("Sample rate"), rate_);
     form->addRow(tr("Bow held by"), haptic_);
     form->addRow(tr("OSC port"), osc_);
+    form->addRow(tr("MIDI input"), midi_);
+    form->addRow(tr("MIDI map"), midi_map_row());
+    form->addRow(midi_map_problem_);
     form->addRow(note);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
     connect(buttons, &QDialogButtonBox::accepted, this, &QDialog::accept);
@@ -90,6 +105,67 @@ void SettingsDialog::add_audio_choices(const EngineClientOptions& current) {
     audio_->setCurrentIndex(chosen >= 0 ? chosen : std::max(0, audio_->findData(current.audio)));
 }
 
+// Off, the engine's own port for either API (others connect to it), then every source the APIs
+// list now; a source chosen before and gone now stays, said to be missing.
+void SettingsDialog::add_midi_choices(const EngineClientOptions& current) {
+    auto add = [&](const QString& label, const QString& source, const QString& api) {
+        midi_->addItem(label, source);
+        midi_->setItemData(midi_->count() - 1, api, kMidiApiRole);
+        if (source == current.midi && (source.isEmpty() || api == current.midi_api))
+            midi_->setCurrentIndex(midi_->count() - 1);
+    };
+    add(tr("Off"), "", "alsa");
+    add(tr("Archet's own port, archet:midi_in (ALSA sequencer)"), "virtual", "alsa");
+    add(tr("Archet's own port, archet:midi_in (JACK)"), "virtual", "jack");
+    bool found = current.midi.isEmpty() || current.midi == "virtual";
+    for (const std::string& api : midi_apis())
+        for (const std::string& port : list_midi_inputs(api)) {
+            const QString name = QString::fromStdString(port);
+            found =
+                found || (name == current.midi && QString::fromStdString(api) == current.midi_api);
+            add(QString::fromStdString(api == "jack" ? "JACK: " : "ALSA: ") + name, name,
+                QString::fromStdString(api));
+        }
+    if (!found) add(tr("%1 (not found now)").arg(current.midi), current.midi, current.midi_api);
+}
+
+QWidget* SettingsDialog::midi_map_row() {
+    auto* row = new QWidget;
+    auto* layout = new QHBoxLayout(row);
+    layout->setContentsMargins(0, 0, 0, 0);
+    midi_map_ = new QLineEdit(current_.midi_map);
+    midi_map_->setObjectName("midi_map");
+    midi_map_->setPlaceholderText(tr("STK's Bowed: CC 2 force, CC 1/11 vibrato, pressure speed"));
+    auto* choose = new QPushButton(tr("Choose…"));
+    connect(choose, &QPushButton::clicked, this, [this] {
+        const QString path = QFileDialog::getOpenFileName(
+            this, tr("MIDI mapping file"), midi_map_->text(), tr("MIDI maps (*.json)"));
+        if (!path.isEmpty()) midi_map_->setText(path);
+    });
+    layout->addWidget(midi_map_, 1);
+    layout->addWidget(choose);
+    midi_map_problem_ = new QLabel;
+    midi_map_problem_->setObjectName("midi_map_problem");
+    midi_map_problem_->setWordWrap(true);
+    midi_map_problem_->setStyleSheet("color: #b00020");
+    midi_map_problem_->hide();
+    return row;
+}
+
+void SettingsDialog::accept() {
+    const QString map = midi_map_->text().trimmed();
+    if (!map.isEmpty()) {
+        try {
+            midi::load_midi_mapping(map.toStdString());
+        } catch (const std::exception& e) {
+            midi_map_problem_->setText(QString::fromUtf8(e.what()));
+            midi_map_problem_->show();
+            return;  // the engine would refuse it: nothing is applied
+        }
+    }
+    QDialog::accept();
+}
+
 EngineClientOptions SettingsDialog::options() const {
     EngineClientOptions o = current_;
     o.audio = audio_->currentData().toString();
@@ -98,6 +174,9 @@ EngineClientOptions SettingsDialog::options() const {
     o.sample_rate = rate_->currentData().toDouble();
     o.haptic = haptic_->currentData().toString();
     o.osc_port = osc_->value();
+    o.midi = midi_->currentData().toString();
+    o.midi_api = midi_->currentData(kMidiApiRole).toString();
+    o.midi_map = midi_map_->text().trimmed();
     return o;
 }
 

@@ -15,6 +15,9 @@ EngineClientOptions restore_engine_options(EngineClientOptions o) {
     o.sample_rate = s.value("sample_rate", o.sample_rate).toDouble();
     o.haptic = s.value("haptic", o.haptic).toString();
     o.osc_port = std::clamp(s.value("osc_port", o.osc_port).toInt(), 0, 65535);
+    o.midi = s.value("midi", o.midi).toString();
+    o.midi_api = s.value("midi_api", o.midi_api).toString() == "jack" ? "jack" : "alsa";
+    o.midi_map = s.value("midi_map", o.midi_map).toString();
     return o;
 }
 
@@ -27,6 +30,9 @@ void save_engine_options(const EngineClientOptions& o) {
     s.setValue("sample_rate", o.sample_rate);
     s.setValue("haptic", o.haptic);
     s.setValue("osc_port", o.osc_port);
+    s.setValue("midi", o.midi);
+    s.setValue("midi_api", o.midi_api);
+    s.setValue("midi_map", o.midi_map);
 }
 
 QString last_model_path() {

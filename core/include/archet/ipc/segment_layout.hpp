@@ -143,6 +143,7 @@ enum class StatusKind : std::uint32_t {
     Error = 3,
     Blowup = 4,
     Take = 5,  ///< text: "recording DIR" when a take begins, "written DIR ..." when it is done
+    Midi = 6,  ///< a controller moved: sequence = its number (128: channel pressure), text says
 };
 
 /// The status kind's name for logs and messages ("unknown" for none of them).
@@ -158,6 +159,8 @@ constexpr const char* status_kind_name(StatusKind kind) {
             return "Blowup";
         case StatusKind::Take:
             return "Take";
+        case StatusKind::Midi:
+            return "Midi";
     }
     return "unknown";
 }

@@ -44,9 +44,6 @@ class MidiReceiver {
     /// "ALSA port archet:midi_in", for the engine's start-up line.
     const std::string& description() const { return description_; }
 
-    /// The input ports `api` offers, by name (empty when it cannot be reached).
-    static std::vector<std::string> ports(const std::string& api);
-
     static constexpr std::uint32_t kQueue = 4096;
 
   private:

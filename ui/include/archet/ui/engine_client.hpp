@@ -35,6 +35,11 @@ struct EngineClientOptions {
     QString takes;
     /// The UDP port the engine listens for OSC on, on this machine (0: none).
     int osc_port = 0;
+    /// MIDI in: "" (none), "virtual" (the engine's own port archet:midi_in) or a part of a
+    /// source's name; its API (alsa, jack); the mapping file (empty: STK's Bowed's controllers).
+    QString midi;
+    QString midi_api = "alsa";
+    QString midi_map;
 };
 
 struct EngineStatus {
@@ -92,6 +97,8 @@ class EngineClient : public QObject {
     void message(const QString& text);  ///< errors and take news, for the status bar
     void engine_lost(const QString& why);
     void model_loaded(const QString& name);
+    /// A MIDI controller moved (128: channel pressure); `said` describes it.
+    void midi_controller(int controller, const QString& said);
 
   private:
     void poll();

@@ -118,6 +118,7 @@ class MainWindow : public QMainWindow {
     void build_help_menu();
     QToolBar* build_palette();
     void open_settings();
+    void open_midi_learn();
     void open_playability();
 
     // Files (main_window_files.cpp).

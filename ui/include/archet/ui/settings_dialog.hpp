@@ -1,13 +1,16 @@
 #pragma once
 // Where the engine plays: the audio output (an API's default or one of its devices) and its buffer,
-// and what holds the bow (the pad's simulated hand, the pad directly, or a joystick found through
-// evdev or SDL). Applying it restarts the engine with the same model.
+// what holds the bow (the pad's simulated hand, the pad directly, or a joystick found through
+// evdev or SDL), and what else plays it: OSC, MIDI (a source and a mapping file, checked before
+// it is taken). Applying it restarts the engine with the same model.
 
 #include <QDialog>
 
 #include "archet/ui/engine_client.hpp"
 
 class QComboBox;
+class QLabel;
+class QLineEdit;
 class QSpinBox;
 
 namespace archet::ui {
@@ -22,8 +25,15 @@ class SettingsDialog : public QDialog {
     /// The audio choices' item role holding the device index (the api is the item's data).
     static constexpr int kDeviceRole = Qt::UserRole + 1;
 
+    /// The MIDI choices' item role holding the API (the source is the item's data).
+    static constexpr int kMidiApiRole = Qt::UserRole + 2;
+
+    void accept() override;  ///< refuses a mapping file that does not read, saying why
+
   private:
     void add_audio_choices(const EngineClientOptions& current);
+    void add_midi_choices(const EngineClientOptions& current);
+    QWidget* midi_map_row();
 
     EngineClientOptions current_;
     QComboBox* audio_;
@@ -31,6 +41,9 @@ class SettingsDialog : public QDialog {
     QSpinBox* osc_;
     QComboBox* rate_;
     QComboBox* haptic_;
+    QComboBox* midi_;
+    QLineEdit* midi_map_;
+    QLabel* midi_map_problem_;
 };
 
 }  // namespace archet::ui
