@@ -32,6 +32,7 @@
 #include "archet/simulated_hand.hpp"
 #include "audio_options.hpp"
 #include "commands.hpp"
+#include "live_play.hpp"
 #include "model_loading.hpp"
 #include "option_checks.hpp"
 
@@ -44,7 +45,24 @@ struct PlayArguments {
     AudioConfig audio;
     double duration = 0;
     bool stats = false;
+    int osc_port = 0;
+    std::string midi, midi_api = "alsa", midi_map;
 };
+
+// With OSC or MIDI the model is played live through the engine (live_play.hpp).
+int run_live(const PlayArguments& a) {
+    if (!a.gesture.empty())
+        throw InputError("--gesture",
+                         "plays a file; with --osc or --midi the players play it "
+                         "(give one or the other)");
+    if (a.stats)
+        throw InputError("--stats", "is for a gesture file's run, not with --osc or --midi");
+    LivePlayArguments live;
+    live.model = a.model, live.audio = a.audio, live.haptic = a.haptic, live.take = a.take;
+    live.duration = a.duration, live.osc_port = a.osc_port;
+    live.midi = a.midi, live.midi_api = a.midi_api, live.midi_map = a.midi_map;
+    return run_live_play(live);
+}
 
 // The real-time side of `play`: steps the model a block at a time into the device's buffer.
 class Player final : public AudioRenderer {
@@ -118,6 +136,7 @@ class Player final : public AudioRenderer {
 };
 
 int run_play(const PlayArguments& a) {
+    if (a.osc_port > 0 || !a.midi.empty()) return run_live(a);
     const InterruptionGuard stop_on_signal;  // SIGINT, SIGTERM, SIGHUP: stop and finish the take
     if (a.duration < 0 || !std::isfinite(a.duration))
         throw InputError("--duration", "must be positive seconds");
@@ -222,6 +241,20 @@ void add_play_command(CLI::App& app, Action& action) {
                   "Print JSON at the end: callbacks, xruns, worst_callback_us, callback_budget_us, "
                   "haptic_ticks, "
                   "haptic_late_ticks");
+    cmd->add_option("--osc", a->osc_port,
+                    "Play it live from OSC on this UDP port (loopback), through the engine")
+        ->check(CLI::Range(1, 65535));
+    cmd->add_option("--midi", a->midi,
+                    "Play it live from MIDI, through the engine: virtual (a port archet:midi_in) "
+                    "or a part of a source's name (archet devices lists them)")
+        ->expected(0, 1)
+        ->default_str("virtual");
+    cmd->add_option("--midi-api", a->midi_api, "Where MIDI comes from: alsa or jack")
+        ->check(CLI::IsMember({"alsa", "jack"}))
+        ->capture_default_str();
+    cmd->add_option(
+        "--midi-map", a->midi_map,
+        "How MIDI plays the model: a mapping file (default: STK's Bowed's controllers)");
     cmd->callback([&action, a] { action = [a] { return run_play(*a); }; });
 }
 

@@ -6,6 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -150,6 +154,40 @@ TEST_F(EngineMidi, TheStudioIsToldWhichControllerMoved) {
     EXPECT_EQ(said, "CC 74 = 90 (channel 1)");
 }
 
+// `archet play --midi` without the studio: the engine it starts listens, a note played on the
+// keyboard is in its take, and the take re-renders to the byte.
+TEST_F(EngineMidi, PlayFromTheCommandLineRecordsWhatTheKeyboardPlays) {
+    const auto dir = test::temp_dir("play-midi");
+    BowedStringOptions o;
+    o.pitch = 220, o.paper = true, o.finger = true;
+    write_file_atomically(dir / "fingered.json", format_model(build_bowed_string(o)));
+    const auto take = dir / "take";
+    std::vector<std::string> args{ARCHET_BINARY, "play",    (dir / "fingered.json").string(),
+                                  "--midi",      "virtual", "--midi-api",
+                                  "jack",        "--take",  take.string(),
+                                  "--duration",  "4"};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+    test::JackMidiKeyboard keyboard;
+    ASSERT_TRUE(test::wait_for([&] { return keyboard.connect("archet"); }, test::kGenerous));
+    ASSERT_TRUE(test::wait_for([&] { return std::filesystem::exists(take / "take.wav"); },
+                               test::kGenerous));
+    ASSERT_TRUE(keyboard.note_on(64, 64));
+    int status = -1;
+    ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    const std::vector<double> normal = probe_column(take / "probes.csv", "normal_force");
+    EXPECT_GT(*std::max_element(normal.begin(), normal.end()), 0.05) << "the note bowed";
+    const auto r =
+        test::run_archet({"render", "--take", take.string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(take / "take.wav"));
+}
+
 TEST(EngineMidiOptions, ABadMappingFileIsRefusedBeforeAnythingStarts) {
     const auto dir = test::temp_dir("engine-midi-map");
     const auto map = dir / "map.json";
@@ -160,6 +198,13 @@ TEST(EngineMidiOptions, ABadMappingFileIsRefusedBeforeAnythingStarts) {
     EXPECT_EQ(r.status, 2);
     EXPECT_NE(r.err.find("controls[0].target"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("bow_force"), std::string::npos) << r.err;
+    const std::string model = test::resource("models/bowed-string-220.json").string();
+    const auto play = test::run_archet({"play", model, "--midi", "--midi-map", map.string()});
+    EXPECT_EQ(play.status, 2);
+    EXPECT_NE(play.err.find("controls[0].target"), std::string::npos) << play.err;
+    const auto both = test::run_archet({"play", model, "--osc", "9000", "--gesture", model});
+    EXPECT_EQ(both.status, 2);
+    EXPECT_NE(both.err.find("--gesture"), std::string::npos) << both.err;
 }
 
 }  // namespace
