@@ -184,7 +184,12 @@ int run_render(const RenderArguments& a) {
             while (next_change < plan.changes.size() &&
                    plan.changes[next_change].tick == s.tick()) {
                 const ParameterChange& c = plan.changes[next_change];
-                smoother.glide(s, slots[next_change++], c.value, c.glide_samples);
+                const ParameterSlot& slot = slots[next_change++];
+                if (!c.from)
+                    smoother.glide(s, slot, c.value, c.glide_samples);
+                else if (!smoother.resume({slot, *c.from, c.value, c.done, c.glide_samples}))
+                    throw InputError(a.take + "/parameters.json",
+                                     "more glides under way at the start than the engine keeps");
             }
             smoother.advance(s);
         };

@@ -211,6 +211,7 @@ void ControlThread::nrt_load(const CommandFrame& c, const std::string& path) {
         current_resolver_ = loaded->resolver;
         current_model_ = std::move(model);
         current_name_ = current_model_.name;
+        glided_slots_.clear();  // the new model's slots are its own
         if (midi_) nrt_prepare_performer();
         delete bridge_.pending.exchange(loaded.release());  // an unclaimed older one is dropped
     } catch (const std::exception& e) {
@@ -226,13 +227,22 @@ void ControlThread::nrt_set_live_parameter(const CommandFrame& c, const Paramete
         // process, and the engine runs at its device's rate. Range and stability, once.
         set_parameter_validated(current_model_, name, c.value);
         nrt_set_in_waiting_model(slot, c.value);
+        nrt_remember_slot(slot, name.text());
         RealtimeCommand r{RealtimeCommand::SetParameter, slot, c.value, 0, 0};
         r.generation = generation_;  // the real-time thread applies it to that model only
-        if (live_take_) r.name = live_take_->parameter_name(name.text());
+        if (live_take_) r.name = live_take_->parameter_name(name.text()), r.named = true;
         nrt_send(r, c);
     } catch (const std::exception& e) {
         nrt_fail(c, e.what());
     }
+}
+
+// Each slot a parameter change glides, by name: a take that begins while one glides names it.
+void ControlThread::nrt_remember_slot(const ParameterSlot& slot, const std::string& name) {
+    for (const auto& [known, _] : glided_slots_)
+        if (known.kind == slot.kind && known.level == slot.level && known.index == slot.index)
+            return;
+    glided_slots_.push_back({slot, name});
 }
 
 // A model loaded but not yet swapped in was compiled before this change: it gets the value
@@ -262,6 +272,7 @@ void ControlThread::nrt_start_take(const CommandFrame& c, const std::string& fol
         const std::size_t state_size = Simulation(current_resolver_).state_size();
         auto take = std::make_unique<TakeRecorder>(inside, current_model_, sample_rate_, probes,
                                                    state_size);
+        for (const auto& [slot, name] : glided_slots_) take->name_slot(slot, name);
         RealtimeCommand r{RealtimeCommand::StartTake, {}, 0, 0, 0};
         r.take = take.get();
         r.generation = generation_;

@@ -56,6 +56,7 @@ class ControlThread {
     void nrt_load(const ipc::CommandFrame& c, const std::string& path);
     void nrt_set_live_parameter(const ipc::CommandFrame& c, const ParameterName& name);
     void nrt_set_in_waiting_model(const ParameterSlot& slot, double value);
+    void nrt_remember_slot(const ParameterSlot& slot, const std::string& name);
     void nrt_start_take(const ipc::CommandFrame& c, const std::string& folder);
     void nrt_collect_takes();
     std::string nrt_finish_take(TakeRecorder& take);
@@ -98,6 +99,8 @@ class ControlThread {
     // The view of the model the studio last loaded, for names and checks.
     Model current_model_;
     CompiledModel current_resolver_;
+    /// The slots parameter changes have glided in this model, with their names.
+    std::vector<std::pair<ParameterSlot, std::string>> glided_slots_;
     std::string current_name_;
     std::uint64_t generation_ = 0;  ///< models loaded so far
 };

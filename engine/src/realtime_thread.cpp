@@ -92,6 +92,8 @@ void RealtimeThread::rt_apply(const RealtimeCommand& r) {
             const int glide = static_cast<int>(kGlideSeconds * sim.sample_rate());
             rt_smoother_.glide(sim, r.slot, r.value, glide);
             if (rt_recording_) rt_recording_->parameter(sim.tick(), r.name, r.value, glide);
+            // A take waiting to begin may begin while this glides: it must know its name.
+            if (rt_waiting_take_ && r.named) rt_waiting_take_->name_slot_waiting(r.slot, r.name);
             return;
         }
         case RealtimeCommand::StartTake:
@@ -117,10 +119,11 @@ void RealtimeThread::rt_apply(const RealtimeCommand& r) {
     }
 }
 
-// A take begins at a block boundary where the model plays alone and no parameter is gliding:
-// its saved state and gesture then replay it exactly. Until then it waits.
+// A take begins at a block boundary where the model plays alone: its saved state, its gesture
+// and the glides under way (a fader that never rests keeps one going) then replay it exactly.
+// Until then it waits.
 void RealtimeThread::rt_begin_take() {
-    if (rt_recording_ || !rt_running_ || rt_fading_from_ || rt_smoother_.active() > 0) return;
+    if (rt_recording_ || !rt_running_ || rt_fading_from_) return;
     if (rt_running_->generation < rt_waiting_generation_) return;  // its model comes next
     if (rt_running_->generation > rt_waiting_generation_) {        // a newer model replaced it
         bridge_.finished_takes.ring().try_push(rt_waiting_take_);
@@ -131,6 +134,8 @@ void RealtimeThread::rt_begin_take() {
     if (double* state = rt_waiting_take_->state_buffer()) sim.save_state(state);
     rt_waiting_take_->begin(sim.tick());
     rt_waiting_take_->gesture(sim.time(), sim.device_position());
+    for (const ParameterSmoother::Glide& g : rt_smoother_.glides())
+        rt_waiting_take_->glide_under_way(g);
     rt_recording_ = rt_waiting_take_;
     rt_waiting_take_ = nullptr;
 }

@@ -40,6 +40,7 @@ TakeRecorder::TakeRecorder(std::filesystem::path folder, const Model& played, do
       gestures_(kGestureCapacity),
       changes_(kChangeCapacity),
       state_(state_size) {
+    slot_names_.reserve(kSlotNames);
     std::error_code ec;
     if (std::filesystem::exists(folder_) && !std::filesystem::is_empty(folder_, ec))
         throw InputError(folder_.string(),
@@ -114,8 +115,28 @@ void TakeRecorder::parameter(std::uint64_t tick, std::uint32_t name, double valu
     changes_.ring().try_push({tick, name, glide_samples, value});
 }
 
+void TakeRecorder::name_slot(const ParameterSlot& slot, const std::string& name) {
+    if (slot_names_.size() < kSlotNames) slot_names_.push_back({slot, parameter_name(name)});
+}
+
+void TakeRecorder::name_slot_waiting(const ParameterSlot& slot, std::uint32_t name) {
+    if (slot_names_.size() < kSlotNames) slot_names_.push_back({slot, name});  // no allocation
+}
+
+void TakeRecorder::glide_under_way(const ParameterSmoother::Glide& g) {
+    // The newest name of the slot (a slot named twice has one parameter: the same name).
+    for (const auto& [slot, name] : slot_names_)
+        if (slot.kind == g.slot.kind && slot.level == g.slot.level && slot.index == g.slot.index) {
+            changes_.ring().try_push({start_tick_.load(std::memory_order_relaxed), name, g.total,
+                                      g.to, true, g.from, g.done});
+            return;
+        }
+    unnamed_glides_.fetch_add(1, std::memory_order_relaxed);  // counted as lost: said at the end
+}
+
 std::uint64_t TakeRecorder::dropped() const {
-    return samples_.ring().dropped() + gestures_.ring().dropped() + changes_.ring().dropped();
+    return samples_.ring().dropped() + gestures_.ring().dropped() + changes_.ring().dropped() +
+           unnamed_glides_.load();
 }
 
 TakeDescription TakeRecorder::description() const {
@@ -131,8 +152,10 @@ TakeDescription TakeRecorder::description() const {
 std::vector<ParameterChange> TakeRecorder::named(const std::vector<Change>& changes) {
     std::vector<ParameterChange> list;
     const std::lock_guard lock(names_mutex_);
-    for (const auto& c : changes)
+    for (const auto& c : changes) {
         list.push_back({c.tick, names_.at(c.name), c.value, c.glide_samples});
+        if (c.under_way) list.back().from = c.from, list.back().done = c.done;
+    }
     return list;
 }
 

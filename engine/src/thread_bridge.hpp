@@ -32,6 +32,7 @@ struct RealtimeCommand {
     TakeRecorder* take = nullptr;  ///< StartTake: the recorder, owned by the real-time thread
     std::uint64_t generation = 0;  ///< StartTake, SetParameter: the model load it was made for
     std::uint32_t name = 0;        ///< SetParameter: its name in the take being recorded
+    bool named = false;            ///< SetParameter: `name` is set (a take was started)
 };
 
 struct ThreadBridge {

@@ -112,6 +112,46 @@ TEST(EngineOsc, BowsStopsWithTheFingerAndRecordsATakeThatReRendersToTheByte) {
     std::filesystem::remove_all(folder);
 }
 
+// A fader that never rests (vibrato, a slowly turned knob) keeps a parameter gliding: a take
+// asked for then begins at once, the glide in flight carried into it, and re-renders to the
+// byte.
+TEST(EngineOsc, ATakeBeginsWhileAFaderStreamsAndReRendersToTheByte) {
+    const auto dir = test::temp_dir("engine-osc-stream");
+    OscEngine osc;
+    ASSERT_TRUE(osc.start(dir));
+    double t = 0;
+    auto stream = [&](double) {
+        lo_send(osc.to, "/archet/bow/press", "f", 0.0015f);
+        lo_send(osc.to, "/archet/bow/slide", "f", static_cast<float>(-0.05 + 0.05 * t));
+        lo_send(osc.to, "/archet/finger", "f", static_cast<float>(0.8 + 0.05 * std::sin(30 * t)));
+        t += 0.002;
+    };
+    const auto warm = osc.engine.played() + 9600;
+    ASSERT_TRUE(osc.engine.play_until([&] { return osc.engine.played() >= warm; }, stream));
+    const auto folder = dir / "take";
+    osc.engine.link().start_take(folder.string());
+    ASSERT_TRUE(osc.engine.play_until(
+        [&] {
+            return osc.engine.seen(StatusKind::Take, [](const StatusFrame& s) {
+                return std::string(s.text).rfind("recording ", 0) == 0;
+            });
+        },
+        stream))
+        << "the take never began while the finger glided";
+    const auto until = osc.engine.played() + 14400;
+    ASSERT_TRUE(osc.engine.play_until([&] { return osc.engine.played() >= until; }, stream));
+    osc.engine.link().stop_take();
+    std::string said;
+    ASSERT_TRUE(osc.engine.await_take_written(&said)) << said;
+    const auto changes = read_parameter_changes(folder / "parameters.json");
+    ASSERT_FALSE(changes.empty()) << "the finger moved during the take";
+    const auto r =
+        test::run_archet({"render", "--take", folder.string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(folder / "take.wav"))
+        << "re-rendered to the byte, the glides included";
+}
+
 TEST(EngineOsc, RefusesWhatItCannotActOnAndSaysWhy) {
     const auto dir = test::temp_dir("engine-osc-bad");
     OscEngine osc;

@@ -19,8 +19,12 @@
 #include <thread>
 
 #include "archet/builders/bowed_string.hpp"
+#include "archet/common/input_error.hpp"
 #include "archet/engine/take_recorder.hpp"
 #include "archet/files/take_file.hpp"
+#include "archet/files/take_recovery.hpp"
+#include "archet/physics/parameter_smoother.hpp"
+#include "archet/physics/simulation.hpp"
 #include "take_file_support.hpp"
 #include "test_support.hpp"
 
@@ -328,6 +332,85 @@ TEST(Take, ANonFiniteSampleEndsTheTakeAndSaysSo) {
     EXPECT_NE(description.interrupted_by.find("stopped being finite at t = 0.0021"),
               std::string::npos)
         << description.interrupted_by;
+}
+
+}  // namespace
+}  // namespace archet
+
+namespace archet {
+namespace {
+
+// A glide under way when a take began is kept with where it started and how far it got, in
+// parameters.json and in the stream a killed take is recovered from; one that claims to have
+// finished, or more than finished, is refused by name.
+TEST(TakeParameters, AGlideUnderWayReadsBackAndAnImpossibleOneIsRefused) {
+    ParameterChange under_way{960, "finger.position", 0.5, 480, 0.75, 12};
+    const ParameterChange plain{1000, "friction.mu_s", 0.7, 480, std::nullopt, 0};
+    const auto read = parse_parameter_changes(format_parameter_changes({under_way, plain}), "p");
+    ASSERT_EQ(read.size(), 2u);
+    ASSERT_TRUE(read[0].from.has_value());
+    EXPECT_EQ(*read[0].from, 0.75);
+    EXPECT_EQ(read[0].done, 12);
+    EXPECT_FALSE(read[1].from.has_value());
+    const auto line = parse_parameter_stream(format_parameter_line(under_way), "jsonl");
+    ASSERT_EQ(line.size(), 1u);
+    EXPECT_EQ(*line[0].from, 0.75);
+    EXPECT_EQ(line[0].done, 12);
+    under_way.done = 480;  // a glide that has made all its steps is not under way
+    EXPECT_THROW(parse_parameter_changes(format_parameter_changes({under_way}), "p"), InputError);
+    EXPECT_THROW(parse_parameter_stream(format_parameter_line(under_way), "jsonl"), InputError);
+}
+
+}  // namespace
+}  // namespace archet
+
+namespace archet {
+namespace {
+
+// A take begun while a parameter glides (the engine's way, in this process): the glide under
+// way is carried into parameters.json, and `render --take` plays it on from where it was, to
+// the byte.
+TEST(TakeParameters, ATakeBegunMidGlideReRendersToTheByte) {
+    const auto dir = test::temp_dir("take-mid-glide");
+    BowedStringOptions o;
+    o.pitch = 220, o.paper = true, o.finger = true;
+    const Model model = build_bowed_string(o);
+    Simulation sim(compile(model, 48000));
+    const Gesture bow = steady_bow_gesture(0.1, 0.0015, 2.0);
+    sim.set_gesture_track(&bow);
+    const ParameterSlot finger = sim.model().resolve_parameter({"finger", "position"});
+    ParameterSmoother smoother;
+    for (int i = 0; i < 4800; ++i) smoother.advance(sim), sim.step();
+    smoother.glide(sim, finger, 0.75, 480);  // 10 ms, as the engine glides
+    for (int i = 0; i < 100; ++i) smoother.advance(sim), sim.step();
+    ASSERT_EQ(smoother.active(), 1u) << "the take begins mid-glide";
+    std::vector<std::string> probes;
+    for (const auto& p : sim.model().probes) probes.push_back(p.id);
+    {
+        TakeRecorder take(dir / "take", model, 48000, probes, sim.state_size());
+        take.name_slot(finger, "finger.position");
+        sim.save_state(take.state_buffer());
+        take.begin(sim.tick());
+        for (const auto& g : smoother.glides()) take.glide_under_way(g);
+        double values[ipc::kMaxProbes];
+        for (int i = 0; i < 9600; ++i) {
+            if (sim.tick() % 16 == 0)
+                take.gesture(sim.time() + 16 / 48000.0, bow.at(sim.time() + 16 / 48000.0));
+            smoother.advance(sim);
+            sim.step();
+            for (std::size_t p = 0; p < sim.probe_count(); ++p) values[p] = sim.probe(p);
+            take.sample(sim.time(), sim.output(), values, sim.probe_count());
+        }
+        take.finish();
+    }
+    const auto changes = read_parameter_changes(dir / "take" / "parameters.json");
+    ASSERT_EQ(changes.size(), 1u);
+    ASSERT_TRUE(changes[0].from.has_value());
+    EXPECT_EQ(changes[0].done, 100);
+    const auto r = test::run_archet(
+        {"render", "--take", (dir / "take").string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(dir / "take" / "take.wav"));
 }
 
 }  // namespace

@@ -77,17 +77,21 @@ class EngineSession {
         return wait_for(
             [&] {
                 link_.heartbeat();
-                ipc::StatusFrame f;
-                while (status_.try_pop(f)) {
-                    realtime_allocations_ = f.realtime_allocations;
-                    if (f.kind == static_cast<std::uint32_t>(ipc::StatusKind::Error))
-                        errors_.push_back(f.text);
-                    if (f.kind == static_cast<std::uint32_t>(kind) && accept(f)) return true;
-                }
-                drain();
-                return false;
+                return seen(kind, accept);
             },
             kGenerous);
+    }
+    // Reads the status frames there are now: true when one of `kind` `accept`s.
+    bool seen(ipc::StatusKind kind, const std::function<bool(const ipc::StatusFrame&)>& accept) {
+        ipc::StatusFrame f;
+        while (status_.try_pop(f)) {
+            realtime_allocations_ = f.realtime_allocations;
+            if (f.kind == static_cast<std::uint32_t>(ipc::StatusKind::Error))
+                errors_.push_back(f.text);
+            if (f.kind == static_cast<std::uint32_t>(kind) && accept(f)) return true;
+        }
+        drain();
+        return false;
     }
 
     bool await_take_written(std::string* text = nullptr) {

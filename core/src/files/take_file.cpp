@@ -101,16 +101,24 @@ TakeDescription read_take_file(const std::filesystem::path& path) {
     return parse_take(read_text_file(path), path.string());
 }
 
+void check_in_flight(const ParameterChange& c, const std::string& where) {
+    if (c.done < 0 || c.done >= c.glide_samples)
+        throw InputError(where, "done must be 0 to glide_samples - 1 (a glide under way)");
+}
+
 std::string format_parameter_changes(const std::vector<ParameterChange>& changes) {
     Json j;
     j["format"] = "archet-take-parameters";
     j["version"] = 1;
     j["changes"] = Json::array();
-    for (const auto& c : changes)
-        j["changes"].push_back({{"tick", c.tick},
-                                {"parameter", c.parameter},
-                                {"value", c.value},
-                                {"glide_samples", c.glide_samples}});
+    for (const auto& c : changes) {
+        Json change{{"tick", c.tick},
+                    {"parameter", c.parameter},
+                    {"value", c.value},
+                    {"glide_samples", c.glide_samples}};
+        if (c.from) change["from"] = *c.from, change["done"] = c.done;
+        j["changes"].push_back(std::move(change));
+    }
     return j.dump(2) + "\n";
 }
 
@@ -132,6 +140,11 @@ std::vector<ParameterChange> parse_parameter_changes(const std::string& text,
         change.value = c.number("value");
         change.glide_samples = c.integer("glide_samples", 1);
         if (change.glide_samples < 1) throw InputError(where, "glide_samples must be at least 1");
+        if (c.has("from")) {
+            change.from = c.number("from");
+            change.done = c.integer("done", 0);
+            check_in_flight(change, where);
+        }
         if (!changes.empty() && change.tick < changes.back().tick)
             throw InputError(where, "changes must be in the order they were made");
         c.finish();

@@ -184,16 +184,21 @@ std::vector<GestureKeyframe> parse_gesture_stream(std::string_view text,
 }
 
 std::string format_parameter_line(const ParameterChange& c) {
-    return Json::array({c.tick, c.parameter, c.value, c.glide_samples}).dump() + "\n";
+    Json line = Json::array({c.tick, c.parameter, c.value, c.glide_samples});
+    if (c.from) line.push_back(*c.from), line.push_back(c.done);  // a glide under way
+    return line.dump() + "\n";
 }
 
 std::vector<ParameterChange> parse_parameter_stream(std::string_view text,
                                                     const std::string& source) {
     std::vector<ParameterChange> changes;
     for_each_line(text, source, [&](const Json& line, const std::string& where) {
-        if (line.size() != 4 || !line[0].is_number_unsigned() || !line[1].is_string() ||
-            !line[3].is_number_integer())
-            throw InputError(where, "must be [tick, \"ELEMENT.PARAMETER\", value, glide_samples]");
+        if ((line.size() != 4 && line.size() != 6) || !line[0].is_number_unsigned() ||
+            !line[1].is_string() || !line[3].is_number_integer() ||
+            (line.size() == 6 && !line[5].is_number_integer()))
+            throw InputError(where,
+                             "must be [tick, \"ELEMENT.PARAMETER\", value, glide_samples] "
+                             "(and from, done for a glide under way)");
         ParameterChange c;
         c.tick = line[0].get<std::uint64_t>();
         c.parameter = line[1].get<std::string>();
@@ -202,6 +207,12 @@ std::vector<ParameterChange> parse_parameter_stream(std::string_view text,
         if (glide < 1 || glide > std::numeric_limits<int>::max())
             throw InputError(where, "glide_samples must be at least 1");
         c.glide_samples = static_cast<int>(glide);
+        if (line.size() == 6) {
+            c.from = finite(line[4], where, "from");
+            const auto done = line[5].get<std::int64_t>();
+            c.done = done < 0 || done > c.glide_samples ? -1 : static_cast<int>(done);
+            check_in_flight(c, where);
+        }
         if (!changes.empty() && c.tick < changes.back().tick)
             throw InputError(where, "changes must be in the order they were made");
         changes.push_back(std::move(c));

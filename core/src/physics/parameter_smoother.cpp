@@ -19,6 +19,12 @@ void ParameterSmoother::glide(Simulation& sim, const ParameterSlot& slot, double
     glides_[count_++] = {slot, from, target, 0, samples};
 }
 
+bool ParameterSmoother::resume(const Glide& glide) {
+    if (count_ == kCapacity) return false;
+    glides_[count_++] = glide;
+    return true;
+}
+
 void ParameterSmoother::advance(Simulation& sim) {
     for (std::size_t i = 0; i < count_;) {
         Glide& g = glides_[i];

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,10 @@ struct ParameterChange {
     std::string parameter;  ///< ELEMENT.PARAM
     double value = 0;
     int glide_samples = 1;
+    /// A glide already under way when the take began (at its first tick): it left `from`
+    /// and has made `done` of its `glide_samples` steps. Written as "from" and "done".
+    std::optional<double> from;
+    int done = 0;
 };
 
 std::string format_take(const TakeDescription& take);
@@ -45,6 +50,8 @@ TakeDescription parse_take(const std::string& text, const std::string& source);
 TakeDescription read_take_file(const std::filesystem::path& path);
 
 std::string format_parameter_changes(const std::vector<ParameterChange>& changes);
+/// Throws InputError at `where` unless a glide under way has made 0 … glide_samples − 1 steps.
+void check_in_flight(const ParameterChange& change, const std::string& where);
 std::vector<ParameterChange> parse_parameter_changes(const std::string& text,
                                                      const std::string& source);
 std::vector<ParameterChange> read_parameter_changes(const std::filesystem::path& path);

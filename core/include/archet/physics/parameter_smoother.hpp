@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <span>
 
 #include "archet/physics/simulation.hpp"
 
@@ -23,12 +24,17 @@ class ParameterSmoother {
     /// Forgets every glide (a new model).
     void clear() { count_ = 0; }
 
-  private:
     struct Glide {
         ParameterSlot slot;
         double from = 0, to = 0;
-        int done = 0, total = 1;
+        int done = 0, total = 1;  ///< steps made of its total
     };
+    /// The glides under way, for a take that begins among them.
+    std::span<const Glide> glides() const { return {glides_.data(), count_}; }
+    /// Takes up a glide where it was (a take's re-render); false when there is no room.
+    bool resume(const Glide& glide);
+
+  private:
     static bool same(const ParameterSlot& a, const ParameterSlot& b) {
         return a.kind == b.kind && a.level == b.level && a.index == b.index;
     }

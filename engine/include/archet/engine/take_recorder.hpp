@@ -25,6 +25,7 @@
 #include "archet/ipc/spsc_ring.hpp"
 #include "archet/model/gesture.hpp"
 #include "archet/model/model.hpp"
+#include "archet/physics/parameter_smoother.hpp"
 #include "archet/probe_csv_writer.hpp"
 #include "archet/sound_file_writer.hpp"
 
@@ -44,6 +45,9 @@ class TakeRecorder {
     // ---- control thread ----
     /// A number for a parameter name, to pass to parameter() from the real-time side.
     std::uint32_t parameter_name(const std::string& element_dot_parameter);
+    /// The name of a slot a glide may be under way in when the take begins (before it is
+    /// handed to the real-time thread).
+    void name_slot(const ParameterSlot& slot, const std::string& element_dot_parameter);
 
     // ---- real-time side: no allocation, no I/O ----
     /// Where Simulation::save_state() writes the state at the take's start (null without).
@@ -57,6 +61,11 @@ class TakeRecorder {
     void gesture(double time, GestureSample position);
     /// A parameter change that starts gliding at `tick`.
     void parameter(std::uint64_t tick, std::uint32_t name, double value, int glide_samples);
+    /// A glide under way at the take's first tick (call after begin(), before sample()).
+    void glide_under_way(const ParameterSmoother::Glide& glide);
+    /// While the take waits to begin: a change the control thread named for it (name from
+    /// parameter_name()) has started gliding `slot`.
+    void name_slot_waiting(const ParameterSlot& slot, std::uint32_t name);
 
     /// Stops, writes what is left, closes the files. `interrupted_by`, when not empty, says
     /// why the take ended before it was meant to ("SIGTERM"): take.json records it. Throws if
@@ -82,6 +91,9 @@ class TakeRecorder {
         std::uint32_t name;
         int glide_samples;
         double value;
+        bool under_way = false;  ///< a glide the take began among: from and done below
+        double from = 0;
+        int done = 0;
     };
     void write_loop();
     TakeDescription description() const;
@@ -110,6 +122,11 @@ class TakeRecorder {
     static_assert(std::atomic<double>::is_always_lock_free);
     std::mutex names_mutex_;  ///< control and writer threads only
     std::vector<std::string> names_;
+    /// Slots named before the take began: by the control thread before it hands the take over,
+    /// then by the real-time side alone, within the capacity reserved.
+    std::vector<std::pair<ParameterSlot, std::uint32_t>> slot_names_;
+    static constexpr std::size_t kSlotNames = 256;
+    std::atomic<std::uint64_t> unnamed_glides_{0};  ///< under way in a slot nobody named
     std::atomic<bool> stopping_{false};
     std::thread writer_;
     std::string error_;
