@@ -84,12 +84,12 @@ void ControlThread::nrt_take_midi() {
     if (!performer_) return;
     for (const auto& m : messages) performer_->receive(m);
     midi::MidiPerformer::Round round = performer_->advance(seconds);
-    for (const auto& why : round.refusals) nrt_say_midi(why);
-    for (const auto& [name, value] : round.parameters) {
+    for (const auto& refusal : round.refused()) nrt_say_midi(performer_->describe(refusal));
+    for (const auto& request : round.parameters()) {
         CommandFrame c{};
         c.opcode = static_cast<std::uint32_t>(Opcode::SetParameter);
-        c.value = value;
-        nrt_set_live_parameter(c, name);
+        c.value = request.value;
+        nrt_set_live_parameter(c, performer_->parameter_of(request));
     }
     if (round.bow_changed) {  // the real-time thread slides the bow on from where it is
         osc_hand_.press = round.press;

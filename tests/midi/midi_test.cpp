@@ -13,6 +13,7 @@
 #include "archet/midi/midi_mapping.hpp"
 #include "archet/midi/midi_message.hpp"
 #include "archet/midi/midi_performer.hpp"
+#include "archet/realtime_allocations.hpp"
 #include "test_support.hpp"
 
 namespace archet::midi {
@@ -127,8 +128,8 @@ MidiPerformer performer(MidiMapping m = default_midi_mapping()) {
 }
 
 double finger_in(const MidiPerformer::Round& r) {
-    for (const auto& [name, value] : r.parameters)
-        if (name.text() == "finger.position") return value;
+    for (const auto& request : r.parameters())
+        if (request.what == ParameterRequest::What::FingerPosition) return request.value;
     return -1;
 }
 
@@ -198,9 +199,10 @@ TEST(MidiPerformer, OtherChannelsUnreachableNotesAndAMissingFingerAreSaid) {
     EXPECT_FALSE(p.bowing()) << "channel 1 is not heard";
     p.receive({K::NoteOn, 2, 40, 100});  // E2, below the open A3
     const auto r = p.advance(0.01);
-    ASSERT_EQ(r.refusals.size(), 1u);
-    EXPECT_NE(r.refusals[0].find("note 40"), std::string::npos) << r.refusals[0];
-    EXPECT_NE(r.refusals[0].find("220 Hz"), std::string::npos) << r.refusals[0];
+    ASSERT_EQ(r.refused().size(), 1u);
+    const std::string said = p.describe(r.refused()[0]);
+    EXPECT_NE(said.find("note 40"), std::string::npos) << said;
+    EXPECT_NE(said.find("220 Hz"), std::string::npos) << said;
     EXPECT_FALSE(p.bowing());
     p.receive({K::NoteOn, 2, 56, 100});  // a semitone below: within reach of the open string?
     EXPECT_FALSE(p.bowing()) << "a whole semitone flat is not the open string";
@@ -211,10 +213,10 @@ TEST(MidiPerformer, OtherChannelsUnreachableNotesAndAMissingFingerAreSaid) {
     open.receive({K::NoteOn, 1, 30, 100});
     EXPECT_TRUE(open.bowing()) << "without a finger every note bows the open string";
     open.receive({K::Control, 1, 20, 100});
-    const auto said = open.advance(0.01);
-    ASSERT_EQ(said.refusals.size(), 1u);
-    EXPECT_NE(said.refusals[0].find("no finger"), std::string::npos);
-    EXPECT_TRUE(said.parameters.empty());
+    const auto round = open.advance(0.01);
+    ASSERT_EQ(round.refused().size(), 1u);
+    EXPECT_NE(open.describe(round.refused()[0]).find("no finger"), std::string::npos);
+    EXPECT_TRUE(round.parameters().empty());
 }
 
 TEST(MidiPerformer, AParameterRouteSetsTheModelsParameter) {
@@ -223,10 +225,37 @@ TEST(MidiPerformer, AParameterRouteSetsTheModelsParameter) {
     MidiPerformer p = performer(m);
     p.receive({K::Control, 1, 74, 127});
     p.receive({K::Control, 1, 7, 127});  // unmapped: nothing
+    p.receive({K::Control, 1, 74, 0});   // the newest value of a round acts
+    p.receive({K::Control, 1, 74, 127});
     const auto r = p.advance(0.01);
-    ASSERT_EQ(r.parameters.size(), 1u);
-    EXPECT_EQ(r.parameters[0].first.text(), "friction.mu_s");
-    EXPECT_EQ(r.parameters[0].second, 1.0);
+    ASSERT_EQ(r.parameters().size(), 1u);
+    EXPECT_EQ(p.parameter_of(r.parameters()[0]).text(), "friction.mu_s");
+    EXPECT_EQ(r.parameters()[0].value, 1.0);
+}
+
+// The performer plays inside an LV2 plugin's run(): once built, taking messages and giving
+// rounds neither allocates nor frees.
+TEST(MidiPerformer, PlaysWithoutAllocatingOnAMarkedRealTimeThread) {
+    MidiMapping m = default_midi_mapping();
+    m.controls.push_back({74, MidiTarget::Parameter, {"friction", "mu_s"}, 0.5, 1.0});
+    MidiPerformer p = performer(m);
+    const std::uint64_t before = realtime_allocations() + realtime_deallocations();
+    double moved = 0;
+    {
+        const RealtimeThreadMark mark;
+        for (int i = 0; i < 2000; ++i) {
+            p.receive({K::NoteOn, 1, 57 + i % 24, 1 + i % 127});
+            p.receive({K::Control, 1, 74, i % 128});
+            p.receive({K::Control, 1, 1, i % 128});
+            p.receive({K::PitchBend, 1, 0, i % 8192});
+            p.receive({K::NoteOn, 1, 20, 100});  // refused: out of reach
+            if (i % 3 == 0) p.receive({K::NoteOff, 1, 57 + i % 24, 0});
+            const auto r = p.advance(0.002);
+            moved += r.slide_speed + static_cast<double>(r.parameters().size());
+        }
+    }
+    EXPECT_EQ(realtime_allocations() + realtime_deallocations(), before);
+    EXPECT_GT(moved, 0);
 }
 
 }  // namespace

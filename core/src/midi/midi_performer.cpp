@@ -57,60 +57,81 @@ void MidiPerformer::receive(const MidiMessage& m) {
 }
 
 void MidiPerformer::note_on(int note, int velocity) {
-    if (!model_.finger.empty() && !finger_position(note)) {
-        pending_.refusals.push_back("note " + std::to_string(note) + " (" +
-                                    format_number(std::round(note_hz(note))) +
-                                    " Hz) is out of this string's reach: its open string is " +
-                                    format_number(std::round(model_.open_string_hz * 10) / 10) +
-                                    " Hz and the finger stops it up to four octaves higher");
-        return;
-    }
-    if (held_.empty()) {  // a new stroke, the other way, at the note's force
+    if (!model_.finger.empty() && !finger_position(note))
+        return refuse({Refusal::Why::OutOfReach, note});
+    if (held_count_ == 0) {  // a new stroke, the other way, at the note's force
         direction_ = -direction_;
         velocity_force_ =
             mapping_.velocity_force_min +
             (mapping_.velocity_force_max - mapping_.velocity_force_min) * (velocity - 1) / 126.0;
     }
-    std::erase(held_, note);
-    held_.push_back(note);
+    release(note);
+    held_[held_count_++] = note;  // at most 128 distinct notes, each held once
     sounding_ = note;
 }
 
 void MidiPerformer::note_off(int note) {
-    std::erase(held_, note);
-    if (!held_.empty()) sounding_ = held_.back();
+    release(note);
+    if (held_count_ > 0) sounding_ = held_[held_count_ - 1];
+}
+
+void MidiPerformer::release(int note) {
+    const auto end = held_.begin() + static_cast<std::ptrdiff_t>(held_count_);
+    held_count_ = static_cast<std::size_t>(std::remove(held_.begin(), end, note) - held_.begin());
+}
+
+void MidiPerformer::set(MidiTarget target, double value) {
+    switch (target) {
+        case MidiTarget::BowForce:
+            controlled_force_ = value;
+            return;
+        case MidiTarget::BowSpeed:
+            speed_ = value;
+            return;
+        case MidiTarget::VibratoDepth:
+            vibrato_depth_ = value;
+            return;
+        case MidiTarget::VibratoRate:
+            vibrato_rate_ = value;
+            return;
+        case MidiTarget::FingerPressure:
+        case MidiTarget::Parameter:
+            return;  // parameters, asked for by control()
+    }
 }
 
 void MidiPerformer::control(int controller, int value) {
     const ControlRoute* route = mapping_.route(controller);
     if (!route) return;  // unmapped controllers (a sustain pedal, say) play no part
     const double v = scaled(*route, value);
-    switch (route->target) {
-        case MidiTarget::BowForce:
-            controlled_force_ = v;
-            return;
-        case MidiTarget::BowSpeed:
-            speed_ = v;
-            return;
-        case MidiTarget::VibratoDepth:
-            vibrato_depth_ = v;
-            return;
-        case MidiTarget::VibratoRate:
-            vibrato_rate_ = v;
-            return;
-        case MidiTarget::FingerPressure:
-            if (model_.finger.empty()) {
-                pending_.refusals.push_back("controller " + std::to_string(controller) +
-                                            " moves the finger's pressure, and this model has "
-                                            "no finger (archet new bowed-string --finger)");
-                return;
-            }
-            pending_.parameters.push_back({{model_.finger, "pressure"}, v});
-            return;
-        case MidiTarget::Parameter:
-            pending_.parameters.push_back({route->parameter, v});
-            return;
+    if (route->target == MidiTarget::FingerPressure) {
+        if (model_.finger.empty()) return refuse({Refusal::Why::NoFinger, controller});
+        return request({ParameterRequest::What::FingerPressure, -1, v});
     }
+    if (route->target == MidiTarget::Parameter)
+        return request(
+            {ParameterRequest::What::Route, static_cast<int>(route - mapping_.controls.data()), v});
+    set(route->target, v);
+}
+
+// Of the requests of one round, the newest value of each parameter acts.
+void MidiPerformer::request(ParameterRequest r) {
+    for (std::size_t i = 0; i < pending_.request_count; ++i) {
+        ParameterRequest& known = pending_.requests[i];
+        if (known.what == r.what && known.route == r.route) {
+            known.value = r.value;
+            return;
+        }
+    }
+    if (pending_.request_count < pending_.requests.size())
+        pending_.requests[pending_.request_count++] = r;
+}
+
+void MidiPerformer::refuse(Refusal r) {
+    if (pending_.refusal_count < pending_.refusals.size())
+        pending_.refusals[pending_.refusal_count++] = r;
+    else
+        ++pending_.refusals_lost;
 }
 
 double MidiPerformer::force() const {
@@ -118,13 +139,11 @@ double MidiPerformer::force() const {
 }
 
 MidiPerformer::Round MidiPerformer::advance(double seconds) {
-    Round round = std::move(pending_);
-    pending_ = {};
-    const double speed = held_.empty() ? 0.0 : direction_ * speed_;
-    const double press = held_.empty() ? 0.0 : force() / model_.newtons_per_press;
-    round.bow_changed = speed != slide_speed_ || press != press_;
-    round.slide_speed = slide_speed_ = speed;
-    round.press = press_ = press;
+    const double speed = held_count_ == 0 ? 0.0 : direction_ * speed_;
+    const double press = held_count_ == 0 ? 0.0 : force() / model_.newtons_per_press;
+    pending_.bow_changed = speed != slide_speed_ || press != press_;
+    pending_.slide_speed = slide_speed_ = speed;
+    pending_.press = press_ = press;
     vibrato_phase_ = std::fmod(vibrato_phase_ + 2 * std::numbers::pi * vibrato_rate_ * seconds,
                                2 * std::numbers::pi);
     if (!model_.finger.empty() && sounding_ >= 0) {
@@ -132,12 +151,37 @@ MidiPerformer::Round MidiPerformer::advance(double seconds) {
         const double position =
             std::clamp(*finger_position(sounding_) * std::pow(2.0, -semitones / 12), 0.0, 1.0);
         if (position != finger_set_) {
-            round.parameters.insert(round.parameters.begin(),
-                                    {{model_.finger, "position"}, position});
+            request({ParameterRequest::What::FingerPosition, -1, position});
             finger_set_ = position;
         }
     }
+    Round round = pending_;
+    pending_ = Round{};
     return round;
+}
+
+ParameterName MidiPerformer::parameter_of(const ParameterRequest& r) const {
+    switch (r.what) {
+        case ParameterRequest::What::FingerPosition:
+            return {model_.finger, "position"};
+        case ParameterRequest::What::FingerPressure:
+            return {model_.finger, "pressure"};
+        case ParameterRequest::What::Route:
+            break;
+    }
+    return mapping_.controls.at(static_cast<std::size_t>(r.route)).parameter;
+}
+
+std::string MidiPerformer::describe(const Refusal& r) const {
+    if (r.why == Refusal::Why::NoFinger)
+        return "controller " + std::to_string(r.number) +
+               " moves the finger's pressure, and this model has no finger "
+               "(archet new bowed-string --finger)";
+    return "note " + std::to_string(r.number) + " (" +
+           format_number(std::round(note_hz(r.number))) +
+           " Hz) is out of this string's reach: its open string is " +
+           format_number(std::round(model_.open_string_hz * 10) / 10) +
+           " Hz and the finger stops it up to four octaves higher";
 }
 
 }  // namespace archet::midi
