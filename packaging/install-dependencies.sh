@@ -9,7 +9,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   qt6-base-dev libqcustomplot-dev
   libjack-jackd2-dev librtaudio-dev jackd2 libevdev-dev libsdl2-dev
-  liblo-dev liblo-tools librtmidi-dev
+  liblo-dev liblo-tools librtmidi-dev lv2-dev liblilv-dev lilv-utils
   clang libclang-rt-14-dev dpkg-dev
 )
 

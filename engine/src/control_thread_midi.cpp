@@ -5,42 +5,18 @@
 #include <cstdio>
 #include <map>
 
-#include "archet/analysis/modal_analysis.hpp"
-#include "archet/analysis/playability.hpp"
-#include "archet/common/input_error.hpp"
 #include "control_thread.hpp"
 
 namespace archet {
 
 using namespace ipc;
 
-namespace {
-
-// What the performer needs of `model`; throws InputError when MIDI cannot bow it.
-midi::PerformedModel performed(const Model& model) {
-    midi::PerformedModel p;
-    p.newtons_per_press = force_for_press(model, 1.0);  // throws without a bow module
-    if (const Lia* finger = first_finger(model)) {
-        p.finger = finger->id;
-        // Notes are placed against the open string: its f1 with the finger lifted.
-        Model open = model;
-        for (auto& l : open.lias)
-            if (l.kind == LiaKind::Finger) l.pressure = 0;
-        p.open_string_hz = analyse_modes(open).fundamental;
-        if (!(p.open_string_hz > 0))
-            throw InputError(finger->id, "the string along the finger has no first mode");
-    }
-    return p;
-}
-
-}  // namespace
-
-// A performer for the model just loaded, from where the hand is; a model MIDI cannot bow is
+// A performer for the model just loaded; a model MIDI cannot bow is
 // said once and then not played from MIDI.
 void ControlThread::nrt_prepare_performer() {
     performer_.reset();
     try {
-        performer_.emplace(options_.midi_mapping, performed(current_model_));
+        performer_.emplace(options_.midi_mapping, midi::performed_model(current_model_));
     } catch (const std::exception& e) {
         nrt_say_midi(std::string("this model is not played from MIDI: ") + e.what());
     }

@@ -51,6 +51,19 @@ TEST(Package, InstallsAndRunsFromATemporaryRoot) {
           "metainfo/org.archet.Studio.metainfo.xml", "man/man1/archet.1",
           "doc/archet/user-guide.md", "doc/archet/images/studio-dark.png"})
         EXPECT_TRUE(std::filesystem::exists(share / file)) << file;
+    // The LV2 instrument, where hosts look for it, and seen by lilv as they see it.
+    const auto lv2 = root / "usr" / "lib" / "lv2" / "archet.lv2";
+    for (const char* file : {"archet.so", "manifest.ttl", "archet.ttl", "default.json"})
+        EXPECT_TRUE(std::filesystem::exists(lv2 / file)) << "lib/lv2/archet.lv2/" << file;
+    EXPECT_TRUE(std::filesystem::exists(share / "archet/midi/stk-bowed.json"));
+    if (run("command -v lv2info") == 0) {
+        r = test::run_command({"env",
+                               "LV2_PATH=" + (root / "usr/lib/lv2").string() + ":/usr/lib/lv2",
+                               "lv2info", "urn:archet:bowed-string"});
+        EXPECT_EQ(r.status, 0) << r.err;
+        EXPECT_NE(r.out.find("Instrument Plugin"), std::string::npos) << r.out;
+        EXPECT_NE(r.out.find((lv2 / "archet.so").string()), std::string::npos) << r.out;
+    }
     if (run("command -v desktop-file-validate") == 0) {
         EXPECT_EQ(
             run("desktop-file-validate " + (share / "applications/archet-studio.desktop").string()),

@@ -20,6 +20,8 @@ std::set<std::string> bow_parts(const Model& model) {
     return parts;
 }
 
+}  // namespace
+
 // The chain's masses s1…sN, in order, as the bowed-string builder names them.
 std::vector<std::string> string_masses(const Model& model) {
     std::vector<std::string> masses;
@@ -27,8 +29,6 @@ std::vector<std::string> string_masses(const Model& model) {
         masses.push_back("s" + std::to_string(i));
     return masses;
 }
-
-}  // namespace
 
 std::vector<std::string> string_links(const Model& model) {
     const std::set<std::string> bow = bow_parts(model);

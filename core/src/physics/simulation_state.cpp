@@ -65,4 +65,18 @@ void Simulation::load_state(const double* in) {
                    [&](auto& v) { v = static_cast<std::remove_reference_t<decltype(v)>>(*in++); });
 }
 
+void Simulation::refresh_modal_points() {
+    for (auto& lv : model_.levels)
+        for (auto& p : lv.modal_points) {
+            p.coeff = 0;
+            double now = 0, before = 0;
+            for (std::size_t k = 0; k < p.modes.size(); ++k) {
+                p.coeff += p.weights[k] * p.weights[k] * lv.coeff[p.modes[k]];
+                now += p.weights[k] * lv.x()[p.modes[k]];
+                before += p.weights[k] * lv.x_prev()[p.modes[k]];
+            }
+            lv.x()[p.index] = now, lv.x_prev()[p.index] = before;
+        }
+}
+
 }  // namespace archet

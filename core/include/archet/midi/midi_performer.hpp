@@ -18,6 +18,7 @@
 
 #include "archet/midi/midi_mapping.hpp"
 #include "archet/midi/midi_message.hpp"
+#include "archet/model/model.hpp"
 #include "archet/model/parameter_name.hpp"
 
 namespace archet::midi {
@@ -45,6 +46,10 @@ struct Refusal {
     int number = 0;  ///< the note, or the controller
 };
 
+/// The model's: its first finger, the open string's first mode, the bow's force per metre of
+/// press. Throws InputError when MIDI cannot bow it (no bow module, no string mode).
+PerformedModel performed_model(const Model& model);
+
 class MidiPerformer {
   public:
     MidiPerformer(MidiMapping mapping, PerformedModel model);
@@ -55,6 +60,10 @@ class MidiPerformer {
     /// What a controller of `target` sets (bow force or speed, vibrato), as a controller would:
     /// an LV2 plugin's control ports.
     void set(MidiTarget target, double value);
+    /// The bow force of velocity 1 and 127 from now on (N).
+    void set_velocity_force(double minimum, double maximum) {
+        mapping_.velocity_force_min = minimum, mapping_.velocity_force_max = maximum;
+    }
 
     struct Round {
         bool bow_changed = false;  ///< the two below differ from the last round's

@@ -15,6 +15,8 @@ namespace archet {
 /// The string's links: joining two masses or oscillators, neither of them part of a bow
 /// module or a gesture point. Empty for a modal string (it has no links).
 std::vector<std::string> string_links(const Model& model);
+/// The string's masses s1…sN in order, as the bowed-string builder names them.
+std::vector<std::string> string_masses(const Model& model);
 
 /// Sets a named parameter (string.damping, bow.position) or ELEMENT.PARAM; throws InputError
 /// naming what is wrong. bow.position moves the bow module (and the probes that watched the

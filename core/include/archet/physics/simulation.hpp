@@ -44,6 +44,9 @@ class Simulation {
     /// Resumes from a saved state of the same compiled model (same state_size()). Set the
     /// gesture track first: setting it moves the gesture points.
     void load_state(const double* in);
+    /// After load_state() from a model whose modal points read other modes (the bow's contact
+    /// moved): each point's position now and a step ago, and its response, from its modes.
+    void refresh_modal_points();
 
     /// Keeps the per-element dissipation (slower; off by default).
     void enable_accounting(bool on);

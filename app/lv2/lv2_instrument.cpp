@@ -1,0 +1,99 @@
+#include "lv2_instrument.hpp"
+
+#include <cmath>
+
+#include "archet/model/model_parameters.hpp"
+#include "archet/model/model_validation.hpp"
+#include "archet/model/model_variants.hpp"
+
+namespace archet::lv2 {
+
+namespace {
+
+// The model with its bow at β (0: where it is), checked.
+Model prepared(Model model, double beta) {
+    if (beta > 0) set_variant_parameter(model, "bow.position", beta);
+    validate_model(model);
+    return model;
+}
+
+// Every damper along the string: its links' and its masses' losses to rest.
+std::vector<ParameterName> string_dampers(const Model& model) {
+    std::vector<ParameterName> names;
+    for (const auto& id : string_links(model)) names.push_back({id, "damping"});
+    for (const auto& id : string_masses(model))
+        if (const Mat* m = model.find_mat(id); m && m->kind == MatKind::Oscillator)
+            names.push_back({id, "damping"});
+    return names;
+}
+
+}  // namespace
+
+Instrument::Instrument(Model model, double sample_rate, double bow_position)
+    : model_(prepared(std::move(model), bow_position)),
+      sim_(compile(model_, sample_rate)),
+      performer_(midi::default_midi_mapping(), midi::performed_model(model_)),
+      limiter_(sample_rate),
+      bow_position_(bow_position) {
+    if (const Lia* finger = first_finger(model_))
+        for (const char* p : {"position", "pressure"})
+            finger_slots_.push_back(sim_.model().resolve_parameter({finger->id, p}));
+    for (const ParameterName& name : string_dampers(model_))
+        damping_.push_back({sim_.model().resolve_parameter(name), get_parameter(model_, name)});
+    if (const CompiledLevel* hand = hand_level(sim_.model()))
+        haptic_divider_ = static_cast<std::uint64_t>(hand->divider), haptic_dt_ = hand->dt;
+    glide_samples_ = static_cast<int>(std::lround(0.01 * sample_rate));  // 10 ms, as the engine
+    state_.resize(sim_.state_size());
+}
+
+void Instrument::set_controls(double bow_force, double bow_speed, double damping_scale) {
+    if (bow_force != bow_force_) performer_.set_velocity_force(0.25 * bow_force, bow_force);
+    if (bow_speed != bow_speed_) performer_.set(midi::MidiTarget::BowSpeed, bow_speed);
+    bow_force_ = bow_force, bow_speed_ = bow_speed;
+    if (damping_scale == damping_scale_) return;
+    damping_scale_ = damping_scale;
+    for (const Damping& d : damping_) sim_.write_slot(d.slot, d.base * damping_scale);
+}
+
+void Instrument::apply_round(double seconds) {
+    const midi::MidiPerformer::Round round = performer_.advance(seconds);
+    if (round.bow_changed) hand_.press = round.press, drive_speed_ = round.slide_speed;
+    for (const midi::ParameterRequest& r : round.parameters()) {
+        // The default map routes no parameter of its own: the finger's position and pressure.
+        if (r.what == midi::ParameterRequest::What::Route || finger_slots_.empty()) continue;
+        const bool position = r.what == midi::ParameterRequest::What::FingerPosition;
+        smoother_.glide(sim_, finger_slots_[position ? 0 : 1], r.value, glide_samples_);
+    }
+}
+
+void Instrument::drive_hand() {
+    hand_.slide += drive_speed_ * haptic_dt_;
+    sim_.set_device_position(hand_);
+}
+
+void Instrument::render(float* out, std::uint32_t frames) {
+    apply_round(frames / sim_.sample_rate());
+    for (std::uint32_t i = 0; i < frames; ++i) {
+        if (blown_up_) {
+            out[i] = 0.0f;
+            continue;
+        }
+        smoother_.advance(sim_);
+        if (sim_.tick() % haptic_divider_ == 0) drive_hand();
+        sim_.step();
+        const double y = sim_.output();
+        blown_up_ = !std::isfinite(y);
+        out[i] = limiter_.process(y);
+    }
+}
+
+bool Instrument::continue_from(const Instrument& from) {
+    if (from.model_id_ != model_id_ || from.state_.size() != state_.size()) return false;
+    from.sim_.save_state(state_.data());
+    sim_.load_state(state_.data());
+    sim_.refresh_modal_points();  // the contact's masses are this compile's
+    hand_ = from.hand_, drive_speed_ = from.drive_speed_;
+    return true;
+}
+
+}  // namespace archet::lv2
