@@ -61,6 +61,9 @@ struct Plugin {
     Instrument* playing = nullptr;  ///< run()'s
     Instrument* arrived = nullptr;  ///< from the worker, taken at the next run()
     bool rebuilding = false;        ///< a bow-position rebuild is with the worker
+    double bow_port = -1;           ///< the bow position port as last seen
+    double bow_target = 0;          ///< β asked for last, by the port or by MIDI (0: the model's)
+    double bow_built = 0;           ///< β last given to the worker (not asked again if it fails)
     // The worker's (and instantiate's, restore's):
     Model base;
     std::uint64_t model_id = 1;
@@ -183,13 +186,6 @@ void run(LV2_Handle handle, std::uint32_t frames) {
     Instrument& playing = *p.playing;
     playing.set_controls(port(p, BowForce, 0.15), port(p, BowSpeed, 0.1),
                          port(p, StringDamping, 1.0));
-    const double position = port(p, BowPosition, 0);
-    if (!p.rebuilding && std::abs(position - playing.bow_position()) > 1e-6) {
-        Work w{Work::Rebuild};
-        w.bow_position = position;
-        p.rebuilding = true;
-        schedule(p, w);
-    }
     // Sample-accurate: render up to each event, then take it.
     std::uint32_t done = 0;
     if (p.control) {
@@ -201,6 +197,18 @@ void run(LV2_Handle handle, std::uint32_t frames) {
         }
     }
     if (done < frames) p.playing->render(p.out + done, frames - done);
+    // The bow where it was asked last, by its port or by MIDI (CC 4): built by the worker.
+    const double port_position = port(p, BowPosition, 0);
+    if (port_position != p.bow_port) p.bow_port = p.bow_target = port_position;
+    if (const double asked = p.playing->take_bow_request(); asked > 0) p.bow_target = asked;
+    if (!p.rebuilding && p.bow_target != p.bow_built &&
+        std::abs(p.bow_target - p.playing->bow_position()) > 1e-6) {
+        p.bow_built = p.bow_target;
+        Work w{Work::Rebuild};
+        w.bow_position = p.bow_target;
+        p.rebuilding = true;
+        schedule(p, w);
+    }
 }
 
 void cleanup(LV2_Handle handle) {

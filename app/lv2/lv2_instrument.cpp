@@ -58,10 +58,15 @@ void Instrument::set_controls(double bow_force, double bow_speed, double damping
 void Instrument::apply_round(double seconds) {
     const midi::MidiPerformer::Round round = performer_.advance(seconds);
     if (round.bow_changed) hand_.press = round.press, drive_speed_ = round.slide_speed;
+    using What = midi::ParameterRequest::What;
     for (const midi::ParameterRequest& r : round.parameters()) {
-        // The default map routes no parameter of its own: the finger's position and pressure.
-        if (r.what == midi::ParameterRequest::What::Route || finger_slots_.empty()) continue;
-        const bool position = r.what == midi::ParameterRequest::What::FingerPosition;
+        // The default map routes no parameter of its own: the finger, and the bow's position,
+        // which the plugin has the worker build.
+        if (r.what == What::BowPosition) bow_request_ = r.value;
+        if ((r.what != What::FingerPosition && r.what != What::FingerPressure) ||
+            finger_slots_.empty())
+            continue;
+        const bool position = r.what == What::FingerPosition;
         smoother_.glide(sim_, finger_slots_[position ? 0 : 1], r.value, glide_samples_);
     }
 }

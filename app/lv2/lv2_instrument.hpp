@@ -5,6 +5,7 @@
 // then everything it does in run() is real-time safe: no allocation, no lock, no I/O.
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "archet/midi/midi_performer.hpp"
@@ -34,6 +35,8 @@ class Instrument {
     /// The simulation stopped being finite: silent until replaced.
     bool blown_up() const { return blown_up_; }
     double bow_position() const { return bow_position_; }
+    /// A bow position MIDI asked for since the last call (CC 4), or 0.
+    double take_bow_request() { return std::exchange(bow_request_, 0.0); }
     std::uint64_t model_id() const { return model_id_; }
     void set_model_id(std::uint64_t id) { model_id_ = id; }
 
@@ -59,7 +62,7 @@ class Instrument {
     std::uint64_t haptic_divider_ = 1;
     double haptic_dt_ = 0;
     int glide_samples_ = 480;
-    double bow_position_ = 0;
+    double bow_position_ = 0, bow_request_ = 0;
     std::uint64_t model_id_ = 0;
     std::vector<double> state_;  ///< room for continue_from()'s hand-over
     bool blown_up_ = false;

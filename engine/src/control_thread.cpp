@@ -136,6 +136,7 @@ void ControlThread::nrt_loop() {
         if (bridge_.blown.exchange(false)) nrt_recover_from_blowup();
         if (std::chrono::steady_clock::now() - last_status > std::chrono::milliseconds(50)) {
             publisher_.nrt_publish(StatusKind::Heartbeat, 0, current_name_);
+            if (midi_) nrt_show_controllers();
             if (osc_out_)
                 osc_out_->send(bridge_.bow_force.load(), bridge_.friction.load(),
                                bridge_.energy.load());

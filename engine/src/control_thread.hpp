@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -66,7 +67,9 @@ class ControlThread {
     void nrt_handle_osc(const ipc::OscCommand& c);
     void nrt_prepare_performer();
     void nrt_take_midi();
-    void nrt_show_controllers(const std::vector<midi::MidiMessage>& messages);
+    void nrt_note_controllers(const std::vector<midi::MidiMessage>& messages);
+    void nrt_show_controllers();
+    void nrt_move_bow(double beta);
     void nrt_say_midi(const std::string& what);
 
     ipc::SharedSegment segment_;
@@ -84,11 +87,12 @@ class ControlThread {
     std::uint64_t osc_takes_ = 0;         ///< takes started from OSC, for their names
     std::uint64_t osc_dropped_said_ = 0;  ///< dropped messages already reported
     std::unique_ptr<MidiReceiver> midi_;  ///< with --midi
-    std::optional<midi::MidiPerformer> performer_;  ///< plays the loaded model from MIDI
-    std::uint64_t midi_blocks_ = 0;                 ///< blocks played at the last MIDI round
-    std::uint64_t midi_dropped_said_ = 0;           ///< dropped messages already reported
-    std::unique_ptr<RealtimeThread> rt_;            ///< built once the device is open
-    std::unique_ptr<AudioOutput> output_;           ///< destroyed first: it calls rt_
+    std::optional<midi::MidiPerformer> performer_;        ///< plays the loaded model from MIDI
+    std::uint64_t midi_blocks_ = 0;                       ///< blocks played at the last MIDI round
+    std::uint64_t midi_dropped_said_ = 0;                 ///< dropped messages already reported
+    std::map<int, midi::MidiMessage> controllers_heard_;  ///< since the last status, newest
+    std::unique_ptr<RealtimeThread> rt_;                  ///< built once the device is open
+    std::unique_ptr<AudioOutput> output_;                 ///< destroyed first: it calls rt_
     double sample_rate_ = 48000;  ///< the device's clock, the master: set once open
     bool quit_ = false;
     std::uint64_t swaps_answered_ = 0;

@@ -3,13 +3,25 @@
 // hand's motion and parameter changes, which go the way the pad's and OSC's go: checked here,
 // glided in on the real-time thread, recorded by a take.
 #include <cstdio>
-#include <map>
 
+#include "archet/model/model_validation.hpp"
+#include "archet/model/model_variants.hpp"
+#include "archet/model/string_points.hpp"
 #include "control_thread.hpp"
 
 namespace archet {
 
 using namespace ipc;
+
+namespace {
+
+const Lia* bow_module_of(const Model& model) {
+    for (const auto& l : model.lias)
+        if (l.kind == LiaKind::BowFriction) return &l;
+    return nullptr;
+}
+
+}  // namespace
 
 // A performer for the model just loaded; a model MIDI cannot bow is
 // said once and then not played from MIDI.
@@ -27,19 +39,47 @@ void ControlThread::nrt_say_midi(const std::string& what) {
     nrt_fail({}, "MIDI: " + what);
 }
 
-// The studio hears which controllers moved (the newest value of each this round): its MIDI
-// learn assigns the one the player moves.
-void ControlThread::nrt_show_controllers(const std::vector<midi::MidiMessage>& messages) {
-    std::map<int, const midi::MidiMessage*> newest;
+// The bow's contact moved along the string (STK's CC 4): the playing model with its bow module on
+// the mass nearest β, compiled here, takes over the string's motion on the real-time thread (no
+// restart). Nothing happens until β reaches another mass. A take in progress ends there.
+void ControlThread::nrt_move_bow(double beta) {
+    try {
+        if (current_name_.empty() || bridge_.pending.load()) return;  // one move at a time
+        Model moved = current_model_;
+        set_variant_parameter(moved, "bow.position", beta);
+        const Lia* bow = bow_module_of(moved);
+        const Lia* was = bow_module_of(current_model_);
+        if (!bow || !was || bowed_centre(moved, *bow) == bowed_centre(current_model_, *was)) return;
+        validate_model(moved);
+        auto loaded = nrt_prepare_model(moved, sample_rate_, haptic_, 0, generation_);
+        loaded->continues = true;
+        loaded->handover.resize(loaded->simulation->state_size());
+        loaded->generation = ++generation_;
+        if (live_take_) nrt_say_midi("the bow moved along the string: the take ends here");
+        current_resolver_ = loaded->resolver;
+        current_model_ = std::move(moved);
+        delete bridge_.pending.exchange(loaded.release());
+    } catch (const std::exception& e) {
+        nrt_say_midi(std::string("bow position: ") + e.what());
+    }
+}
+
+// The studio hears which controllers moved, for MIDI learn: the newest value of each, with the
+// status every 50 ms (a swept controller must not crowd errors out of the status ring).
+void ControlThread::nrt_note_controllers(const std::vector<midi::MidiMessage>& messages) {
     for (const auto& m : messages) {
         if (m.kind == midi::MidiMessage::Kind::Control)
-            newest[m.number] = &m;
+            controllers_heard_[m.number] = m;
         else if (m.kind == midi::MidiMessage::Kind::ChannelPressure)
-            newest[midi::kChannelPressure] = &m;
+            controllers_heard_[midi::kChannelPressure] = m;
     }
-    for (const auto& [controller, m] : newest)
+}
+
+void ControlThread::nrt_show_controllers() {
+    for (const auto& [controller, m] : controllers_heard_)
         publisher_.nrt_publish(StatusKind::Midi, static_cast<std::uint32_t>(controller),
-                               midi::describe(*m));
+                               midi::describe(m));
+    controllers_heard_.clear();
 }
 
 // The messages since the last round, then the performer's vibrato moved on by the sound played
@@ -56,12 +96,19 @@ void ControlThread::nrt_take_midi() {
     const double seconds =
         static_cast<double>(blocks - midi_blocks_) * output_->buffer_frames() / sample_rate_;
     midi_blocks_ = blocks;
-    nrt_show_controllers(messages);
+    nrt_note_controllers(messages);
     if (!performer_) return;
     for (const auto& m : messages) performer_->receive(m);
     midi::MidiPerformer::Round round = performer_->advance(seconds);
     for (const auto& refusal : round.refused()) nrt_say_midi(performer_->describe(refusal));
+    if (round.refusals_lost > 0)
+        nrt_say_midi(std::to_string(round.refusals_lost) +
+                     " more messages refused in the same 2 ms");
     for (const auto& request : round.parameters()) {
+        if (request.what == midi::ParameterRequest::What::BowPosition) {
+            nrt_move_bow(request.value);
+            continue;
+        }
         CommandFrame c{};
         c.opcode = static_cast<std::uint32_t>(Opcode::SetParameter);
         c.value = request.value;

@@ -29,6 +29,10 @@ struct LoadedModel {
     double held_energy = 0;         ///< J, the last stored energy the scopes were given
     std::uint64_t generation = 0;   ///< which load of the control thread it comes from
     std::uint32_t sequence = 0;
+    /// The playing model with its bow moved: it takes over that model's motion (the state,
+    /// through `handover`, sized here) instead of starting from rest and cross-fading.
+    bool continues = false;
+    std::vector<double> handover;
 };
 
 /// Control thread: compiles a validated model at the device's rate into what the real-time

@@ -61,6 +61,7 @@ void RealtimeThread::rt_swap_in_pending() {
     // The bow is where the hand holds it: the device's (or the pad's) position carries over.
     // Read before the old model is handed back for deletion.
     const GestureSample held = rt_running_ ? rt_running_->simulation->device_position() : rt_pad_;
+    if (next->continues && rt_running_ && rt_continue_into(*next)) return;
     if (rt_running_ && rt_playing_ && !rt_muted_) {
         // Both play for a few milliseconds and cross-fade: no click.
         rt_fading_from_ = rt_running_;
@@ -157,6 +158,20 @@ double RealtimeThread::rt_cross_fade(double incoming) {
         return incoming;
     }
     return (1.0 - a) * outgoing + a * incoming;
+}
+
+// The same model with its bow elsewhere takes over the string's motion and the glides under way
+// (its slots are the same): it plays on from here, no fade. A take ends (its model changed).
+bool RealtimeThread::rt_continue_into(LoadedModel& next) {
+    Simulation& from = *rt_running_->simulation;
+    if (rt_fading_from_ || next.handover.size() != from.state_size()) return false;
+    from.save_state(next.handover.data());
+    next.simulation->load_state(next.handover.data());
+    next.simulation->refresh_modal_points();
+    rt_end_take();
+    bridge_.retired.store(rt_running_, std::memory_order_release);
+    rt_running_ = &next;
+    return true;
 }
 
 // The driven bow one haptic period on, where the gesture points read it next.

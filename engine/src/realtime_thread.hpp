@@ -54,6 +54,7 @@ class RealtimeThread final : public AudioRenderer {
     void rt_end_take();
     double rt_cross_fade(double incoming);
     void rt_drive_bow(Simulation& sim, const LoadedModel& m);
+    bool rt_continue_into(LoadedModel& next);
     double rt_studio_fade(double output);
     void rt_mute(float* from, float* to);
     void rt_run_block(LoadedModel& m, float* out, int frames, int channels);

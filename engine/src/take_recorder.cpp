@@ -124,7 +124,7 @@ void TakeRecorder::name_slot_waiting(const ParameterSlot& slot, std::uint32_t na
 }
 
 void TakeRecorder::glide_under_way(const ParameterSmoother::Glide& g) {
-    // The newest name of the slot (a slot named twice has one parameter: the same name).
+    // A slot has one name (it is one parameter of the model), however often it was named.
     for (const auto& [slot, name] : slot_names_)
         if (slot.kind == g.slot.kind && slot.level == g.slot.level && slot.index == g.slot.index) {
             changes_.ring().try_push({start_tick_.load(std::memory_order_relaxed), name, g.total,

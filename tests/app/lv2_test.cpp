@@ -111,12 +111,17 @@ TEST(Lv2, ANoteIsPlayedAtItsPitchWithoutAllocatingAndLiftedAtItsEnd) {
 
 // A new bow position is compiled in the worker and swapped in: the string plays on through it
 // (its motion carried over, not started again), and the sound changes with where it is bowed.
-TEST(Lv2, TheBowMovesAlongTheStringWhileItPlays) {
+class Lv2Bow : public ::testing::TestWithParam<bool> {};
+
+TEST_P(Lv2Bow, TheBowMovesAlongTheStringWhileItPlays) {
     Lv2Host host(ARCHET_LV2_BUNDLE);
     ASSERT_TRUE(host.ready());
     host.midi({0x90, 57, 100});  // the open A3
     const std::vector<float> before = play(host, 1.0);
-    host.control(2) = 0.2f;  // β = 0.2, from the model's 0.12
+    if (GetParam())
+        host.control(2) = 0.2f;  // its port: β = 0.2, from the model's 0.12
+    else
+        host.midi({0xB0, 4, 64});  // STK's CC 4: β = 0.05 + 0.25 · 64/127 ≈ 0.176
     std::vector<float> after = play(host, 0.1);
     const std::vector<float> later = play(host, 1.0);
     after.insert(after.end(), later.begin(), later.end());
@@ -130,6 +135,8 @@ TEST(Lv2, TheBowMovesAlongTheStringWhileItPlays) {
     EXPECT_GT(std::abs(rms(after, after.size() - 24000, after.size()) - playing), 0.05 * playing)
         << "bowed elsewhere, it sounds otherwise";
 }
+
+INSTANTIATE_TEST_SUITE_P(ByPortAndByMidi, Lv2Bow, ::testing::Values(true, false));
 
 TEST(Lv2, APatchSetLoadsAnotherModelAndTheStateKeepsItsPath) {
     const auto dir = test::temp_dir("lv2-model");

@@ -63,7 +63,7 @@ TEST(MidiMapping, TheDefaultFollowsStksBowedAndIsTheShippedFile) {
     EXPECT_EQ(m.route(1)->target, MidiTarget::VibratoDepth);
     EXPECT_EQ(m.route(11)->target, MidiTarget::VibratoRate);
     EXPECT_EQ(m.route(kChannelPressure)->target, MidiTarget::BowSpeed);
-    EXPECT_FALSE(m.route(4)) << "a model's bow contact is structural";
+    EXPECT_EQ(m.route(4)->target, MidiTarget::BowPosition);
     const std::string shipped = read_text_file(test::resource("midi/stk-bowed.json"));
     EXPECT_EQ(write_midi_mapping(m), shipped);
     EXPECT_EQ(write_midi_mapping(parse_midi_mapping(shipped, "stk-bowed.json")), shipped);

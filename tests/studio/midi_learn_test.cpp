@@ -63,7 +63,7 @@ TEST(MidiLearn, TheControllerMovedIsAssignedWithItsRangeAndSavedForTheEngine) {
     MidiLearnDialog dialog(midi::default_midi_mapping(), model);
     auto* table = dialog.findChild<QTableWidget*>("routes");
     ASSERT_NE(table, nullptr);
-    EXPECT_EQ(table->rowCount(), 4) << "STK's Bowed's four controllers";
+    EXPECT_EQ(table->rowCount(), 5) << "STK's Bowed's five controllers";
     auto* target = dialog.findChild<QComboBox*>("target");
     const int mu = target->findText("friction.mu_s");
     ASSERT_GE(mu, 0) << "the bow's friction is offered";
@@ -75,7 +75,7 @@ TEST(MidiLearn, TheControllerMovedIsAssignedWithItsRangeAndSavedForTheEngine) {
     ASSERT_EQ(boxes.size(), 2);
     boxes[0]->setValue(0.5), boxes[1]->setValue(0.9);
     dialog.assign();
-    ASSERT_EQ(table->rowCount(), 5);
+    ASSERT_EQ(table->rowCount(), 6);
     dialog.resize(560, 520);
     QDir().mkpath(ARCHET_ARTIFACT_DIR);
     EXPECT_TRUE(dialog.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-midi-learn.png")));

@@ -34,6 +34,7 @@ constexpr TargetChoice kPlayerTargets[] = {
     {MidiTarget::VibratoDepth, "Vibrato depth (semitones)", 0.0, 0.5},
     {MidiTarget::VibratoRate, "Vibrato rate (Hz)", 3.0, 8.0},
     {MidiTarget::FingerPressure, "Finger pressure (0 … 1)", 0.0, 1.0},
+    {MidiTarget::BowPosition, "Bow position (β from the bridge)", 0.05, 0.3},
 };
 
 bool is_string_element(const std::string& id) {  // s12, k40: too many to list one by one

@@ -135,7 +135,8 @@ QWidget* SettingsDialog::midi_map_row() {
     layout->setContentsMargins(0, 0, 0, 0);
     midi_map_ = new QLineEdit(current_.midi_map);
     midi_map_->setObjectName("midi_map");
-    midi_map_->setPlaceholderText(tr("STK's Bowed: CC 2 force, CC 1/11 vibrato, pressure speed"));
+    midi_map_->setPlaceholderText(
+        tr("STK's Bowed: CC 2 force, CC 4 position, CC 1/11 vibrato, pressure speed"));
     auto* choose = new QPushButton(tr("Choose…"));
     connect(choose, &QPushButton::clicked, this, [this] {
         const QString path = QFileDialog::getOpenFileName(

@@ -32,6 +32,7 @@ constexpr TargetInfo kTargets[] = {
     {MidiTarget::VibratoDepth, "vibrato_depth", "semitones", 0, 2},
     {MidiTarget::VibratoRate, "vibrato_rate", "Hz", 0, 20},
     {MidiTarget::FingerPressure, "finger_pressure", "", 0, 1},
+    {MidiTarget::BowPosition, "bow_position", "", 0.02, 0.45},
     {MidiTarget::Parameter, "parameter", "", -1e300, 1e300},
 };
 
@@ -99,6 +100,7 @@ const ControlRoute* MidiMapping::route(int controller) const {
 MidiMapping default_midi_mapping() {
     MidiMapping m;
     m.controls = {{2, MidiTarget::BowForce, {}, 0.0, 0.5},
+                  {4, MidiTarget::BowPosition, {}, 0.05, 0.3},
                   {1, MidiTarget::VibratoDepth, {}, 0.0, 0.5},
                   {11, MidiTarget::VibratoRate, {}, 3.0, 8.0},
                   {kChannelPressure, MidiTarget::BowSpeed, {}, 0.0, 0.4}};

@@ -95,8 +95,9 @@ void MidiPerformer::set(MidiTarget target, double value) {
             vibrato_rate_ = value;
             return;
         case MidiTarget::FingerPressure:
+        case MidiTarget::BowPosition:
         case MidiTarget::Parameter:
-            return;  // parameters, asked for by control()
+            return;  // asked of the model, by control()
     }
 }
 
@@ -108,6 +109,8 @@ void MidiPerformer::control(int controller, int value) {
         if (model_.finger.empty()) return refuse({Refusal::Why::NoFinger, controller});
         return request({ParameterRequest::What::FingerPressure, -1, v});
     }
+    if (route->target == MidiTarget::BowPosition)
+        return request({ParameterRequest::What::BowPosition, -1, v});
     if (route->target == MidiTarget::Parameter)
         return request(
             {ParameterRequest::What::Route, static_cast<int>(route - mapping_.controls.data()), v});
@@ -166,6 +169,8 @@ ParameterName MidiPerformer::parameter_of(const ParameterRequest& r) const {
             return {model_.finger, "position"};
         case ParameterRequest::What::FingerPressure:
             return {model_.finger, "pressure"};
+        case ParameterRequest::What::BowPosition:
+            return {"bow", "position"};  // a variant of the model (model_variants.hpp)
         case ParameterRequest::What::Route:
             break;
     }

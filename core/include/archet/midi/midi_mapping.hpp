@@ -4,12 +4,10 @@
 // the default, which follows STK's Bowed where it has a meaning here:
 //
 //   CC 2  (breath)          bow force, N        STK: bow pressure
+//   CC 4  (foot)            bow position, β     STK: bow position
 //   CC 1  (modulation)      vibrato depth, semitones   STK: vibrato gain
 //   CC 11 (expression)      vibrato rate, Hz    STK: vibrato frequency
 //   128   (channel pressure) bow speed, m/s     STK: volume (its bow velocity)
-//
-// STK's CC 4 (bow position) has no default here: a model's bow touches the string where the
-// model says (see docs/midi.md).
 
 #include <filesystem>
 #include <string>
@@ -26,6 +24,7 @@ enum class MidiTarget {
     VibratoDepth,    ///< semitones either way
     VibratoRate,     ///< Hz
     FingerPressure,  ///< the model's finger, 0 … 1
+    BowPosition,     ///< β, where the bow meets the string (its contact moves to a mass)
     Parameter        ///< any run-time parameter of the model, ELEMENT.PARAM
 };
 

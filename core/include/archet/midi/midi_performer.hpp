@@ -33,7 +33,7 @@ struct PerformedModel {
 
 /// A parameter a round sets: the finger's position or pressure, or a control route's parameter.
 struct ParameterRequest {
-    enum class What { FingerPosition, FingerPressure, Route };
+    enum class What { FingerPosition, FingerPressure, BowPosition, Route };
     What what = What::FingerPosition;
     int route = -1;  ///< Route: the index in the mapping's controls
     double value = 0;
