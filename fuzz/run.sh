@@ -9,7 +9,7 @@ cd "$root"
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz
 mkdir -p build-fuzz/crashes
-for target in model_loader gesture_loader command_decoder osc_packet take_reader; do
+for target in model_loader gesture_loader command_decoder osc_packet midi take_reader; do
   corpus="build-fuzz/corpus/$target"
   mkdir -p "$corpus" "fuzz/regressions/$target"
   # Seeds: the shipped files for the loaders.
@@ -18,6 +18,7 @@ for target in model_loader gesture_loader command_decoder osc_packet take_reader
     gesture_loader) cp -n resources/gestures/*.json tests/data/bad-gestures/*.json "$corpus/" 2>/dev/null || true ;;
     take_reader) cp -n fuzz/seeds/take_reader/* "$corpus/" ;;
     osc_packet) cp -n fuzz/seeds/osc_packet/* "$corpus/" ;;
+    midi) cp -n fuzz/seeds/midi/* "$corpus/" ;;
   esac
   if compgen -G "fuzz/regressions/$target/*" >/dev/null; then
     "build-fuzz/bin/fuzz_$target" fuzz/regressions/"$target"/*

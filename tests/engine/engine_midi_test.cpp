@@ -14,6 +14,9 @@
 #include <fstream>
 #include <sstream>
 
+#include <RtMidi.h>
+#include <unistd.h>
+
 #include "archet/analysis/bowing_analysis.hpp"
 #include "archet/builders/bowed_string.hpp"
 #include "archet/files/model_file.hpp"
@@ -227,6 +230,39 @@ TEST_F(EngineMidi, PlayFromTheCommandLineRecordsWhatTheKeyboardPlays) {
         test::run_archet({"render", "--take", take.string(), "-o", (dir / "again.wav").string()});
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(take / "take.wav"));
+}
+
+// The ALSA sequencer, where most desktop controllers appear: a program's output port (RtMidi's,
+// as a sequencer's would be) connected to the engine's archet:midi_in plays a note. Skips where
+// the machine has no sequencer (a container without /dev/snd/seq).
+TEST(EngineMidiAlsa, ANoteFromTheSequencerIsBowed) {
+    if (::access("/dev/snd/seq", R_OK | W_OK) != 0)
+        GTEST_SKIP() << "no ALSA sequencer on this machine (/dev/snd/seq; modprobe snd-seq)";
+    const auto dir = test::temp_dir("engine-midi-alsa");
+    BowedStringOptions o;
+    o.pitch = 220, o.paper = true, o.finger = true;
+    write_file_atomically(dir / "fingered.json", format_model(build_bowed_string(o)));
+    auto options = EngineSession::options();
+    options.midi = "virtual", options.midi_api = "alsa";
+    EngineSession engine(options);
+    ASSERT_TRUE(engine.start_file(dir / "fingered.json"));
+    RtMidiOut out(RtMidi::LINUX_ALSA, "keyboard");
+    unsigned port = 0;
+    ASSERT_TRUE(test::wait_for(
+        [&] {
+            for (port = 0; port < out.getPortCount(); ++port)
+                if (out.getPortName(port).find("archet") != std::string::npos) return true;
+            return false;
+        },
+        test::kGenerous))
+        << "the engine's port did not appear on the sequencer";
+    out.openPort(port);
+    const std::vector<unsigned char> note{0x90, 64, 64};
+    out.sendMessage(&note);
+    const auto until = engine.played() + 24000;
+    ASSERT_TRUE(engine.play_until([&] { return engine.played() >= until; }, [](double) {}));
+    EXPECT_GT(engine.latest().values[4], 0.01) << "the note pressed the bow in";
+    EXPECT_TRUE(engine.errors().empty()) << engine.errors().front();
 }
 
 TEST(EngineMidiOptions, ABadMappingFileIsRefusedBeforeAnythingStarts) {
