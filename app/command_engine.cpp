@@ -48,7 +48,7 @@ void add_engine_command(CLI::App& app, Action& action) {
                     "Send /archet/out/bow_force, /archet/out/friction and /archet/out/energy to "
                     "this HOST:PORT, 20 times a second");
     cmd->add_option("--midi", o->midi,
-                    "MIDI in: virtual (a port archet:midi_in to connect controllers and "
+                    "MIDI in: virtual (a port archet-midi:midi_in to connect controllers and "
                     "sequencers to) or a part of an existing input port's name")
         ->expected(0, 1)
         ->default_str("virtual");

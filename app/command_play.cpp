@@ -244,9 +244,10 @@ void add_play_command(CLI::App& app, Action& action) {
     cmd->add_option("--osc", a->osc_port,
                     "Play it live from OSC on this UDP port (loopback), through the engine")
         ->check(CLI::Range(1, 65535));
-    cmd->add_option("--midi", a->midi,
-                    "Play it live from MIDI, through the engine: virtual (a port archet:midi_in) "
-                    "or a part of a source's name (archet devices lists them)")
+    cmd->add_option(
+           "--midi", a->midi,
+           "Play it live from MIDI, through the engine: virtual (a port archet-midi:midi_in) "
+           "or a part of a source's name (archet devices lists them)")
         ->expected(0, 1)
         ->default_str("virtual");
     cmd->add_option("--midi-api", a->midi_api, "Where MIDI comes from: alsa or jack")

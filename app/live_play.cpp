@@ -40,6 +40,9 @@ class StatusReader {
             if (k == ipc::StatusKind::Take || k == ipc::StatusKind::Blowup)
                 std::cerr << "archet: " << (k == ipc::StatusKind::Take ? "take " : "") << text
                           << "\n";
+            if (k == ipc::StatusKind::Take &&
+                (text.rfind("written ", 0) == 0 || text.rfind("take failed", 0) == 0))
+                take_done_ = true;  // whenever it comes: the engine may end a take itself
             if (k == ipc::StatusKind::Heartbeat && device_.empty()) device_ = text;
             if (k == kind && (sequence ? f.sequence == sequence : text.rfind(prefix, 0) == 0))
                 seen = true, said_ = text;
@@ -66,6 +69,7 @@ class StatusReader {
         return false;
     }
     const std::string& refused() const { return refused_; }
+    bool take_done() const { return take_done_; }
     const std::string& said() const { return said_; }
     const std::string& device() const { return device_; }
 
@@ -75,6 +79,7 @@ class StatusReader {
     ipc::SpscRing<ipc::ProbeFrame> probes_;
     ipc::SpscRing<ipc::ShapeFrame> shapes_;
     std::string refused_, said_, device_;
+    bool take_done_ = false;
 };
 
 link::EngineLinkOptions engine_options(const LivePlayArguments& a) {
@@ -150,8 +155,8 @@ int run_live_play(const LivePlayArguments& a) {
         while (!written && Clock::now() < end &&
                link.liveness() != link::EngineLink::Liveness::Exited) {
             link.heartbeat();
-            written = engine.read(ipc::StatusKind::Take, 0, "written ") ||
-                      engine.read(ipc::StatusKind::Take, 0, "take failed");
+            engine.read(ipc::StatusKind::Take);
+            written = engine.take_done();
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
         }
         if (!written) std::cerr << "archet: the take was not finished in time\n";

@@ -15,7 +15,9 @@
 #include <lv2/worker/worker.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -37,17 +39,22 @@ constexpr const char* kModelUri = "urn:archet:bowed-string#model";
 enum Port : std::uint32_t { Control, Out, BowForce, BowSpeed, BowPosition, StringDamping };
 
 struct Uris {
-    LV2_URID midi_event, atom_path, atom_urid, atom_object, patch_set, patch_property, patch_value,
-        model;
+    LV2_URID midi_event, atom_path, atom_urid, atom_object, atom_blank, patch_set, patch_property,
+        patch_value, model;
 };
 
 // What the worker is asked: load a model file, rebuild the instrument with the bow elsewhere,
-// or delete an instrument run() let go of.
+// or delete an instrument run() let go of. Sent as long as its path (hosts' request rings are
+// a few kilobytes).
 struct Work {
     enum Kind : std::uint32_t { Load, Rebuild, Free } kind;
     double bow_position = 0;
     Instrument* garbage = nullptr;
     char path[2048] = {};
+    std::uint32_t size() const {
+        return static_cast<std::uint32_t>(offsetof(Work, path) +
+                                          (kind == Load ? strnlen(path, sizeof path) + 1 : 0));
+    }
 };
 
 struct Plugin {
@@ -58,12 +65,13 @@ struct Plugin {
     const LV2_Atom_Sequence* control = nullptr;
     float* out = nullptr;
     const float* ports[6] = {};
-    Instrument* playing = nullptr;  ///< run()'s
-    Instrument* arrived = nullptr;  ///< from the worker, taken at the next run()
-    bool rebuilding = false;        ///< a bow-position rebuild is with the worker
-    double bow_port = -1;           ///< the bow position port as last seen
-    double bow_target = 0;          ///< β asked for last, by the port or by MIDI (0: the model's)
-    double bow_built = 0;           ///< β last given to the worker (not asked again if it fails)
+    Instrument* playing = nullptr;         ///< run()'s
+    Instrument* arrived = nullptr;         ///< from the worker, taken at the next run()
+    bool rebuilding = false;               ///< a bow-position rebuild is with the worker
+    std::array<Instrument*, 8> garbage{};  ///< let go of, not yet taken by the worker
+    double bow_port = -1;                  ///< the bow position port as last seen
+    double bow_target = 0;  ///< β asked for last, by the port or by MIDI (0: the model's)
+    double bow_built = 0;   ///< β last given to the worker (not asked again if it fails)
     // The worker's (and instantiate's, restore's):
     Model base;
     std::uint64_t model_id = 1;
@@ -87,9 +95,12 @@ Instrument* load(Plugin& p, const std::string& path, double bow_position) {
     try {
         Model model = load_model_file(path);
         model.sample_rate = p.rate;
-        ++p.model_id;
+        ++p.model_id;  // a new model: nothing of the old one's motion is taken over
         Instrument* fresh = build(p, model, bow_position);
-        if (!fresh) return nullptr;
+        if (!fresh) {
+            --p.model_id;  // the base stays: its rebuilds still take over its motion
+            return nullptr;
+        }
         p.base = std::move(model);
         const std::lock_guard lock(p.path_mutex);
         p.model_path = path;
@@ -104,8 +115,29 @@ double port(const Plugin& p, Port which, double fallback) {
     return p.ports[which] ? static_cast<double>(*p.ports[which]) : fallback;
 }
 
-void schedule(Plugin& p, const Work& w) {
-    p.schedule->schedule_work(p.schedule->handle, sizeof w, &w);
+bool schedule(Plugin& p, const Work& w) {
+    return p.schedule->schedule_work(p.schedule->handle, w.size(), &w) == LV2_WORKER_SUCCESS;
+}
+
+// Hands an instrument to the worker to delete; kept (and offered again next run) when the
+// worker's queue is full, so that nothing leaks.
+void let_go(Plugin& p, Instrument* old) {
+    for (Instrument*& g : p.garbage) {
+        if (!g) continue;
+        Work w{Work::Free};
+        w.garbage = g;
+        if (schedule(p, w)) g = nullptr;
+    }
+    if (!old) return;
+    Work w{Work::Free};
+    w.garbage = old;
+    if (schedule(p, w)) return;
+    for (Instrument*& g : p.garbage)
+        if (!g) {
+            g = old;
+            return;
+        }
+    std::fprintf(stderr, "archet.lv2: the host's worker is full; an instrument is leaked\n");
 }
 
 // A patch:Set of the model to a path: the worker loads it.
@@ -118,7 +150,7 @@ void take_patch(Plugin& p, const LV2_Atom_Object* object) {
         value->type != p.uris.atom_path || value->size == 0 || value->size >= sizeof Work::path)
         return;
     Work w{Work::Load};
-    w.bow_position = port(p, BowPosition, 0);
+    w.bow_position = p.bow_target;  // where the port or CC 4 put the bow last
     std::memcpy(w.path, LV2_ATOM_BODY_CONST(value), value->size);
     w.path[value->size] = '\0';
     schedule(p, w);
@@ -129,7 +161,7 @@ void take_event(Plugin& p, const LV2_Atom_Event* ev) {
         const auto* bytes = static_cast<const std::uint8_t*>(LV2_ATOM_BODY_CONST(&ev->body));
         if (const auto m = midi::decode_midi(std::span(bytes, ev->body.size)))
             p.playing->receive(*m);
-    } else if (ev->body.type == p.uris.atom_object) {
+    } else if (ev->body.type == p.uris.atom_object || ev->body.type == p.uris.atom_blank) {
         const auto* object = reinterpret_cast<const LV2_Atom_Object*>(&ev->body);
         if (object->body.otype == p.uris.patch_set) take_patch(p, object);
     }
@@ -139,11 +171,9 @@ void take_event(Plugin& p, const LV2_Atom_Event* ev) {
 // it replaces when only the bow moved; the old one goes back to the worker to be deleted.
 void swap_in(Plugin& p) {
     Instrument* fresh = std::exchange(p.arrived, nullptr);
-    if (!fresh) return;
+    if (!fresh) return let_go(p, nullptr);  // garbage the worker could not take before
     fresh->continue_from(*p.playing);
-    Work w{Work::Free};
-    w.garbage = std::exchange(p.playing, fresh);
-    schedule(p, w);
+    let_go(p, std::exchange(p.playing, fresh));
 }
 
 LV2_Handle instantiate(const LV2_Descriptor*, double rate, const char* bundle,
@@ -161,9 +191,9 @@ LV2_Handle instantiate(const LV2_Descriptor*, double rate, const char* bundle,
         return nullptr;
     }
     auto map = [&](const char* uri) { return p->map->map(p->map->handle, uri); };
-    p->uris = {map(LV2_MIDI__MidiEvent), map(LV2_ATOM__Path), map(LV2_ATOM__URID),
-               map(LV2_ATOM__Object),    map(LV2_PATCH__Set), map(LV2_PATCH__property),
-               map(LV2_PATCH__value),    map(kModelUri)};
+    p->uris = {map(LV2_MIDI__MidiEvent), map(LV2_ATOM__Path),   map(LV2_ATOM__URID),
+               map(LV2_ATOM__Object),    map(LV2_ATOM__Blank),  map(LV2_PATCH__Set),
+               map(LV2_PATCH__property), map(LV2_PATCH__value), map(kModelUri)};
     // The bundle's own model until the host sets another: a fingered 220 Hz string.
     p->playing = load(*p, std::string(bundle) + "/default.json", 0);
     if (!p->playing) return nullptr;
@@ -201,13 +231,14 @@ void run(LV2_Handle handle, std::uint32_t frames) {
     const double port_position = port(p, BowPosition, 0);
     if (port_position != p.bow_port) p.bow_port = p.bow_target = port_position;
     if (const double asked = p.playing->take_bow_request(); asked > 0) p.bow_target = asked;
-    if (!p.rebuilding && p.bow_target != p.bow_built &&
-        std::abs(p.bow_target - p.playing->bow_position()) > 1e-6) {
-        p.bow_built = p.bow_target;
+    // A blown-up instrument is silent: the worker builds it afresh (nothing of its state).
+    const bool wanted =
+        p.playing->blown_up() ||
+        (p.bow_target != p.bow_built && std::abs(p.bow_target - p.playing->bow_position()) > 1e-6);
+    if (!p.rebuilding && wanted) {
         Work w{Work::Rebuild};
         w.bow_position = p.bow_target;
-        p.rebuilding = true;
-        schedule(p, w);
+        if (schedule(p, w)) p.rebuilding = true, p.bow_built = p.bow_target;  // else: next run
     }
 }
 
@@ -215,6 +246,7 @@ void cleanup(LV2_Handle handle) {
     auto* p = static_cast<Plugin*>(handle);
     delete p->playing;
     delete p->arrived;
+    for (Instrument* g : p->garbage) delete g;
     delete p;
 }
 
@@ -224,9 +256,9 @@ LV2_Worker_Status work(LV2_Handle handle, LV2_Worker_Respond_Function respond,
                        LV2_Worker_Respond_Handle respond_handle, std::uint32_t size,
                        const void* data) {
     auto& p = *static_cast<Plugin*>(handle);
-    if (size != sizeof(Work)) return LV2_WORKER_ERR_UNKNOWN;
+    if (size < offsetof(Work, path) || size > sizeof(Work)) return LV2_WORKER_ERR_UNKNOWN;
     Work w;
-    std::memcpy(&w, data, sizeof w);
+    std::memcpy(&w, data, size);
     Instrument* fresh = nullptr;
     switch (w.kind) {
         case Work::Free:
@@ -251,9 +283,7 @@ LV2_Worker_Status work_response(LV2_Handle handle, std::uint32_t size, const voi
     p.rebuilding = false;
     if (!fresh) return LV2_WORKER_SUCCESS;
     if (p.arrived) {  // two arrived before a run: the newer wins, the older is let go
-        Work w{Work::Free};
-        w.garbage = std::exchange(p.arrived, fresh);
-        schedule(p, w);
+        let_go(p, std::exchange(p.arrived, fresh));
     } else {
         p.arrived = fresh;
     }
@@ -303,6 +333,7 @@ LV2_State_Status restore(LV2_Handle handle, LV2_State_Retrieve_Function retrieve
     Instrument* fresh = load(p, path, port(p, BowPosition, 0));
     if (!fresh) return LV2_STATE_ERR_UNKNOWN;
     delete std::exchange(p.playing, fresh);
+    delete std::exchange(p.arrived, nullptr);  // built before the restore: not what is wanted
     return LV2_STATE_SUCCESS;
 }
 

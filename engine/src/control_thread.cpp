@@ -129,6 +129,7 @@ void ControlThread::nrt_loop() {
         if (verdict != StudioWatch::Verdict::Stay) break;
         CommandFrame command;
         while (commands_.try_pop(command)) nrt_handle(command);
+        if (moving_bow_) nrt_send_waiting_changes();
         if (osc_) nrt_take_osc();
         if (midi_) nrt_take_midi();
         nrt_collect_retired();
@@ -221,6 +222,12 @@ void ControlThread::nrt_load(const CommandFrame& c, const std::string& path) {
 }
 
 void ControlThread::nrt_set_live_parameter(const CommandFrame& c, const ParameterName& name) {
+    // The moved model takes over the playing one's state, parameters included: a change made
+    // in between would be lost, so it waits the millisecond or two until the hand-over.
+    if (moving_bow_ && bridge_.pending.load()) {
+        waiting_changes_.push_back({c, name});
+        return;
+    }
     try {
         if (current_name_.empty()) throw InputError(name.text(), "no model is loaded");
         const ParameterSlot slot = current_resolver_.resolve_parameter(name);
@@ -244,6 +251,14 @@ void ControlThread::nrt_remember_slot(const ParameterSlot& slot, const std::stri
         if (known.kind == slot.kind && known.level == slot.level && known.index == slot.index)
             return;
     glided_slots_.push_back({slot, name});
+}
+
+void ControlThread::nrt_send_waiting_changes() {
+    if (bridge_.pending.load()) return;  // not yet taken over
+    moving_bow_ = false;
+    auto changes = std::move(waiting_changes_);
+    waiting_changes_.clear();
+    for (const auto& [c, name] : changes) nrt_set_live_parameter(c, name);
 }
 
 // A model loaded but not yet swapped in was compiled before this change: it gets the value

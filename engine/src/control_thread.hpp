@@ -70,6 +70,7 @@ class ControlThread {
     void nrt_note_controllers(const std::vector<midi::MidiMessage>& messages);
     void nrt_show_controllers();
     void nrt_move_bow(double beta);
+    void nrt_send_waiting_changes();
     void nrt_say_midi(const std::string& what);
 
     ipc::SharedSegment segment_;
@@ -91,9 +92,12 @@ class ControlThread {
     std::uint64_t midi_blocks_ = 0;                       ///< blocks played at the last MIDI round
     std::uint64_t midi_dropped_said_ = 0;                 ///< dropped messages already reported
     std::map<int, midi::MidiMessage> controllers_heard_;  ///< since the last status, newest
-    std::unique_ptr<RealtimeThread> rt_;                  ///< built once the device is open
-    std::unique_ptr<AudioOutput> output_;                 ///< destroyed first: it calls rt_
-    double sample_rate_ = 48000;  ///< the device's clock, the master: set once open
+    double bow_wanted_ = 0;    ///< a bow position MIDI asked for and not yet made (0: none)
+    bool moving_bow_ = false;  ///< the moved model waits to take over: changes wait with it
+    std::vector<std::pair<ipc::CommandFrame, ParameterName>> waiting_changes_;
+    std::unique_ptr<RealtimeThread> rt_;   ///< built once the device is open
+    std::unique_ptr<AudioOutput> output_;  ///< destroyed first: it calls rt_
+    double sample_rate_ = 48000;           ///< the device's clock, the master: set once open
     bool quit_ = false;
     std::uint64_t swaps_answered_ = 0;
     std::filesystem::path take_root_;    ///< canonical take directory (empty: no takes)

@@ -26,6 +26,13 @@ const Lia* bow_module_of(const Model& model) {
 // A performer for the model just loaded; a model MIDI cannot bow is
 // said once and then not played from MIDI.
 void ControlThread::nrt_prepare_performer() {
+    // A note held over a new model: the new performer holds none, so the bow it drove lifts.
+    if (performer_ && performer_->bowing()) {
+        CommandFrame lift{};
+        lift.opcode = static_cast<std::uint32_t>(Opcode::Gesture);
+        nrt_send({RealtimeCommand::BowDrive, {}, 0, 0, 0}, lift);
+        osc_hand_.press = 0;
+    }
     performer_.reset();
     try {
         performer_.emplace(options_.midi_mapping, midi::performed_model(current_model_));
@@ -43,8 +50,10 @@ void ControlThread::nrt_say_midi(const std::string& what) {
 // the mass nearest β, compiled here, takes over the string's motion on the real-time thread (no
 // restart). Nothing happens until β reaches another mass. A take in progress ends there.
 void ControlThread::nrt_move_bow(double beta) {
+    bow_wanted_ = beta;  // kept until it is done: the last of a sweep must not be lost
     try {
         if (current_name_.empty() || bridge_.pending.load()) return;  // one move at a time
+        bow_wanted_ = 0;
         Model moved = current_model_;
         set_variant_parameter(moved, "bow.position", beta);
         const Lia* bow = bow_module_of(moved);
@@ -56,6 +65,8 @@ void ControlThread::nrt_move_bow(double beta) {
         loaded->handover.resize(loaded->simulation->state_size());
         loaded->generation = ++generation_;
         if (live_take_) nrt_say_midi("the bow moved along the string: the take ends here");
+        moving_bow_ =
+            true;  // parameter changes wait for the hand-over (see nrt_set_live_parameter)
         current_resolver_ = loaded->resolver;
         current_model_ = std::move(moved);
         delete bridge_.pending.exchange(loaded.release());
@@ -97,6 +108,7 @@ void ControlThread::nrt_take_midi() {
         static_cast<double>(blocks - midi_blocks_) * output_->buffer_frames() / sample_rate_;
     midi_blocks_ = blocks;
     nrt_note_controllers(messages);
+    if (bow_wanted_ > 0) nrt_move_bow(bow_wanted_);
     if (!performer_) return;
     for (const auto& m : messages) performer_->receive(m);
     midi::MidiPerformer::Round round = performer_->advance(seconds);

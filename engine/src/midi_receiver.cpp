@@ -30,11 +30,13 @@ MidiReceiver::MidiReceiver(const MidiInputOptions& options) {
     const RtMidi::Api api = api_named(options.api);
     const std::string where = "--midi " + options.port;
     try {
-        in_ = std::make_unique<RtMidiIn>(api, "archet", kQueue);
+        // Its own client name: with JACK audio the engine's audio client is "archet" already.
+        in_ = std::make_unique<RtMidiIn>(api, "archet-midi", kQueue);
         // Errors come back here rather than as exceptions once this is set; what they say is
         // kept for the control thread (from RtMidi's thread too, at run time).
         in_->setErrorCallback(
-            [](RtMidiError::Type, const std::string& text, void* self) {
+            [](RtMidiError::Type type, const std::string& text, void* self) {
+                if (type == RtMidiError::WARNING || type == RtMidiError::DEBUG_WARNING) return;
                 auto& receiver = *static_cast<MidiReceiver*>(self);
                 const std::lock_guard lock(receiver.problem_mutex_);
                 receiver.problem_ = text;
@@ -42,7 +44,7 @@ MidiReceiver::MidiReceiver(const MidiInputOptions& options) {
             this);
         if (options.port == "virtual") {
             in_->openVirtualPort("midi_in");
-            description_ = options.api + " port archet:midi_in";
+            description_ = options.api + " port archet-midi:midi_in";
         } else {
             const unsigned count = in_->getPortCount();
             std::vector<std::string> names;
@@ -76,6 +78,7 @@ MidiReceiver::~MidiReceiver() {
     if (in_) {
         in_->cancelCallback();
         in_->closePort();
+        in_.reset();  // before the mutex its error callback takes goes
     }
 }
 

@@ -164,7 +164,7 @@ double RealtimeThread::rt_cross_fade(double incoming) {
 // (its slots are the same): it plays on from here, no fade. A take ends (its model changed).
 bool RealtimeThread::rt_continue_into(LoadedModel& next) {
     Simulation& from = *rt_running_->simulation;
-    if (rt_fading_from_ || next.handover.size() != from.state_size()) return false;
+    if (rt_fading_from_ || rt_muted_ || next.handover.size() != from.state_size()) return false;
     from.save_state(next.handover.data());
     next.simulation->load_state(next.handover.data());
     next.simulation->refresh_modal_points();

@@ -120,6 +120,9 @@ void TakeRecorder::name_slot(const ParameterSlot& slot, const std::string& name)
 }
 
 void TakeRecorder::name_slot_waiting(const ParameterSlot& slot, std::uint32_t name) {
+    for (const auto& [known, _] : slot_names_)  // a fader streams the same slot: named once
+        if (known.kind == slot.kind && known.level == slot.level && known.index == slot.index)
+            return;
     if (slot_names_.size() < kSlotNames) slot_names_.push_back({slot, name});  // no allocation
 }
 

@@ -134,6 +134,10 @@ TEST_P(Lv2Bow, TheBowMovesAlongTheStringWhileItPlays) {
     EXPECT_GT(p.strength, 0.9);
     EXPECT_GT(std::abs(rms(after, after.size() - 24000, after.size()) - playing), 0.05 * playing)
         << "bowed elsewhere, it sounds otherwise";
+    host.midi({0x80, 57, 0});  // the note held across the move is released: the bow lifts
+    const std::vector<float> released = play(host, 3.0);
+    EXPECT_LT(rms(released, released.size() - 4800, released.size()), 0.1 * playing)
+        << "the moved instrument knew the note it was playing";
 }
 
 INSTANTIATE_TEST_SUITE_P(ByPortAndByMidi, Lv2Bow, ::testing::Values(true, false));

@@ -186,6 +186,20 @@ TEST_F(EngineMidi, TheBowMovesAlongTheStringWhileItPlays) {
     EXPECT_TRUE(engine_->errors().empty()) << engine_->errors().front();
 }
 
+// A model loaded while a note is held: the new model's performer holds no note, so the bow the
+// old one drove is lifted rather than left bowing with no key down.
+TEST_F(EngineMidi, ANewModelLiftsTheBowOfANoteHeldBeforeIt) {
+    ASSERT_NO_FATAL_FAILURE(start());
+    ASSERT_TRUE(keyboard_->note_on(57, 90));
+    ASSERT_TRUE(play(0.5));
+    ASSERT_GT(engine_->latest().values[4], 0.01) << "bowing";
+    const auto loaded = engine_->link().load_model((dir_ / "fingered.json").string());
+    ASSERT_TRUE(engine_->await(StatusKind::ModelLoaded,
+                               [&](const StatusFrame& f) { return f.sequence == loaded; }));
+    ASSERT_TRUE(play(0.5));
+    EXPECT_LT(engine_->latest().values[4], 1e-9) << "the bow was lifted";
+}
+
 // The studio hears which controller moved (its MIDI learn assigns it), mapped or not.
 TEST_F(EngineMidi, TheStudioIsToldWhichControllerMoved) {
     ASSERT_NO_FATAL_FAILURE(start());
@@ -233,8 +247,8 @@ TEST_F(EngineMidi, PlayFromTheCommandLineRecordsWhatTheKeyboardPlays) {
 }
 
 // The ALSA sequencer, where most desktop controllers appear: a program's output port (RtMidi's,
-// as a sequencer's would be) connected to the engine's archet:midi_in plays a note. Skips where
-// the machine has no sequencer (a container without /dev/snd/seq).
+// as a sequencer's would be) connected to the engine's archet-midi:midi_in plays a note. Skips
+// where the machine has no sequencer (a container without /dev/snd/seq).
 TEST(EngineMidiAlsa, ANoteFromTheSequencerIsBowed) {
     if (::access("/dev/snd/seq", R_OK | W_OK) != 0)
         GTEST_SKIP() << "no ALSA sequencer on this machine (/dev/snd/seq; modprobe snd-seq)";

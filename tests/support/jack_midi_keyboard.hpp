@@ -2,7 +2,7 @@
 // A MIDI keyboard on JACK, written in the test: a client with one MIDI output whose process
 // callback writes, in each cycle, the messages the test queued (through JACK's own lock-free
 // ring buffer, as a real-time client must). Connected to every MIDI input whose name holds a
-// given text, e.g. the engine's archet:midi_in.
+// given text, e.g. the engine's archet-midi:midi_in.
 
 #include <jack/jack.h>
 #include <jack/midiport.h>

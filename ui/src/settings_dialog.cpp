@@ -115,8 +115,8 @@ void SettingsDialog::add_midi_choices(const EngineClientOptions& current) {
             midi_->setCurrentIndex(midi_->count() - 1);
     };
     add(tr("Off"), "", "alsa");
-    add(tr("Archet's own port, archet:midi_in (ALSA sequencer)"), "virtual", "alsa");
-    add(tr("Archet's own port, archet:midi_in (JACK)"), "virtual", "jack");
+    add(tr("Archet's own port, archet-midi:midi_in (ALSA sequencer)"), "virtual", "alsa");
+    add(tr("Archet's own port, archet-midi:midi_in (JACK)"), "virtual", "jack");
     bool found = current.midi.isEmpty() || current.midi == "virtual";
     for (const std::string& api : midi_apis())
         for (const std::string& port : list_midi_inputs(api)) {

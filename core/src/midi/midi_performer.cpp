@@ -137,6 +137,20 @@ void MidiPerformer::refuse(Refusal r) {
         ++pending_.refusals_lost;
 }
 
+void MidiPerformer::take_over(const MidiPerformer& o) {
+    slide_speed_ = o.slide_speed_, press_ = o.press_;
+    held_ = o.held_, held_count_ = o.held_count_;
+    direction_ = o.direction_;
+    velocity_force_ = o.velocity_force_, controlled_force_ = o.controlled_force_;
+    speed_ = o.speed_;
+    vibrato_depth_ = o.vibrato_depth_, vibrato_rate_ = o.vibrato_rate_;
+    vibrato_phase_ = o.vibrato_phase_;
+    bend_ = o.bend_, finger_set_ = o.finger_set_, sounding_ = o.sounding_;
+    pending_ = o.pending_;
+    mapping_.velocity_force_min = o.mapping_.velocity_force_min;
+    mapping_.velocity_force_max = o.mapping_.velocity_force_max;
+}
+
 double MidiPerformer::force() const {
     return controlled_force_ >= 0 ? controlled_force_ : velocity_force_;
 }

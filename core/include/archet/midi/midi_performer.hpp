@@ -60,6 +60,9 @@ class MidiPerformer {
     /// What a controller of `target` sets (bow force or speed, vibrato), as a controller would:
     /// an LV2 plugin's control ports.
     void set(MidiTarget target, double value);
+    /// Plays on where `other` was (held notes, stroke, controllers, vibrato, what it last
+    /// sent): a performer of the same model with its bow moved. Copies no map: real-time safe.
+    void take_over(const MidiPerformer& other);
     /// The bow force of velocity 1 and 127 from now on (N).
     void set_velocity_force(double minimum, double maximum) {
         mapping_.velocity_force_min = minimum, mapping_.velocity_force_max = maximum;

@@ -29,7 +29,7 @@ struct EngineOptions {
     /// OSC out: "HOST:PORT" to send the bow force and the string's energy to, 20 times a
     /// second (empty: none).
     std::string osc_send;
-    /// MIDI in: "" (none), "virtual" (a port archet:midi_in others connect to) or a part of
+    /// MIDI in: "" (none), "virtual" (a port archet-midi:midi_in others connect to) or a part of
     /// an existing input port's name; through the ALSA sequencer or JACK; played by this map.
     std::string midi;
     std::string midi_api = "alsa";

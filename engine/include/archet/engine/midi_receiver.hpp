@@ -21,7 +21,7 @@ namespace archet {
 
 struct MidiInputOptions {
     std::string api = "alsa";  ///< alsa (the ALSA sequencer) or jack
-    /// "virtual": a port named archet:midi_in for others to connect to; otherwise the first
+    /// "virtual": a port named archet-midi:midi_in for others to connect to; otherwise the first
     /// input port whose name contains this text.
     std::string port = "virtual";
 };
@@ -41,7 +41,7 @@ class MidiReceiver {
     std::uint64_t dropped() const { return ring_.ring().dropped(); }
     /// What RtMidi reported since it opened (a JACK server gone, say), once.
     std::string take_problem();
-    /// "ALSA port archet:midi_in", for the engine's start-up line.
+    /// "ALSA port archet-midi:midi_in", for the engine's start-up line.
     const std::string& description() const { return description_; }
 
     static constexpr std::uint32_t kQueue = 4096;

@@ -35,7 +35,7 @@ struct EngineClientOptions {
     QString takes;
     /// The UDP port the engine listens for OSC on, on this machine (0: none).
     int osc_port = 0;
-    /// MIDI in: "" (none), "virtual" (the engine's own port archet:midi_in) or a part of a
+    /// MIDI in: "" (none), "virtual" (the engine's own port archet-midi:midi_in) or a part of a
     /// source's name; its API (alsa, jack); the mapping file (empty: STK's Bowed's controllers).
     QString midi;
     QString midi_api = "alsa";
