@@ -1,5 +1,6 @@
 #include "lv2_instrument.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "archet/model/model_parameters.hpp"
@@ -27,6 +28,22 @@ std::vector<ParameterName> string_dampers(const Model& model) {
     return names;
 }
 
+// The largest factor of the string's damping (of 10, 5, 3, 2, 1.5) at which the model still
+// validates: the scheme's stability bound and the parameters' ranges. The port is held to it.
+double largest_damping_scale(const Model& model, const std::vector<ParameterName>& dampers) {
+    for (double scale : {10.0, 5.0, 3.0, 2.0, 1.5}) {
+        try {
+            Model scaled = model;
+            for (const ParameterName& n : dampers)
+                set_parameter(scaled, n, get_parameter(model, n) * scale);
+            validate_model(scaled);
+            return scale;
+        } catch (const std::exception&) {
+        }
+    }
+    return 1.0;
+}
+
 }  // namespace
 
 Instrument::Instrument(Model model, double sample_rate, double bow_position)
@@ -38,8 +55,10 @@ Instrument::Instrument(Model model, double sample_rate, double bow_position)
     if (const Lia* finger = first_finger(model_))
         for (const char* p : {"position", "pressure"})
             finger_slots_.push_back(sim_.model().resolve_parameter({finger->id, p}));
-    for (const ParameterName& name : string_dampers(model_))
+    const std::vector<ParameterName> dampers = string_dampers(model_);
+    for (const ParameterName& name : dampers)
         damping_.push_back({sim_.model().resolve_parameter(name), get_parameter(model_, name)});
+    largest_damping_scale_ = largest_damping_scale(model_, dampers);
     if (const CompiledLevel* hand = hand_level(sim_.model()))
         haptic_divider_ = static_cast<std::uint64_t>(hand->divider), haptic_dt_ = hand->dt;
     glide_samples_ = static_cast<int>(std::lround(0.01 * sample_rate));  // 10 ms, as the engine
@@ -50,6 +69,7 @@ void Instrument::set_controls(double bow_force, double bow_speed, double damping
     if (bow_force != bow_force_) performer_.set_velocity_force(0.25 * bow_force, bow_force);
     if (bow_speed != bow_speed_) performer_.set(midi::MidiTarget::BowSpeed, bow_speed);
     bow_force_ = bow_force, bow_speed_ = bow_speed;
+    damping_scale = std::min(damping_scale, largest_damping_scale_);  // stable at the rate
     if (damping_scale == damping_scale_) return;
     damping_scale_ = damping_scale;
     for (const Damping& d : damping_) sim_.write_slot(d.slot, d.base * damping_scale);

@@ -57,6 +57,7 @@ class Instrument {
     };
     std::vector<Damping> damping_;  ///< every damper of the string
     double damping_scale_ = 1, bow_force_ = -1, bow_speed_ = -1;
+    double largest_damping_scale_ = 1;  ///< the most the model stays stable with
     GestureSample hand_{};
     double drive_speed_ = 0;
     std::uint64_t haptic_divider_ = 1;

@@ -92,7 +92,8 @@ class ControlThread {
     std::uint64_t midi_blocks_ = 0;                       ///< blocks played at the last MIDI round
     std::uint64_t midi_dropped_said_ = 0;                 ///< dropped messages already reported
     std::map<int, midi::MidiMessage> controllers_heard_;  ///< since the last status, newest
-    double bow_wanted_ = 0;    ///< a bow position MIDI asked for and not yet made (0: none)
+    double bow_wanted_ = 0;  ///< a bow position MIDI asked for and not yet made (0: none)
+    std::vector<bool> unplayable_routes_;  ///< the map's parameters this model has not
     bool moving_bow_ = false;  ///< the moved model waits to take over: changes wait with it
     std::vector<std::pair<ipc::CommandFrame, ParameterName>> waiting_changes_;
     std::unique_ptr<RealtimeThread> rt_;   ///< built once the device is open

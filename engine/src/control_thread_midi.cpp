@@ -39,6 +39,19 @@ void ControlThread::nrt_prepare_performer() {
     } catch (const std::exception& e) {
         nrt_say_midi(std::string("this model is not played from MIDI: ") + e.what());
     }
+    // A map's parameter this model has not is said once, not at every move of its controller.
+    const auto& routes = options_.midi_mapping.controls;
+    unplayable_routes_.assign(routes.size(), false);
+    for (std::size_t i = 0; i < routes.size(); ++i) {
+        if (routes[i].target != midi::MidiTarget::Parameter) continue;
+        try {
+            current_resolver_.resolve_parameter(routes[i].parameter);
+        } catch (const std::exception& e) {
+            unplayable_routes_[i] = true;
+            nrt_say_midi("controller " + std::to_string(routes[i].controller) +
+                         " does nothing with this model: " + e.what());
+        }
+    }
 }
 
 void ControlThread::nrt_say_midi(const std::string& what) {
@@ -121,6 +134,9 @@ void ControlThread::nrt_take_midi() {
             nrt_move_bow(request.value);
             continue;
         }
+        if (request.what == midi::ParameterRequest::What::Route &&
+            unplayable_routes_.at(static_cast<std::size_t>(request.route)))
+            continue;
         CommandFrame c{};
         c.opcode = static_cast<std::uint32_t>(Opcode::SetParameter);
         c.value = request.value;

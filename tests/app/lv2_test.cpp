@@ -142,6 +142,25 @@ TEST_P(Lv2Bow, TheBowMovesAlongTheStringWhileItPlays) {
 
 INSTANTIATE_TEST_SUITE_P(ByPortAndByMidi, Lv2Bow, ::testing::Values(true, false));
 
+// The string's damping at its port's extremes: held to what the scheme keeps stable, the string
+// plays on (finite, sounding), more damped the more the port asks.
+TEST(Lv2, TheDampingPortKeepsTheStringPlayable) {
+    double loudness[2] = {0, 0};
+    for (int i = 0; i < 2; ++i) {
+        Lv2Host host(ARCHET_LV2_BUNDLE);
+        ASSERT_TRUE(host.ready());
+        host.control(3) = i == 0 ? 0.1f : 10.0f;
+        host.midi({0x90, 57, 100});
+        const std::vector<float> note = play(host, 1.0);
+        for (float v : note) ASSERT_TRUE(std::isfinite(v));
+        host.midi({0x80, 57, 0});
+        const std::vector<float> after = play(host, 0.3);
+        loudness[i] = rms(after, after.size() - 4800, after.size());
+        EXPECT_GT(rms(note, note.size() - 24000, note.size()), 1e-3) << "it sounds";
+    }
+    EXPECT_GT(loudness[0], loudness[1]) << "the string rings on longer, less damped";
+}
+
 TEST(Lv2, APatchSetLoadsAnotherModelAndTheStateKeepsItsPath) {
     const auto dir = test::temp_dir("lv2-model");
     const auto model = dir / "open-110.json";
