@@ -17,6 +17,7 @@
 #include "archet/files/take_file.hpp"
 #include "archet/files/take_recovery.hpp"
 #include "archet/interruption.hpp"
+#include "archet/model/model_variants.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/parameter_smoother.hpp"
 #include "archet/physics/renderer.hpp"
@@ -137,6 +138,24 @@ void report_render(const RenderArguments& a, const SoundFileWriter& audio, doubl
                   << " dB (the \"output_gain\" field of the model file)\n";
 }
 
+constexpr const char* kBowPosition = "bow.position";
+
+// The take's bow moved along the string at this tick (MIDI's CC 4): the model with its bow on
+// the mass nearest β takes over the whole state, as the engine's real-time thread did.
+void move_bow(Simulation& s, const Model& model, double beta, const Gesture* track) {
+    Model moved = model;
+    set_variant_parameter(moved, "bow.position", beta);
+    Simulation next(compile(moved));
+    next.set_gesture_track(track);
+    std::vector<double> state(s.state_size());
+    if (state.size() != next.state_size())
+        throw InputError("bow.position", "the moved bow's model does not match the take's");
+    s.save_state(state.data());
+    next.load_state(state.data());
+    next.refresh_modal_points();
+    s = std::move(next);
+}
+
 int run_render(const RenderArguments& a) {
     const InterruptionGuard
         stop_on_signal;  // SIGINT, SIGTERM, SIGHUP: stop, leave no temporary file
@@ -156,11 +175,14 @@ int run_render(const RenderArguments& a) {
                                                         "; the files come from different takes");
         sim.load_state(plan.state.data());
     }
-    // The take's parameter changes glide in as the engine glided them.
+    // The take's parameter changes glide in as the engine glided them; "bow.position" (MIDI's
+    // CC 4) moves the bow as the engine moved it.
     std::vector<ParameterSlot> slots;
     for (const auto& c : plan.changes)
-        slots.push_back(sim.model().resolve_parameter(
-            ParameterName::parse(c.parameter, a.take + "/parameters.json")));
+        slots.push_back(c.parameter == kBowPosition
+                            ? ParameterSlot{}
+                            : sim.model().resolve_parameter(
+                                  ParameterName::parse(c.parameter, a.take + "/parameters.json")));
     const auto frames =
         plan.frames > 0 ? plan.frames
                         : static_cast<std::uint64_t>(std::llround(duration * sim.sample_rate()));
@@ -185,7 +207,9 @@ int run_render(const RenderArguments& a) {
                    plan.changes[next_change].tick == s.tick()) {
                 const ParameterChange& c = plan.changes[next_change];
                 const ParameterSlot& slot = slots[next_change++];
-                if (!c.from)
+                if (c.parameter == kBowPosition)
+                    move_bow(s, model, c.value, gesture ? &*gesture : nullptr);
+                else if (!c.from)
                     smoother.glide(s, slot, c.value, c.glide_samples);
                 else if (!smoother.resume({slot, *c.from, c.value, c.done, c.glide_samples}))
                     throw InputError(a.take + "/parameters.json",

@@ -4,6 +4,7 @@
 // glided in on the real-time thread, recorded by a take.
 #include <cstdio>
 
+#include "archet/engine/take_recorder.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/model/model_variants.hpp"
 #include "archet/model/string_points.hpp"
@@ -61,7 +62,7 @@ void ControlThread::nrt_say_midi(const std::string& what) {
 
 // The bow's contact moved along the string (STK's CC 4): the playing model with its bow module on
 // the mass nearest β, compiled here, takes over the string's motion on the real-time thread (no
-// restart). Nothing happens until β reaches another mass. A take in progress ends there.
+// restart). Nothing happens until β reaches another mass. A take recording keeps the move.
 void ControlThread::nrt_move_bow(double beta) {
     bow_wanted_ = beta;  // kept until it is done: the last of a sweep must not be lost
     try {
@@ -77,7 +78,11 @@ void ControlThread::nrt_move_bow(double beta) {
         loaded->continues = true;
         loaded->handover.resize(loaded->simulation->state_size());
         loaded->generation = ++generation_;
-        if (live_take_) nrt_say_midi("the bow moved along the string: the take ends here");
+        if (live_take_) {  // the take goes on, and keeps the move
+            loaded->bow_move_named = true;
+            loaded->bow_move_name = live_take_->parameter_name("bow.position");
+            loaded->bow_position = beta;
+        }
         moving_bow_ =
             true;  // parameter changes wait for the hand-over (see nrt_set_live_parameter)
         current_resolver_ = loaded->resolver;

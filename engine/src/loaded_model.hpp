@@ -33,6 +33,10 @@ struct LoadedModel {
     /// through `handover`, sized here) instead of starting from rest and cross-fading.
     bool continues = false;
     std::vector<double> handover;
+    /// A take recording on keeps the move: "bow.position" under this name in its changes.
+    bool bow_move_named = false;
+    std::uint32_t bow_move_name = 0;
+    double bow_position = 0;
 };
 
 /// Control thread: compiles a validated model at the device's rate into what the real-time

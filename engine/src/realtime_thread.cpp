@@ -161,14 +161,18 @@ double RealtimeThread::rt_cross_fade(double incoming) {
 }
 
 // The same model with its bow elsewhere takes over the string's motion and the glides under way
-// (its slots are the same): it plays on from here, no fade. A take ends (its model changed).
+// (its slots are the same): it plays on from here, no fade. A take recording on keeps the move
+// as a change of "bow.position", which render --take makes the same way.
 bool RealtimeThread::rt_continue_into(LoadedModel& next) {
     Simulation& from = *rt_running_->simulation;
     if (rt_fading_from_ || rt_muted_ || next.handover.size() != from.state_size()) return false;
     from.save_state(next.handover.data());
     next.simulation->load_state(next.handover.data());
     next.simulation->refresh_modal_points();
-    rt_end_take();
+    if (rt_recording_ && next.bow_move_named)
+        rt_recording_->parameter(next.simulation->tick(), next.bow_move_name, next.bow_position, 1);
+    else
+        rt_end_take();
     bridge_.retired.store(rt_running_, std::memory_order_release);
     rt_running_ = &next;
     return true;

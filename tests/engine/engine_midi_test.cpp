@@ -20,6 +20,7 @@
 #include "archet/analysis/bowing_analysis.hpp"
 #include "archet/builders/bowed_string.hpp"
 #include "archet/files/model_file.hpp"
+#include "archet/files/take_file.hpp"
 #include "engine_session.hpp"
 #include "jack_dummy.hpp"
 #include "jack_midi_keyboard.hpp"
@@ -152,9 +153,10 @@ TEST_F(EngineMidi, ANoteOutOfReachIsSaidAndChangesNothing) {
     EXPECT_LT(engine_->latest().values[4], 1e-9) << "the bow stayed off the string";
 }
 
-// STK's CC 4 moves the bow along the string while it plays: the model with its bow elsewhere
-// takes over the string's motion, so the sound (the bridge force) carries on instead of
-// starting again from a string at rest, and the bow stays on the string.
+// STK's CC 4 moves the bow along the string while it plays and a take records: the model with
+// its bow elsewhere takes over the string's motion, so the sound (the bridge force) carries on
+// instead of starting again from a string at rest, the bow stays on the string, and the take
+// keeps the move and re-renders to the byte.
 TEST_F(EngineMidi, TheBowMovesAlongTheStringWhileItPlays) {
     ASSERT_NO_FATAL_FAILURE(start());
     ASSERT_TRUE(keyboard_->note_on(57, 90));  // the open A3
@@ -171,6 +173,10 @@ TEST_F(EngineMidi, TheBowMovesAlongTheStringWhileItPlays) {
                             });
         return n > 0 ? std::sqrt(sum / n) : 0.0;
     };
+    engine_->link().start_take((dir_ / "take").string());
+    ASSERT_TRUE(engine_->await(StatusKind::Take, [&](const StatusFrame& f) {
+        return std::string(f.text).rfind("recording ", 0) == 0;
+    }));
     const double before = loudness();
     ASSERT_GT(before, 0) << "the note sounds";
     const std::uint64_t tick = engine_->latest().tick;
@@ -179,6 +185,17 @@ TEST_F(EngineMidi, TheBowMovesAlongTheStringWhileItPlays) {
     double quietest = before;
     for (int w = 0; w < 5; ++w) quietest = std::min(quietest, loudness());
     EXPECT_GT(quietest, 0.2 * before) << "the string played on through the move";
+    engine_->link().stop_take();
+    std::string said;
+    ASSERT_TRUE(engine_->await_take_written(&said)) << said;
+    const auto changes = read_parameter_changes(dir_ / "take" / "parameters.json");
+    ASSERT_FALSE(changes.empty());
+    EXPECT_EQ(changes.front().parameter, "bow.position") << "the take kept the move";
+    const auto r = test::run_archet(
+        {"render", "--take", (dir_ / "take").string(), "-o", (dir_ / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir_ / "again.wav"), test::read_file(dir_ / "take" / "take.wav"))
+        << "the take across the move re-renders to the byte";
     // The moved model took over the playing one's whole state, its clock included: a model
     // started afresh would count its ticks from 0.
     EXPECT_GT(engine_->latest().tick, tick) << "the string's motion was handed over";

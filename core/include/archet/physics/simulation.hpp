@@ -15,6 +15,9 @@ class Simulation {
     explicit Simulation(CompiledModel model);
     Simulation(const Simulation&) = delete;
     Simulation& operator=(const Simulation&) = delete;
+    /// Moves keep the compiled arrays' storage, which the resolved hand links point into.
+    Simulation(Simulation&&) = default;
+    Simulation& operator=(Simulation&&) = default;
 
     /// Plays a gesture track: each gesture point reads it at its own ticks. The gesture
     /// must outlive the simulation's use of it.
