@@ -35,6 +35,8 @@ class Instrument {
     /// The simulation stopped being finite: silent until replaced.
     bool blown_up() const { return blown_up_; }
     double bow_position() const { return bow_position_; }
+    /// What it plays, for its probes (tests read the bow's slip velocity).
+    const Simulation& simulation() const { return sim_; }
     /// A bow position MIDI asked for since the last call (CC 4), or 0.
     double take_bow_request() { return std::exchange(bow_request_, 0.0); }
     std::uint64_t model_id() const { return model_id_; }

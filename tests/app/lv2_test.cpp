@@ -11,8 +11,11 @@
 #include <cstdio>
 #include <numeric>
 
+#include "archet/analysis/bowing_analysis.hpp"
+#include "archet/files/model_file.hpp"
 #include "archet/realtime_allocations.hpp"
 #include "lv2_host.hpp"
+#include "lv2_instrument.hpp"
 #include "test_support.hpp"
 
 namespace archet {
@@ -80,6 +83,33 @@ TEST(Lv2, TheBundleIsAnInstrumentWithItsPorts) {
         lilv_node_free(s);
     }
     ASSERT_TRUE(host.ready());
+}
+
+// The instrument run() plays, in this process: a note is bowed in Helmholtz motion at its pitch,
+// read on the bow's slip velocity (one slip per period, steady), as the engine's notes are.
+TEST(Lv2Instrument, ANoteIsBowedInHelmholtzMotionAtItsPitch) {
+    lv2::Instrument instrument(load_model_file(std::string(ARCHET_LV2_BUNDLE) + "/default.json"),
+                               48000, 0);
+    instrument.set_controls(0.15, 0.1, 1.0);
+    instrument.receive({midi::MidiMessage::Kind::NoteOn, 1, 64, 100});  // E4
+    std::size_t slip = 0;
+    for (std::size_t p = 0; p < instrument.simulation().probe_count(); ++p)
+        if (instrument.simulation().model().probes[p].kind == ProbeKind::SlipVelocity) slip = p;
+    std::vector<double> slips;
+    float out[32];
+    for (int b = 0; b < 1.5 * 48000 / 32; ++b) {
+        for (int i = 0; i < 32; ++i) {
+            instrument.render(out + i, 1);
+            slips.push_back(instrument.simulation().probe(slip));
+        }
+    }
+    const double e4 = 220 * std::pow(2.0, 7.0 / 12);
+    const BowingAnalysis a = analyse_bowing(slips, 48000, e4, slips.size() - 24000, slips.size());
+    EXPECT_TRUE(a.helmholtz()) << a.slips_per_period << " slips a period, spread "
+                               << a.period_spread;
+    EXPECT_LT(std::abs(a.pitch_cents), 20) << a.pitch_cents << " cents against E4";
+    std::printf("the LV2 instrument's E4: %.3f slips a period, %+.1f cents\n", a.slips_per_period,
+                a.pitch_cents);
 }
 
 TEST(Lv2, ANoteIsPlayedAtItsPitchWithoutAllocatingAndLiftedAtItsEnd) {
