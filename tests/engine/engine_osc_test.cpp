@@ -6,11 +6,15 @@
 #include <gtest/gtest.h>
 #include <lo/lo.h>
 #include <netinet/in.h>
+#include <spawn.h>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <sstream>
 
 #include "archet/builders/bowed_string.hpp"
 #include "archet/files/model_file.hpp"
@@ -248,6 +252,62 @@ TEST(EngineOsc, SendsTheBowForceAndTheEnergyToAVisualiser) {
 }
 
 // A port another program holds costs the engine its OSC, not its sound: it says so and plays.
+// `archet play --osc` without the studio: a sender bows the model through the engine it starts,
+// and the take it records re-renders to the byte.
+TEST(EngineOsc, PlayFromTheCommandLineRecordsWhatOscPlays) {
+    const auto dir = test::temp_dir("play-osc");
+    BowedStringOptions o;
+    o.pitch = 220, o.paper = true, o.finger = true;
+    write_file_atomically(dir / "fingered.json", format_model(build_bowed_string(o)));
+    const int port = free_udp_port();
+    const auto take = dir / "take";
+    std::vector<std::string> args{ARCHET_BINARY,
+                                  "play",
+                                  (dir / "fingered.json").string(),
+                                  "--osc",
+                                  std::to_string(port),
+                                  "--take",
+                                  take.string(),
+                                  "--duration",
+                                  "3"};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid = -1;
+    ASSERT_EQ(::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ), 0);
+    ASSERT_TRUE(test::wait_for([&] { return std::filesystem::exists(take / "take.wav"); },
+                               test::kGenerous));
+    lo_address to = lo_address_new("127.0.0.1", std::to_string(port).c_str());
+    int status = -1;
+    for (int i = 0; ::waitpid(pid, &status, WNOHANG) == 0; ++i) {  // until play's duration ends
+        lo_send(to, "/archet/bow/press", "f", 0.0015f);
+        lo_send(to, "/archet/bow/slide", "f", static_cast<float>(0.0002 * i));
+        ::usleep(2000);
+    }
+    lo_address_free(to);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    const auto r =
+        test::run_archet({"render", "--take", take.string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(take / "take.wav"));
+    // OSC pressed the bow in: the take's normal force (probes.csv) rose.
+    std::istringstream csv(test::read_file(take / "probes.csv"));
+    std::string line, cell;
+    std::getline(csv, line);
+    int column = -1, at = 0;
+    for (std::istringstream header(line); std::getline(header, cell, ','); ++at)
+        if (cell == "normal_force") column = at;
+    ASSERT_GE(column, 0);
+    double pressed = 0;
+    while (std::getline(csv, line)) {
+        std::istringstream row(line);
+        for (int c = 0; c <= column; ++c) std::getline(row, cell, ',');
+        pressed = std::max(pressed, std::stod(cell));
+    }
+    EXPECT_GT(pressed, 0.05) << "OSC pressed the bow in";
+}
+
 TEST(EngineOsc, APortAlreadyTakenIsSaidAndTheEnginePlaysOn) {
     const int holder = ::socket(AF_INET, SOCK_DGRAM, 0);
     sockaddr_in a{};
