@@ -147,12 +147,9 @@ void move_bow(Simulation& s, const Model& model, double beta, const Gesture* tra
     set_variant_parameter(moved, "bow.position", beta);
     Simulation next(compile(moved));
     next.set_gesture_track(track);
-    std::vector<double> state(s.state_size());
-    if (state.size() != next.state_size())
+    std::vector<double> scratch(next.state_size());
+    if (!next.continue_from(s, scratch))
         throw InputError("bow.position", "the moved bow's model does not match the take's");
-    s.save_state(state.data());
-    next.load_state(state.data());
-    next.refresh_modal_points();
     s = std::move(next);
 }
 

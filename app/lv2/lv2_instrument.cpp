@@ -113,11 +113,8 @@ void Instrument::render(float* out, std::uint32_t frames) {
 }
 
 bool Instrument::continue_from(const Instrument& from) {
-    if (from.model_id_ != model_id_ || from.state_.size() != state_.size() || from.blown_up_)
+    if (from.model_id_ != model_id_ || from.blown_up_ || !sim_.continue_from(from.sim_, state_))
         return false;
-    from.sim_.save_state(state_.data());
-    sim_.load_state(state_.data());
-    sim_.refresh_modal_points();  // the contact's masses are this compile's
     hand_ = from.hand_, drive_speed_ = from.drive_speed_;
     performer_.take_over(from.performer_);  // the notes held, the stroke, the vibrato
     smoother_ = from.smoother_;             // same slots: the glides go on

@@ -248,8 +248,7 @@ void ControlThread::nrt_set_live_parameter(const CommandFrame& c, const Paramete
 // Each slot a parameter change glides, by name: a take that begins while one glides names it.
 void ControlThread::nrt_remember_slot(const ParameterSlot& slot, const std::string& name) {
     for (const auto& [known, _] : glided_slots_)
-        if (known.kind == slot.kind && known.level == slot.level && known.index == slot.index)
-            return;
+        if (known == slot) return;
     glided_slots_.push_back({slot, name});
 }
 

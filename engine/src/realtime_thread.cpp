@@ -165,10 +165,8 @@ double RealtimeThread::rt_cross_fade(double incoming) {
 // as a change of "bow.position", which render --take makes the same way.
 bool RealtimeThread::rt_continue_into(LoadedModel& next) {
     Simulation& from = *rt_running_->simulation;
-    if (rt_fading_from_ || rt_muted_ || next.handover.size() != from.state_size()) return false;
-    from.save_state(next.handover.data());
-    next.simulation->load_state(next.handover.data());
-    next.simulation->refresh_modal_points();
+    if (rt_fading_from_ || rt_muted_ || !next.simulation->continue_from(from, next.handover))
+        return false;
     if (rt_recording_ && next.bow_move_named)
         rt_recording_->parameter(next.simulation->tick(), next.bow_move_name, next.bow_position, 1);
     else

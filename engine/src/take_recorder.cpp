@@ -121,15 +121,14 @@ void TakeRecorder::name_slot(const ParameterSlot& slot, const std::string& name)
 
 void TakeRecorder::name_slot_waiting(const ParameterSlot& slot, std::uint32_t name) {
     for (const auto& [known, _] : slot_names_)  // a fader streams the same slot: named once
-        if (known.kind == slot.kind && known.level == slot.level && known.index == slot.index)
-            return;
+        if (known == slot) return;
     if (slot_names_.size() < kSlotNames) slot_names_.push_back({slot, name});  // no allocation
 }
 
 void TakeRecorder::glide_under_way(const ParameterSmoother::Glide& g) {
     // A slot has one name (it is one parameter of the model), however often it was named.
     for (const auto& [slot, name] : slot_names_)
-        if (slot.kind == g.slot.kind && slot.level == g.slot.level && slot.index == g.slot.index) {
+        if (slot == g.slot) {
             changes_.ring().try_push({start_tick_.load(std::memory_order_relaxed), name, g.total,
                                       g.to, true, g.from, g.done});
             return;

@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <sstream>
 
 #include <RtMidi.h>
 #include <unistd.h>
@@ -64,23 +63,6 @@ class EngineMidi : public test::JackDummy {
     std::unique_ptr<test::JackMidiKeyboard> keyboard_;
 };
 
-// The column `name` of a take's probes.csv.
-std::vector<double> probe_column(const std::filesystem::path& csv, const std::string& name) {
-    std::istringstream in(test::read_file(csv));
-    std::string line, cell;
-    std::getline(in, line);
-    int column = -1, i = 0;
-    for (std::istringstream header(line); std::getline(header, cell, ','); ++i)
-        if (cell == name) column = i;
-    std::vector<double> values;
-    while (column >= 0 && std::getline(in, line)) {
-        std::istringstream row(line);
-        for (int c = 0; c <= column; ++c) std::getline(row, cell, ',');
-        values.push_back(std::stod(cell));
-    }
-    return values;
-}
-
 TEST_F(EngineMidi, ANoteIsBowedAtItsPitchAndItsTakeReRendersToTheByte) {
     ASSERT_NO_FATAL_FAILURE(start());
     const auto folder = dir_ / "take";
@@ -100,8 +82,8 @@ TEST_F(EngineMidi, ANoteIsBowedAtItsPitchAndItsTakeReRendersToTheByte) {
     EXPECT_TRUE(engine_->errors().empty()) << engine_->errors().front();
 
     // Helmholtz motion at the stopped string's pitch, half a second from 0.8 s into the note.
-    const std::vector<double> slip = probe_column(folder / "probes.csv", "slip_v");
-    const std::vector<double> normal = probe_column(folder / "probes.csv", "normal_force");
+    const std::vector<double> slip = test::probe_column(folder / "probes.csv", "slip_v");
+    const std::vector<double> normal = test::probe_column(folder / "probes.csv", "normal_force");
     std::size_t first = 0;
     while (first < normal.size() && normal[first] <= 0) ++first;
     ASSERT_GT(normal.size(), first + 62400) << "the note was recorded for 1.3 s";
@@ -255,7 +237,7 @@ TEST_F(EngineMidi, PlayFromTheCommandLineRecordsWhatTheKeyboardPlays) {
     ::waitpid(pid, &status, 0);
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_EQ(WEXITSTATUS(status), 0);
-    const std::vector<double> normal = probe_column(take / "probes.csv", "normal_force");
+    const std::vector<double> normal = test::probe_column(take / "probes.csv", "normal_force");
     EXPECT_GT(*std::max_element(normal.begin(), normal.end()), 0.05) << "the note bowed";
     const auto r =
         test::run_archet({"render", "--take", take.string(), "-o", (dir / "again.wav").string()});

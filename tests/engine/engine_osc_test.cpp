@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <sstream>
 
 #include "archet/builders/bowed_string.hpp"
 #include "archet/files/model_file.hpp"
@@ -291,21 +290,10 @@ TEST(EngineOsc, PlayFromTheCommandLineRecordsWhatOscPlays) {
         test::run_archet({"render", "--take", take.string(), "-o", (dir / "again.wav").string()});
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(take / "take.wav"));
-    // OSC pressed the bow in: the take's normal force (probes.csv) rose.
-    std::istringstream csv(test::read_file(take / "probes.csv"));
-    std::string line, cell;
-    std::getline(csv, line);
-    int column = -1, at = 0;
-    for (std::istringstream header(line); std::getline(header, cell, ','); ++at)
-        if (cell == "normal_force") column = at;
-    ASSERT_GE(column, 0);
-    double pressed = 0;
-    while (std::getline(csv, line)) {
-        std::istringstream row(line);
-        for (int c = 0; c <= column; ++c) std::getline(row, cell, ',');
-        pressed = std::max(pressed, std::stod(cell));
-    }
-    EXPECT_GT(pressed, 0.05) << "OSC pressed the bow in";
+    // OSC pressed the bow in: the take's normal force rose.
+    const std::vector<double> normal = test::probe_column(take / "probes.csv", "normal_force");
+    ASSERT_FALSE(normal.empty());
+    EXPECT_GT(*std::max_element(normal.begin(), normal.end()), 0.05) << "OSC pressed the bow in";
 }
 
 TEST(EngineOsc, APortAlreadyTakenIsSaidAndTheEnginePlaysOn) {

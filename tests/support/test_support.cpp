@@ -93,6 +93,22 @@ std::string read_file(const std::filesystem::path& path) {
     return s.str();
 }
 
+std::vector<double> probe_column(const std::filesystem::path& csv, const std::string& name) {
+    std::istringstream in(read_file(csv));
+    std::string line, cell;
+    std::getline(in, line);
+    int column = -1, i = 0;
+    for (std::istringstream header(line); std::getline(header, cell, ','); ++i)
+        if (cell == name) column = i;
+    std::vector<double> values;
+    while (column >= 0 && std::getline(in, line)) {
+        std::istringstream row(line);
+        for (int c = 0; c <= column; ++c) std::getline(row, cell, ',');
+        values.push_back(std::stod(cell));
+    }
+    return values;
+}
+
 CommandResult run_command(const std::vector<std::string>& arguments) {
     const auto dir = temp_dir("run");
     std::string command;

@@ -32,6 +32,8 @@ CommandResult run_command(const std::vector<std::string>& arguments);
 CommandResult run_archet(const std::vector<std::string>& arguments);
 
 std::string read_file(const std::filesystem::path& path);
+/// The column `name` of a probes CSV (a take's probes.csv, render --probes): empty without it.
+std::vector<double> probe_column(const std::filesystem::path& csv, const std::string& name);
 
 /// Polls `done` every 2 ms until it holds or `limit` passes; returns its last answer.
 bool wait_for(const std::function<bool()>& done, std::chrono::milliseconds limit);

@@ -8,7 +8,7 @@ void ParameterSmoother::glide(Simulation& sim, const ParameterSlot& slot, double
                               int samples) {
     const double from = sim.read_slot(slot);
     for (std::size_t i = 0; i < count_; ++i)
-        if (same(glides_[i].slot, slot)) {
+        if (glides_[i].slot == slot) {
             glides_[i] = {slot, from, target, 0, std::max(samples, 1)};
             return;
         }

@@ -65,6 +65,14 @@ void Simulation::load_state(const double* in) {
                    [&](auto& v) { v = static_cast<std::remove_reference_t<decltype(v)>>(*in++); });
 }
 
+bool Simulation::continue_from(const Simulation& from, std::span<double> scratch) {
+    if (from.state_size() != state_size() || scratch.size() != state_size()) return false;
+    from.save_state(scratch.data());
+    load_state(scratch.data());
+    refresh_modal_points();  // the contact's masses are this compile's
+    return true;
+}
+
 void Simulation::refresh_modal_points() {
     for (auto& lv : model_.levels)
         for (auto& p : lv.modal_points) {

@@ -182,6 +182,7 @@ struct ParameterSlot {
     Kind kind = Kind::Mass;
     int level = 0;
     int index = 0;
+    bool operator==(const ParameterSlot&) const = default;
 };
 
 struct CompiledControl {

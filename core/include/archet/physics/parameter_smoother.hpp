@@ -35,9 +35,6 @@ class ParameterSmoother {
     bool resume(const Glide& glide);
 
   private:
-    static bool same(const ParameterSlot& a, const ParameterSlot& b) {
-        return a.kind == b.kind && a.level == b.level && a.index == b.index;
-    }
     std::array<Glide, kCapacity> glides_{};
     std::size_t count_ = 0;
 };

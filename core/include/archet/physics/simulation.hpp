@@ -3,6 +3,7 @@
 // rendering, tests, benchmarks and the real-time engine. step() does not allocate.
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "archet/model/gesture.hpp"
@@ -47,9 +48,11 @@ class Simulation {
     /// Resumes from a saved state of the same compiled model (same state_size()). Set the
     /// gesture track first: setting it moves the gesture points.
     void load_state(const double* in);
-    /// After load_state() from a model whose modal points read other modes (the bow's contact
-    /// moved): each point's position now and a step ago, and its response, from its modes.
-    void refresh_modal_points();
+    /// Takes over the state of `from`, the same elements compiled with the bow's contact on
+    /// other masses (the bow moved along the string): its motion, parameters and clock, the
+    /// modal points read from this model's modes. `scratch` holds state_size() values, so it is
+    /// real-time safe. False, and nothing changed, when the two states do not match.
+    bool continue_from(const Simulation& from, std::span<double> scratch);
 
     /// Keeps the per-element dissipation (slower; off by default).
     void enable_accounting(bool on);
@@ -102,6 +105,8 @@ class Simulation {
     double finger_dissipation(const CompiledLevel& level, const CompiledFinger& finger) const;
     void update_gesture_points(CompiledLevel& level);
     void update_modal_points(CompiledLevel& level);
+    /// Each modal point's position now and a step ago, and its response, from its modes.
+    void refresh_modal_points();
     /// Adds the motion a force on a modal point causes over this step, to its modes and so to
     /// every point of its body.
     void apply_modal_force(CompiledLevel& level, int point, double force);
