@@ -1,7 +1,7 @@
 // The studio's attack map: computed in the background for the open model, with progress and
 // cancel, drawn as the Guettler diagram, and a clicked point's attack played; the Play menu
-// opens it beside the playability map. The gesture pad plays a stroke from rest at a chosen
-// acceleration, as the map does.
+// opens it as a tab beside the playability map's. The gesture pad plays a stroke from rest at a
+// chosen acceleration, as the map does.
 
 #include <gtest/gtest.h>
 #include <qcustomplot.h>
@@ -13,11 +13,13 @@
 #include <QMenuBar>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QTabWidget>
 #include <QTest>
 
 #include "archet/files/model_file.hpp"
 #include "archet/ui/attack_figure.hpp"
 #include "archet/ui/attack_panel.hpp"
+#include "archet/ui/bowing_maps_window.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/main_window.hpp"
 #include "archet/ui/stroke_driver.hpp"
@@ -36,9 +38,10 @@ AttackGrid wedge_grid() {
 
 TEST(AttackPanelTest, ComputesInTheBackgroundAndPlaysAClickedAttack) {
     const Model model = load_model_file(test::resource("models/bowed-string-220.json"));
-    AttackPanel panel(model);
-    panel.resize(1000, 800);
-    panel.show();
+    BowingMapsWindow maps(model, {});
+    maps.resize(1000, 860);
+    maps.show_tab(BowingMapsWindow::Tab::Attack);
+    AttackPanel& panel = maps.attack();
     panel.set_grid(wedge_grid());
     QString error = "not yet";
     QObject::connect(&panel, &AttackPanel::computed, [&](const QString& e) { error = e; });
@@ -58,7 +61,7 @@ TEST(AttackPanelTest, ComputesInTheBackgroundAndPlaysAClickedAttack) {
     });
     EXPECT_GE(perfect, 1) << "the shipped string's wedge crosses this grid";
     QDir().mkpath(ARCHET_ARTIFACT_DIR);
-    EXPECT_TRUE(panel.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-attack.png")));
+    EXPECT_TRUE(maps.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-attack.png")));
     // A click on a point plays its attack, and says what it was.
     const AttackPoint& p = panel.points()[5];
     const QPoint pixel(static_cast<int>(plot.xAxis->coordToPixel(p.acceleration)),
@@ -102,17 +105,85 @@ TEST(AttackPanelTest, ACancelStopsTheSweepAndSaysSo) {
     EXPECT_FALSE(panel.busy());
 }
 
-TEST(AttackPanelTest, ThePlayMenuOpensItBesideThePlayabilityMap) {
-    MainWindow window(test::editor_alone());
-    QAction* attack = nullptr;
+QAction* play_menu_action(MainWindow& window, const QString& text) {
     for (QAction* menu : window.menuBar()->actions())
         for (QAction* a : menu->menu() ? menu->menu()->actions() : QList<QAction*>{})
-            if (a->text().remove('&') == "Attack map…") attack = a;
+            if (a->text().remove('&') == text) return a;
+    return nullptr;
+}
+
+// One attack at 16 m/s² and 70 mN: inside the 220 Hz string's wedge of perfect attacks, far
+// under the 110 Hz string's (which needs about twice the force).
+AttackGrid one_attack() {
+    AttackGrid grid;
+    grid.acceleration_min = grid.acceleration_max = 16, grid.acceleration_steps = 1;
+    grid.force_min = grid.force_max = 0.07, grid.force_steps = 1;
+    return grid;
+}
+
+AttackKind compute_one_attack(AttackPanel& panel) {
+    QString error = "not yet";
+    auto seen =
+        QObject::connect(&panel, &AttackPanel::computed, [&](const QString& e) { error = e; });
+    panel.set_grid(one_attack());
+    panel.compute();
+    EXPECT_TRUE(test::wait_until([&] { return error != "not yet"; }, 300000));
+    QObject::disconnect(seen);
+    EXPECT_TRUE(error.isEmpty()) << error.toStdString();
+    return panel.points().empty() ? AttackKind::Never : panel.points().front().transient.kind;
+}
+
+TEST(AttackPanelTest, ThePlayMenuOpensTheAttackTabBesideThePlayabilityTab) {
+    MainWindow window(test::editor_alone());
+    window.open_model(load_model_file(test::resource("models/bowed-string-220.json")));
+    QAction* attack = play_menu_action(window, "Attack map…");
+    QAction* playability = play_menu_action(window, "Playability map…");
     ASSERT_NE(attack, nullptr);
+    ASSERT_NE(playability, nullptr);
     EXPECT_EQ(attack->shortcut(), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_M));
+    EXPECT_EQ(playability->shortcut(), QKeySequence(Qt::CTRL | Qt::Key_M));
     attack->trigger();
-    QTest::qWait(50);
-    EXPECT_NE(window.findChild<AttackPanel*>(), nullptr);
+    auto* maps = window.findChild<BowingMapsWindow*>();
+    ASSERT_NE(maps, nullptr);
+    EXPECT_TRUE(maps->isVisible());
+    EXPECT_EQ(maps->current_tab(), BowingMapsWindow::Tab::Attack);
+    auto* tabs = maps->findChild<QTabWidget*>();
+    ASSERT_NE(tabs, nullptr);
+    ASSERT_EQ(tabs->count(), 2);
+    EXPECT_EQ(tabs->tabText(0), "Playability");
+    EXPECT_EQ(tabs->tabText(1), "Attack");
+    EXPECT_TRUE(maps->windowTitle().contains("bowed-string-220"));
+
+    EXPECT_EQ(compute_one_attack(maps->attack()), AttackKind::Perfect);
+    // A grid of one point is drawn around it (its axes had no span to fit).
+    QCustomPlot& plot = maps->attack().figure().plot();
+    EXPECT_TRUE(plot.xAxis->range().contains(16.0) && plot.xAxis->range().size() > 0.1);
+    EXPECT_TRUE(plot.yAxis->range().contains(0.07) && plot.yAxis->range().size() > 0.001);
+    maps->resize(1000, 860);
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    EXPECT_TRUE(maps->grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-bowing-maps.png")));
+
+    // The other map is the other tab of the same window.
+    playability->trigger();
+    EXPECT_EQ(window.findChildren<BowingMapsWindow*>().size(), 1);
+    EXPECT_EQ(maps->current_tab(), BowingMapsWindow::Tab::Playability);
+    // Closed and opened again, the window keeps the map it computed.
+    maps->close();
+    attack->trigger();
+    EXPECT_EQ(window.findChild<BowingMapsWindow*>(), maps);
+    EXPECT_TRUE(maps->isVisible());
+    EXPECT_EQ(maps->attack().points().size(), 1u);
+
+    // Another model opened: the window follows it; the map shown says it is the old model's
+    // until Compute maps the new one.
+    window.open_model(load_model_file(test::resource("models/bowed-string-110.json")));
+    EXPECT_TRUE(maps->windowTitle().contains("bowed-string-110"));
+    bool said = false;
+    for (const QLabel* label : maps->attack().findChildren<QLabel*>())
+        said = said || label->text().startsWith("The model has changed since this map");
+    EXPECT_TRUE(said);
+    EXPECT_NE(compute_one_attack(maps->attack()), AttackKind::Perfect)
+        << "70 mN at 16 m/s² is far under the 110 Hz string's wedge";
 }
 
 TEST(StrokeDriverTest, SlidesFromRestWithTheChosenAccelerationToTheEdge) {

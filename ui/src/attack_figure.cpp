@@ -130,12 +130,15 @@ void AttackFigure::show_attacks(const AttackGrid& grid, const std::vector<Attack
                 return p.transient.kind == AttackKind::Never && p.transient.transient == transient;
             });
     }
-    const double margin = grid.log_axes ? 1.15 : 1.0;
-    const double ax = grid.log_axes ? 0 : 0.05 * (grid.acceleration_max - grid.acceleration_min);
-    const double fy = grid.log_axes ? 0 : 0.05 * (grid.force_max - grid.force_min);
-    plot_->xAxis->setRange(grid.acceleration_min / margin - ax,
-                           grid.acceleration_max * margin + ax);
-    plot_->yAxis->setRange(grid.force_min / margin - fy, grid.force_max * margin + fy);
+    // A margin around the grid: a factor on log axes, a twentieth of the span on linear ones
+    // (a tenth of the value for a grid of one step, whose span is nothing).
+    auto set_range = [&](QCPAxis* axis, double lo, double hi) {
+        if (grid.log_axes) return axis->setRange(lo / 1.15, hi * 1.15);
+        const double pad = hi > lo ? 0.05 * (hi - lo) : 0.1 * std::abs(hi);
+        axis->setRange(lo - pad, hi + pad);
+    };
+    set_range(plot_->xAxis, grid.acceleration_min, grid.acceleration_max);
+    set_range(plot_->yAxis, grid.force_min, grid.force_max);
     apply_palette(*plot_);
     plot_->replot();
 }

@@ -17,8 +17,7 @@
 
 namespace archet::ui {
 
-AttackPanel::AttackPanel(const Model& model, QWidget* parent) : QDialog(parent), model_(model) {
-    setWindowTitle(tr("Attack map — %1").arg(QString::fromStdString(model.name)));
+AttackPanel::AttackPanel(const Model& model, QWidget* parent) : QWidget(parent), model_(model) {
     const AttackGrid d;
     acceleration_min_ = number_box(0.01, 1000, d.acceleration_min, 2, tr(" m/s²"));
     acceleration_max_ = number_box(0.01, 1000, d.acceleration_max, 2, tr(" m/s²"));
@@ -53,6 +52,11 @@ AttackPanel::AttackPanel(const Model& model, QWidget* parent) : QDialog(parent),
     connect(cancel_button_, &QPushButton::clicked, this, &AttackPanel::cancel);
     connect(figure_, &AttackFigure::point_clicked, this, &AttackPanel::listen);
     resize(1000, 800);
+}
+
+void AttackPanel::set_model(const Model& model) {
+    model_ = model;
+    if (!points_.empty() && !busy()) message_->setText(model_changed_text());
 }
 
 void AttackPanel::set_grid(const AttackGrid& g) {
@@ -92,7 +96,10 @@ void AttackPanel::compute() {
                 [&control](std::size_t done, std::size_t total) { control.progress(done, total); },
                 &control.cancel_flag());
         },
-        [this](AttackMap map) { finished(std::move(map), {}); },
+        [this, model = model_](AttackMap map) {
+            shown_model_ = model;
+            finished(std::move(map), {});
+        },
         [this](const QString& error) { finished({}, error); });
 }
 
@@ -104,7 +111,7 @@ void AttackPanel::finished(AttackMap map, QString error) {
         // Clicks play points of the grid the figure shows, set only now.
         grid_ = map.grid, pitch_ = map.pitch;
         points_ = std::move(map.points);
-        figure_->show_attacks(grid_, points_, QString::fromStdString(model_.name));
+        figure_->show_attacks(grid_, points_, QString::fromStdString(shown_model_.name));
         int perfect = 0;
         for (const auto& p : points_) perfect += p.transient.kind == AttackKind::Perfect;
         message_->setText(tr("%1 of %2 attacks perfect (Helmholtz motion from the first slip). "
@@ -120,8 +127,8 @@ void AttackPanel::listen(long index) {
     try {
         std::vector<double> sound;
         const AttackPoint p =
-            play_attack_point(model_, grid_, static_cast<std::size_t>(index), pitch_, &sound);
-        player_.play(sound, model_.sample_rate);
+            play_attack_point(shown_model_, grid_, static_cast<std::size_t>(index), pitch_, &sound);
+        player_.play(sound, shown_model_.sample_rate);
         const QString length =
             p.transient.kind == AttackKind::Never
                 ? tr("no Helmholtz motion in %1 periods").arg(grid_.periods_max)

@@ -15,14 +15,13 @@
 #include "archet/analysis/playability.hpp"
 #include "archet/midi/midi_mapping.hpp"
 #include "archet/ui/appearance.hpp"
-#include "archet/ui/attack_panel.hpp"
+#include "archet/ui/bowing_maps_window.hpp"
 #include "archet/ui/compare_view.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/graph_view.hpp"
 #include "archet/ui/help_texts.hpp"
 #include "archet/ui/midi_learn_dialog.hpp"
 #include "archet/ui/model_document.hpp"
-#include "archet/ui/playability_panel.hpp"
 #include "archet/ui/scope_panel.hpp"
 #include "archet/ui/settings_dialog.hpp"
 #include "archet/ui/sound_examples_dialog.hpp"
@@ -141,9 +140,9 @@ void MainWindow::build_play_menu() {
     add_action(play, tr("Audio and &devices…"), QKeySequence(), &MainWindow::open_settings);
     add_action(play, tr("&MIDI learn…"), QKeySequence(), &MainWindow::open_midi_learn);
     add_action(play, tr("Playa&bility map…"), QKeySequence(Qt::CTRL | Qt::Key_M),
-               &MainWindow::open_playability);
+               [this] { open_bowing_maps(BowingMapsWindow::Tab::Playability); });
     add_action(play, tr("&Attack map…"), QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_M),
-               [this] { show_owned(new AttackPanel(document_->model(), this)); });
+               [this] { open_bowing_maps(BowingMapsWindow::Tab::Attack); });
     add_action(play, tr("&Compare settings…"), QKeySequence(Qt::CTRL | Qt::Key_K),
                [this] { show_owned(new CompareView(document_->model(), this)); });
 }
@@ -202,7 +201,10 @@ void MainWindow::open_midi_learn() {
     show_owned(dialog);
 }
 
-void MainWindow::open_playability() {
+// One window for both maps, kept once made: a map computed stays there for the next look, and
+// the window follows the open model (the next Compute maps it as it is then).
+void MainWindow::open_bowing_maps(BowingMapsWindow::Tab tab) {
+    if (maps_) return maps_->show_tab(tab);
     // Where the player bows now: the model's bow position, the pad's press as a force.
     auto here = [this]() -> std::optional<std::pair<double, double>> {
         try {
@@ -213,7 +215,11 @@ void MainWindow::open_playability() {
             return std::nullopt;
         }
     };
-    show_owned(new PlayabilityPanel(document_->model(), here, this));
+    maps_ = new BowingMapsWindow(document_->model(), here, this);
+    auto follow = [this] { maps_->set_model(document_->model()); };
+    connect(document_, &ModelDocument::changed, maps_, follow);
+    connect(document_, &ModelDocument::replaced, maps_, follow);
+    maps_->show_tab(tab);
 }
 
 QToolBar* MainWindow::build_palette() {

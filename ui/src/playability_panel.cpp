@@ -20,8 +20,7 @@ namespace archet::ui {
 PlayabilityPanel::PlayabilityPanel(
     const Model& model, std::function<std::optional<std::pair<double, double>>()> gesture_point,
     QWidget* parent)
-    : QDialog(parent), model_(model), gesture_point_(std::move(gesture_point)) {
-    setWindowTitle(tr("Playability map — %1").arg(QString::fromStdString(model.name)));
+    : QWidget(parent), model_(model), gesture_point_(std::move(gesture_point)) {
     const MapGrid d;
     force_min_ = number_box(1e-4, 10, 0.002, 4, tr(" N"));
     force_max_ = number_box(1e-4, 10, 2.0, 3, tr(" N"));
@@ -61,6 +60,11 @@ PlayabilityPanel::PlayabilityPanel(
     resize(1000, 800);
 }
 
+void PlayabilityPanel::set_model(const Model& model) {
+    model_ = model;
+    if (!points_.empty() && !busy()) message_->setText(model_changed_text());
+}
+
 void PlayabilityPanel::set_grid(const MapGrid& g) {
     force_min_->setValue(g.force_min), force_max_->setValue(g.force_max);
     force_steps_->setValue(g.force_steps);
@@ -97,8 +101,8 @@ void PlayabilityPanel::compute() {
                 &control.cancel_flag());
         },
         // Clicks play points of the grid the figure shows, which changes only now.
-        [this, grid](std::vector<MapPoint> points) {
-            grid_ = grid;
+        [this, grid, model = model_](std::vector<MapPoint> points) {
+            grid_ = grid, shown_model_ = model;
             finished(std::move(points), {});
         },
         [this](const QString& error) { finished({}, error); });
@@ -110,7 +114,7 @@ void PlayabilityPanel::finished(std::vector<MapPoint> points, QString error) {
         message_->setText(error);
     } else {
         points_ = std::move(points);
-        figure_->show_map(grid_, points_, model_);
+        figure_->show_map(grid_, points_, shown_model_);
         figure_->mark(gesture_point_ ? gesture_point_() : std::nullopt);
         const HelmholtzPitch pitch = helmholtz_pitch(points_);
         const QString flattening =
@@ -132,8 +136,8 @@ void PlayabilityPanel::listen(long index) {
     try {
         std::vector<double> sound;
         const MapPoint p =
-            play_map_point(model_, grid_, static_cast<std::size_t>(index), 0, &sound);
-        player_.play(sound, model_.sample_rate);
+            play_map_point(shown_model_, grid_, static_cast<std::size_t>(index), 0, &sound);
+        player_.play(sound, shown_model_.sample_rate);
         message_->setText(tr("β %1, %2 N: %3 (%4 slips per period, %5 cents) — playing on %6")
                               .arg(p.position, 0, 'f', 3)
                               .arg(p.force, 0, 'g', 3)

@@ -48,4 +48,10 @@ SweepButtons sweep_buttons(BackgroundJob& job, QWidget* owner) {
     return b;
 }
 
+QString model_changed_text() {
+    return QObject::tr(
+        "The model has changed since this map was computed: Compute maps it as it "
+        "is now. Until then a click plays the map's own model.");
+}
+
 }  // namespace archet::ui

@@ -2,7 +2,7 @@
 // The attack panel: the current model's attack map (Guettler diagram) computed in the
 // background on every core, with progress and cancel, and a click on a point to hear its attack.
 
-#include <QDialog>
+#include <QWidget>
 
 #include "archet/analysis/attack.hpp"
 #include "archet/model/model.hpp"
@@ -20,12 +20,15 @@ namespace archet::ui {
 
 class AttackFigure;
 
-class AttackPanel : public QDialog {
+class AttackPanel : public QWidget {
     Q_OBJECT
 
   public:
     explicit AttackPanel(const Model& model, QWidget* parent = nullptr);
 
+    /// The model the next Compute maps; the map shown, and its points' sounds, stay those
+    /// of the model it was computed for until then.
+    void set_model(const Model& model);
     void set_grid(const AttackGrid& grid);
     void compute();
     void cancel() { job_.cancel(); }
@@ -43,9 +46,10 @@ class AttackPanel : public QDialog {
     AttackGrid grid_from_fields() const;
     void finished(AttackMap map, QString error);
 
-    Model model_;
-    AttackGrid grid_;   ///< the grid the figure shows
-    double pitch_ = 0;  ///< the string's first mode its periods count
+    Model model_;        ///< the open model, mapped by the next Compute
+    Model shown_model_;  ///< the model the figure shows
+    AttackGrid grid_;    ///< the grid the figure shows
+    double pitch_ = 0;   ///< the string's first mode its periods count
     QDoubleSpinBox *acceleration_min_, *acceleration_max_, *force_min_, *force_max_;
     QSpinBox *acceleration_steps_, *force_steps_, *periods_max_;
     QCheckBox* log_axes_;

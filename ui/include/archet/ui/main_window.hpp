@@ -16,6 +16,7 @@
 #include "archet/builders/bowed_string.hpp"
 #include "archet/model/model.hpp"
 #include "archet/ui/background_job.hpp"
+#include "archet/ui/bowing_maps_window.hpp"
 #include "archet/ui/engine_client.hpp"
 
 class QAction;
@@ -119,7 +120,8 @@ class MainWindow : public QMainWindow {
     QToolBar* build_palette();
     void open_settings();
     void open_midi_learn();
-    void open_playability();
+    /// The bowing maps window, brought up on `tab` (made the first time).
+    void open_bowing_maps(BowingMapsWindow::Tab tab);
 
     // Files (main_window_files.cpp).
     void new_string();
@@ -159,6 +161,7 @@ class MainWindow : public QMainWindow {
     QTimer autosave_timer_;
     RecordingClock* recording_clock_;
     QTabWidget* tabs_;
+    BowingMapsWindow* maps_ = nullptr;  ///< made when first asked for, then kept
     std::vector<QSplitter*> splitters_;
     double saved_zoom_ = 0;
     QString saved_zoom_model_;

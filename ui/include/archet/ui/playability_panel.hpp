@@ -2,7 +2,7 @@
 // The playability panel: the current model's map (Schelleng diagram) computed in the
 // background on every core, the current gesture's point on it, and a click on a run to hear it.
 
-#include <QDialog>
+#include <QWidget>
 #include <functional>
 #include <optional>
 
@@ -22,7 +22,7 @@ namespace archet::ui {
 
 class PlayabilityFigure;
 
-class PlayabilityPanel : public QDialog {
+class PlayabilityPanel : public QWidget {
     Q_OBJECT
 
   public:
@@ -31,6 +31,9 @@ class PlayabilityPanel : public QDialog {
                      std::function<std::optional<std::pair<double, double>>()> gesture_point,
                      QWidget* parent = nullptr);
 
+    /// The model the next Compute maps; the map shown, and its points' sounds, stay those
+    /// of the model it was computed for until then.
+    void set_model(const Model& model);
     void set_grid(const MapGrid& grid);
     void compute();
     void cancel() { job_.cancel(); }
@@ -48,8 +51,9 @@ class PlayabilityPanel : public QDialog {
     MapGrid grid_from_fields() const;
     void finished(std::vector<MapPoint> points, QString error);
 
-    Model model_;
-    MapGrid grid_;  ///< the grid the figure shows
+    Model model_;        ///< the open model, mapped by the next Compute
+    Model shown_model_;  ///< the model the figure shows
+    MapGrid grid_;       ///< the grid the figure shows
     std::function<std::optional<std::pair<double, double>>()> gesture_point_;
     QDoubleSpinBox *force_min_, *force_max_, *position_min_, *position_max_, *speed_, *duration_;
     QSpinBox *force_steps_, *position_steps_;

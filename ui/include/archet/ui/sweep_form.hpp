@@ -29,4 +29,7 @@ struct SweepButtons {
 };
 SweepButtons sweep_buttons(BackgroundJob& job, QWidget* owner);
 
+/// What a panel says when the open model changes under the map it shows.
+QString model_changed_text();
+
 }  // namespace archet::ui
