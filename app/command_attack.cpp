@@ -28,7 +28,7 @@ namespace archet::cli {
 namespace {
 
 struct AttackArguments : SweepOptions {
-    std::string model, acceleration = "2:40:12", force = "0.01:0.4:12", axes = "linear";
+    std::string model, acceleration = "1:40:16", force = "0.05:5:16", axes = "log";
     double position = 0;
     int periods_max = 25;
     std::vector<std::string> parts;
@@ -55,7 +55,7 @@ AttackGrid grid_from(const AttackArguments& a) {
         try {
             return AttackGrid::parse(key + "=" + value);
         } catch (const InputError&) {
-            throw InputError(option, "\"" + value + "\": expected MIN:MAX:STEPS, e.g. 2:40:12");
+            throw InputError(option, "\"" + value + "\": expected MIN:MAX:STEPS, e.g. 1:40:16");
         }
     };
     AttackGrid grid = range("--acceleration", "acceleration", a.acceleration);

@@ -46,9 +46,9 @@ AttackTransient judge_stroke(const std::vector<double>& slip, const std::vector<
     std::size_t first = 0, last = normal.size();
     while (first < last && !(normal[first] > 0)) ++first;
     while (last > first && !(normal[last - 1] > 0)) --last;
-    const std::vector<double> onsets = slip_onsets(slip, fs, first, last);
+    const std::vector<Slip> slips = slips_in(slip, fs, first, last);
     const int longest = static_cast<int>((last - first) / fs * pitch) + 1;
-    AttackTransient t = judge_transient(onsets, 1.0 / pitch, 0.0, longest);
+    AttackTransient t = judge_transient(slips, 1.0 / pitch, 0.0, longest);
     if (!t.decided) t.kind = AttackKind::Never;
     return t;
 }

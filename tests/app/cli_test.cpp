@@ -158,7 +158,12 @@ TEST(Cli, BowingComparesAttacksSideBySide) {
     // The transient counted as `archet attack` counts it: periods of f1 from the first slip
     // (which comes a little after the contact the attack time counts from), and how it began.
     for (const auto& one : j) {
-        EXPECT_EQ(one["attack_kind"], one["transient"]) << one.dump();
+        // Too little force at first (extra slips, or slips through most of a period) or too
+        // much (a prolonged period).
+        EXPECT_EQ(one["attack_kind"],
+                  one["transient"] == "prolonged" ? "prolonged" : "multiple_slip")
+            << one.dump();
+        EXPECT_NE(one["transient"], "none") << one.dump();
         const double periods = one["attack"].get<double>() * one["pitch"].get<double>();
         EXPECT_LE(one["transient_periods"].get<double>(), periods) << one.dump();
         EXPECT_GE(one["transient_periods"].get<double>(), 0.9 * periods) << one.dump();

@@ -27,6 +27,7 @@ AttackPanel::AttackPanel(const Model& model, QWidget* parent) : QWidget(parent),
     force_steps_ = count_box(1, 60, d.force_steps);
     periods_max_ = count_box(1, 1000, d.periods_max);
     log_axes_ = new QCheckBox(tr("logarithmic steps and axes"));
+    log_axes_->setChecked(d.log_axes);
     const SweepButtons buttons = sweep_buttons(job_, this);
     compute_ = buttons.compute, cancel_button_ = buttons.cancel, progress_ = buttons.progress;
     message_ = new QLabel(

@@ -97,37 +97,44 @@ AttackKind attack_kind_from_string(const std::string& name) {
     throw InputError(name, "is not an attack (perfect, multiple_slip, prolonged, never)");
 }
 
-AttackTransient judge_transient(const std::vector<double>& onsets, double period, double now,
+AttackTransient judge_transient(const std::vector<Slip>& slips, double period, double now,
                                 int periods_max, int settle, double tolerance) {
     AttackTransient t;
     t.periods = periods_max;
-    if (onsets.empty()) return t;      // no slip yet: the caller's wait decides
+    if (slips.empty()) return t;       // no slip yet: the caller's wait decides
     t.transient = Transient::Sliding;  // unless a period of it says otherwise
-    const double first = onsets.front(), latest_start = first + periods_max * period;
-    auto interval = [&](std::size_t i) { return onsets[i + 1] - onsets[i]; };
+    const double first = slips.front().onset, latest_start = first + periods_max * period;
+    auto interval = [&](std::size_t i) { return slips[i + 1].onset - slips[i].onset; };
+    // Helmholtz motion slips for β of the period: a slip through half of it or more is the
+    // bow sliding, whatever the spacing of the slips.
+    auto slid = [&](std::size_t i) {
+        return !slips[i].ended() || slips[i].end - slips[i].onset >= 0.5 * period;
+    };
     auto steady = [&](std::size_t i) {
-        return std::abs(interval(i) - period) <= tolerance * period;
+        return std::abs(interval(i) - period) <= tolerance * period && !slid(i);
     };
     // The transient is named by its first period that is not steady.
-    for (std::size_t i = 0; i + 1 < onsets.size() && onsets[i] <= latest_start; ++i) {
+    for (std::size_t i = 0; i + 1 < slips.size() && slips[i].onset <= latest_start; ++i) {
         if (steady(i)) continue;
-        t.transient = interval(i) < period ? Transient::MultipleSlip : Transient::Prolonged;
+        t.transient = slid(i)                ? Transient::Sliding
+                      : interval(i) < period ? Transient::MultipleSlip
+                                             : Transient::Prolonged;
         break;
     }
-    for (std::size_t k = 0; k < onsets.size() && onsets[k] <= latest_start; ++k) {
+    for (std::size_t k = 0; k < slips.size() && slips[k].onset <= latest_start; ++k) {
         std::size_t j = k;
-        while (j < k + settle && j + 1 < onsets.size() && steady(j)) ++j;
+        while (j < k + settle && j + 1 < slips.size() && steady(j)) ++j;
         if (j < k + settle) continue;
         t.decided = true;
         t.slips = static_cast<int>(k);
-        t.periods = (onsets[k] - first) / period;
+        t.periods = (slips[k].onset - first) / period;
         if (k == 0) t.transient = Transient::None;
         t.kind = k == 0 ? AttackKind::Perfect
-                        : (t.transient == Transient::MultipleSlip ? AttackKind::MultipleSlip
-                                                                  : AttackKind::Prolonged);
+                        : (t.transient == Transient::Prolonged ? AttackKind::Prolonged
+                                                               : AttackKind::MultipleSlip);
         return t;
     }
-    for (double onset : onsets) t.slips += onset <= latest_start;
+    for (const Slip& slip : slips) t.slips += slip.onset <= latest_start;
     t.decided = now > unsettled_after(first, period, periods_max, settle, tolerance);
     return t;
 }
@@ -169,7 +176,7 @@ AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::s
     const auto start = static_cast<std::size_t>(std::lround(kBowStart * fs));
     const auto end = static_cast<std::size_t>(stroke.duration() * fs);
     SlipOnsets detector(fs);
-    std::vector<double> onsets;
+    std::vector<Slip> slips;
     double give_up = kNoSlipWait;  // s after the bow's start
     bool judged = false;
     // An attack to be heard plays on for a while after it is judged.
@@ -185,18 +192,20 @@ AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::s
             throw InputError(model.name, "stopped being finite bowed at " +
                                              format_number(p.acceleration) + " m/s² and " +
                                              format_number(p.force) + " N");
-        if (detector.add(i, slip)) {
-            onsets.push_back(detector.onset() - kBowStart);
-            if (onsets.size() == 1)
-                give_up = unsettled_after(onsets.front(), period, grid.periods_max);
+        const bool starts = detector.add(i, slip);
+        if (detector.ended() && !slips.empty()) slips.back().end = detector.end() - kBowStart;
+        if (starts) {
+            slips.push_back({detector.onset() - kBowStart});
+            if (slips.size() == 1)
+                give_up = unsettled_after(slips.front().onset, period, grid.periods_max);
             judged =
-                judge_transient(onsets, period, now, grid.periods_max, kSettle, kTolerance).decided;
+                judge_transient(slips, period, now, grid.periods_max, kSettle, kTolerance).decided;
         }
         judged = judged || now > give_up;
     }
-    if (!onsets.empty()) p.first_slip = onsets.front();
+    if (!slips.empty()) p.first_slip = slips.front().onset;
     p.transient =
-        judge_transient(onsets, period, give_up + 1, grid.periods_max, kSettle, kTolerance);
+        judge_transient(slips, period, give_up + 1, grid.periods_max, kSettle, kTolerance);
     p.transient.decided = true;  // the stroke is over: what has not settled never did
     return p;
 }

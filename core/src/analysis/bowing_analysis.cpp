@@ -19,6 +19,8 @@ bool SlipOnsets::add(std::size_t i, double v) {
         const double fraction = a1 > a0 ? (threshold_ - a0) / (a1 - a0) : 0.0;
         onset_ = (static_cast<double>(i - 1) + std::clamp(fraction, 0.0, 1.0)) / fs_;
     }
+    ended_ = slipping_ && !slip;
+    if (ended_) end_ = static_cast<double>(i) / fs_;
     slipping_ = slip, previous_ = a1, started_ = true;
     return starts;
 }
@@ -41,9 +43,15 @@ std::vector<double> onsets_and_share(const std::vector<double>& v, double fs, st
 
 }  // namespace
 
-std::vector<double> slip_onsets(const std::vector<double>& v, double fs, std::size_t first,
-                                std::size_t last, double threshold) {
-    return onsets_and_share(v, fs, first, std::min(last, v.size()), threshold, nullptr);
+std::vector<Slip> slips_in(const std::vector<double>& v, double fs, std::size_t first,
+                           std::size_t last, double threshold) {
+    std::vector<Slip> slips;
+    SlipOnsets detector(fs, threshold);
+    for (std::size_t i = first; i < std::min(last, v.size()); ++i) {
+        if (detector.add(i, v[i])) slips.push_back({detector.onset()});
+        if (detector.ended() && !slips.empty()) slips.back().end = detector.end();
+    }
+    return slips;
 }
 
 AttackAnalysis analyse_attack(const std::vector<double>& v, const std::vector<double>& normal,

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "archet/analysis/bowing_analysis.hpp"
 #include "archet/model/gesture.hpp"
 #include "archet/model/model.hpp"
 
@@ -19,7 +20,8 @@ enum class Transient {
     None,          ///< Helmholtz motion from the first slip
     MultipleSlip,  ///< a period with more than one slip (too little force)
     Prolonged,     ///< a period longer than the string's (too much force)
-    Sliding,       ///< the bow slipped once and never gripped again (far too little force)
+    Sliding,       ///< the bow slid for most of a period, or never gripped again (far too
+                   ///< little force)
     Stuck,         ///< the bow never slipped: it dragged the string along (far too much force)
 };
 const char* to_string(Transient transient);
@@ -29,7 +31,8 @@ Transient transient_from_string(const std::string& name);
 /// How the attack ended.
 enum class AttackKind {
     Perfect,       ///< Helmholtz motion from the first slip
-    MultipleSlip,  ///< Helmholtz motion after a transient that began with multiple slips
+    MultipleSlip,  ///< Helmholtz motion after a transient of too little force: its first
+                   ///< irregular period held a second slip, or the bow slid through most of it
     Prolonged,     ///< Helmholtz motion after a transient that began with a prolonged period
     Never,         ///< no steady Helmholtz motion within the periods allowed
 };
@@ -45,13 +48,15 @@ struct AttackTransient {
     bool decided = false;  ///< the slips seen so far settle it
 };
 
-/// Judges an attack from its slip onsets (s, in order) against the string's period (s).
-/// Steady Helmholtz motion starts at the first onset followed by `settle` intervals each
-/// within `tolerance`·period of the period, at most `periods_max` periods after the first
-/// slip. The transient is named by its first period that is not steady: shorter than the
-/// string's (a second slip) or longer. `now` (s) is how far the stroke has been played: a
-/// transient that has not settled by then is Never only once no later start could count.
-AttackTransient judge_transient(const std::vector<double>& onsets, double period, double now,
+/// Judges an attack from its slips (in order) against the string's period (s). A period is
+/// steady when it lasts within `tolerance`·period of the string's and its slip lasts less than
+/// half of it (Helmholtz motion slips for β of the period). Steady Helmholtz motion starts at
+/// the first slip followed by `settle` steady periods, at most `periods_max` periods after
+/// the first slip. The transient is named by its first period that is not steady: a slip
+/// through most of it, a second slip in it, or too long. `now` (s) is how far the stroke has
+/// been played: a transient that has not settled by then is Never only once no later start
+/// could count.
+AttackTransient judge_transient(const std::vector<Slip>& slips, double period, double now,
                                 int periods_max, int settle = 10, double tolerance = 0.1);
 
 /// The attack protocol's timing (s): the press ramps up from 0 to its full value over
@@ -63,14 +68,16 @@ inline constexpr double kPressRamp = 0.02, kBowStart = 0.05, kNoSlipWait = 1.0;
 /// rate) on the parabola slide = ½·a·(t − kBowStart)², up to `duration`.
 Gesture attack_gesture(double press, double acceleration, double step, double duration);
 
+/// The default grid spans the shipped strings' wedges (from about 0.2 N at 1 m/s² to several
+/// newtons at 40 m/s²), on log axes where a wedge from the origin is a band.
 struct AttackGrid {
-    double acceleration_min = 2, acceleration_max = 40;  ///< m/s², of the hand
-    int acceleration_steps = 12;
-    double force_min = 0.01, force_max = 0.4;  ///< N, the bow's steady normal force
-    int force_steps = 12;
-    bool log_axes = false;  ///< log-spaced grid (else linear)
-    double position = 0;    ///< β; 0 keeps the model's own bow position
-    int periods_max = 25;   ///< longest transient counted
+    double acceleration_min = 1, acceleration_max = 40;  ///< m/s², of the hand
+    int acceleration_steps = 16;
+    double force_min = 0.05, force_max = 5;  ///< N, the bow's steady normal force
+    int force_steps = 16;
+    bool log_axes = true;  ///< log-spaced grid (else linear)
+    double position = 0;   ///< β; 0 keeps the model's own bow position
+    int periods_max = 25;  ///< longest transient counted
     std::size_t size() const;
     double acceleration(
         std::size_t index) const;  ///< index = acceleration step · force steps + force step

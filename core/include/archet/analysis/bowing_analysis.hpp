@@ -19,26 +19,38 @@ struct BowingAnalysis {
     bool helmholtz() const;       ///< one slip per period, steady, near the pitch
 };
 
+/// One slip of the bow on the string: when it started and when it ended (s); `end` is −1
+/// while it lasts.
+struct Slip {
+    double onset = 0, end = -1;
+    bool ended() const { return end >= onset; }
+};
+
 /// Finds where the slip velocity rises through `threshold` (m/s), one sample at a time:
-/// the times the bow starts to slip, interpolated between samples.
+/// the times the bow starts to slip, interpolated between samples, and the times it grips
+/// again (the first sample under the threshold).
 class SlipOnsets {
   public:
     explicit SlipOnsets(double sample_rate, double threshold = 1e-3)
         : fs_(sample_rate), threshold_(threshold) {}
     /// Sample i's slip velocity; true when a slip starts at it (its time is then onset()).
     bool add(std::size_t i, double slip_velocity);
+    /// True when the slip under way ended at the last sample added (its time is then end()).
+    bool ended() const { return ended_; }
     double onset() const { return onset_; }  ///< s
+    double end() const { return end_; }      ///< s
     bool slipping() const { return slipping_; }
 
   private:
     double fs_, threshold_;
-    double previous_ = 0, onset_ = 0;
-    bool slipping_ = false, started_ = false;
+    double previous_ = 0, onset_ = 0, end_ = 0;
+    bool slipping_ = false, started_ = false, ended_ = false;
 };
 
-/// The times (s) slips start in samples [first, last) of `slip_velocity`.
-std::vector<double> slip_onsets(const std::vector<double>& slip_velocity, double sample_rate,
-                                std::size_t first, std::size_t last, double threshold = 1e-3);
+/// The slips that start in samples [first, last), with their ends (−1: still slipping at
+/// `last`).
+std::vector<Slip> slips_in(const std::vector<double>& slip_velocity, double sample_rate,
+                           std::size_t first, std::size_t last, double threshold = 1e-3);
 
 /// `slip_velocity` sampled at `sample_rate`; analyses samples [first, last). A sample counts
 /// as slipping when |v| exceeds `threshold` (m/s).
