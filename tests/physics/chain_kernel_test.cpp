@@ -1,14 +1,19 @@
 // The chain loop against the scheme it computes, lane by lane: every build this CPU runs
 // (plain, AVX2, AVX-512) must give the scalar scheme's bits, for every length of chain (its
-// last vector runs past the last MAT), with and without rest lengths and grounds.
+// last vector runs past the last MAT), with and without rest lengths and grounds; and the arrays
+// it runs over start MAT 1 on a cache line, so that its whole-vector loads never straddle two.
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <random>
 
+#include "archet/files/model_file.hpp"
 #include "archet/physics/chain_kernel.hpp"
+#include "archet/physics/simulation.hpp"
+#include "test_support.hpp"
 
 namespace archet {
 namespace {
@@ -138,6 +143,31 @@ TEST(ChainKernel, EveryBuildSumsTheSameStoredEnergy) {
                     << chain_build_name(build) << " n=" << n << ": " << wide << " vs " << plain;
             }
     }
+}
+
+// Every array the chain loop and the energy sum read, MAT 1 on a 64-byte line, as compiled,
+// copied (the engine compiles a copy for the real-time thread) and moved into a Simulation.
+void expect_mat1_on_a_line(const CompiledModel& model, const std::string& where) {
+    for (const CompiledLevel& lv : model.levels) {
+        std::vector<const MatArray*> arrays{&lv.coeff,      &lv.mass,         &lv.chain_k,
+                                            &lv.chain_zdt,  &lv.chain_length, &lv.ground_k,
+                                            &lv.ground_zdt, &lv.ground_rest};
+        for (const MatArray& b : lv.buffer) arrays.push_back(&b);
+        for (const MatArray* a : arrays)
+            EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a->data() + 1) % 64, 0u)
+                << where << ", level " << lv.id;
+    }
+}
+
+TEST(ChainKernel, TheArraysItRunsOverStartMat1OnACacheLine) {
+    const CompiledModel compiled =
+        compile(load_model_file(test::resource("models/bowed-string-110.json")));
+    expect_mat1_on_a_line(compiled, "compiled");
+    const CompiledModel copy = compiled;
+    expect_mat1_on_a_line(copy, "copied");
+    Simulation sim{CompiledModel(compiled)};
+    Simulation moved = std::move(sim);
+    expect_mat1_on_a_line(moved.model(), "moved into a simulation");
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "archet/model/model.hpp"
+#include "archet/physics/mat_array.hpp"
 
 namespace archet {
 
@@ -114,14 +115,14 @@ struct CompiledLevel {
     /// the last MAT into these zeros (which it leaves zero), and reads the vector after each
     /// (see chain_kernel.cpp).
     static constexpr int kReadAhead = 16;
-    std::vector<double> buffer[3];  ///< positions at n+1, n, n−1 by rotation
-    int current = 0;                ///< which buffer holds x[n]
-    std::vector<double> coeff;      ///< T² / m, zero for immovable MATs
-    std::vector<double> mass;       ///< kg, zero for immovable MATs
-    std::vector<double> external;   ///< forces from non-chain links, N
-    std::vector<double> held;       ///< forces of slower links, held between their ticks, N
-    std::vector<double> chain_k, chain_zdt, chain_length;  ///< link j joins storage j, j+1
-    bool has_chain_lengths = false;                        ///< any non-zero chain_length
+    MatArray buffer[3];            ///< positions at n+1, n, n−1 by rotation
+    int current = 0;               ///< which buffer holds x[n]
+    MatArray coeff;                ///< T² / m, zero for immovable MATs
+    MatArray mass;                 ///< kg, zero for immovable MATs
+    std::vector<double> external;  ///< forces from non-chain links, N
+    std::vector<double> held;      ///< forces of slower links, held between their ticks, N
+    MatArray chain_k, chain_zdt, chain_length;  ///< link j joins storage j, j+1
+    bool has_chain_lengths = false;             ///< any non-zero chain_length
     /// Scratch: this step's force of the chain links in chain_forces_used (the chain loop
     /// keeps none).
     std::vector<double> chain_force;
@@ -129,7 +130,7 @@ struct CompiledLevel {
     std::vector<int> chain_element;      ///< index into Model::lias, −1 for none
     std::vector<CompiledLink> links;
     std::vector<CompiledGround> grounds;
-    std::vector<double> ground_k, ground_zdt, ground_rest;  ///< per storage index, 0 if none
+    MatArray ground_k, ground_zdt, ground_rest;  ///< per storage index, 0 if none
     std::vector<CompiledGesturePoint> gestures;
     std::vector<int> bows;     ///< indices into CompiledModel::bows
     std::vector<int> fingers;  ///< indices into CompiledModel::fingers
