@@ -14,6 +14,7 @@
 #include "archet/common/grid_sweep.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/common/input_limits.hpp"
+#include "archet/common/number_text.hpp"
 #include "archet/common/parallel_for.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/ui/attack_figure.hpp"
@@ -27,8 +28,19 @@ namespace archet::cli {
 
 namespace {
 
+// The default grid, in the options' words.
+const AttackGrid kDefaultGrid;
+std::string range_text(double lo, double hi, int steps) {
+    return format_number(lo) + ":" + format_number(hi) + ":" + std::to_string(steps);
+}
+
 struct AttackArguments : SweepOptions {
-    std::string model, acceleration = "1:40:16", force = "0.05:5:16", axes = "log";
+    std::string model,
+        acceleration = range_text(kDefaultGrid.acceleration_min, kDefaultGrid.acceleration_max,
+                                  kDefaultGrid.acceleration_steps),
+        force =
+            range_text(kDefaultGrid.force_min, kDefaultGrid.force_max, kDefaultGrid.force_steps),
+        axes = kDefaultGrid.log_axes ? "log" : "linear";
     double position = 0;
     int periods_max = 25;
     std::vector<std::string> parts;
@@ -55,7 +67,8 @@ AttackGrid grid_from(const AttackArguments& a) {
         try {
             return AttackGrid::parse(key + "=" + value);
         } catch (const InputError&) {
-            throw InputError(option, "\"" + value + "\": expected MIN:MAX:STEPS, e.g. 1:40:16");
+            throw InputError(
+                option, "\"" + value + "\": expected MIN:MAX:STEPS, e.g. " + range_text(1, 40, 16));
         }
     };
     AttackGrid grid = range("--acceleration", "acceleration", a.acceleration);

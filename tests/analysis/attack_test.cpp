@@ -94,10 +94,34 @@ TEST(AttackJudge, SlipsThroughMostOfEachPeriodAreNotHelmholtzMotion) {
     EXPECT_EQ(settled.kind, AttackKind::MultipleSlip);
     EXPECT_EQ(settled.transient, Transient::Sliding);
     EXPECT_NEAR(settled.periods, 2.0, 1e-9);
-    // A slip still under way is not judged yet.
-    std::vector<Slip> open = slips_after({}, 12);
-    open.back().end = -1;
-    EXPECT_EQ(judge_transient(open, kPeriod, 1.0, 25).kind, AttackKind::Perfect);
+    // Half of the period the slip begins, not of the string's: a prolonged period may hold a
+    // longer slip and still be prolonged.
+    std::vector<Slip> prolonged = slips_after({1.6}, 12);
+    prolonged[0].end = prolonged[0].onset + 0.6 * kPeriod;
+    EXPECT_EQ(judge_transient(prolonged, kPeriod, 1.0, 25).transient, Transient::Prolonged);
+    prolonged[0].end = prolonged[0].onset + 0.9 * kPeriod;
+    EXPECT_EQ(judge_transient(prolonged, kPeriod, 1.0, 25).transient, Transient::Sliding);
+    // A second slip within the period names it, however long the first slip lasted.
+    std::vector<Slip> doubled = slips_after({0.4, 0.6}, 12);
+    doubled[0].end = doubled[0].onset + 0.3 * kPeriod;
+    EXPECT_EQ(judge_transient(doubled, kPeriod, 1.0, 25).transient, Transient::MultipleSlip);
+}
+
+TEST(SlipDetection, EachSlipKeepsItsOwnEnd) {
+    const double fs = 1000;
+    std::vector<double> v(40, 0.0);
+    for (int i : {0, 1, 2}) v[i] = 1;  // under way before the first sample: not a slip found
+    for (int i = 10; i < 15; ++i) v[i] = -1;
+    for (int i = 30; i < 40; ++i) v[i] = 1;  // still slipping at the last sample
+    const std::vector<Slip> slips = slips_in(v, fs, 0, v.size());
+    ASSERT_EQ(slips.size(), 2u);
+    EXPECT_NEAR(slips[0].onset, 9.001 / fs, 1e-12) << "where |v| rises through 1 mm/s";
+    EXPECT_EQ(slips[0].end, 15 / fs) << "the first sample under the threshold";
+    EXPECT_NEAR(slips[1].onset, 29.001 / fs, 1e-12);
+    EXPECT_FALSE(slips[1].ended());
+    EXPECT_TRUE(slips[1].slid_through(1.0)) << "a slip not over yet has slid so far";
+    EXPECT_FALSE(slips[0].slid_through(slips[0].onset + 0.02)) << "6 ms of a 20 ms period";
+    EXPECT_TRUE(slips[0].slid_through(slips[0].onset + 0.01)) << "6 ms of a 10 ms period";
 }
 
 // The perfect attacks at one acceleration: [first, last] indices into the forces, or none.

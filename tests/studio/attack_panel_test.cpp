@@ -22,6 +22,7 @@
 #include "archet/ui/bowing_maps_window.hpp"
 #include "archet/ui/gesture_pad.hpp"
 #include "archet/ui/main_window.hpp"
+#include "archet/ui/model_document.hpp"
 #include "archet/ui/stroke_driver.hpp"
 #include "studio_test_support.hpp"
 #include "test_support.hpp"
@@ -124,6 +125,13 @@ AttackGrid one_attack() {
     return grid;
 }
 
+QString message_of(const AttackPanel& panel) {
+    // The panel's message is its only word-wrapped label.
+    for (const QLabel* label : panel.findChildren<QLabel*>())
+        if (label->wordWrap()) return label->text();
+    return {};
+}
+
 AttackKind compute_one_attack(AttackPanel& panel) {
     QString error = "not yet";
     auto seen =
@@ -181,12 +189,47 @@ TEST(AttackPanelTest, ThePlayMenuOpensTheAttackTabBesideThePlayabilityTab) {
     // until Compute maps the new one.
     window.open_model(load_model_file(test::resource("models/bowed-string-110.json")));
     EXPECT_TRUE(maps->windowTitle().contains("bowed-string-110"));
-    bool said = false;
-    for (const QLabel* label : maps->attack().findChildren<QLabel*>())
-        said = said || label->text().startsWith("The model has changed since this map");
-    EXPECT_TRUE(said);
+    EXPECT_TRUE(message_of(maps->attack()).startsWith("The model has changed since this map"));
+    // A click still plays the attack the map shows: the 220 Hz string's, perfect.
+    maps->attack().listen(0);
+    maps->attack().player().stop();
+    EXPECT_TRUE(message_of(maps->attack()).startsWith("20 m/s², 3 N: perfect"))
+        << message_of(maps->attack()).toStdString();
+    EXPECT_TRUE(message_of(maps->attack()).contains("The model has changed since this map"));
     EXPECT_NE(compute_one_attack(maps->attack()), AttackKind::Perfect)
-        << "3 N at 20 m/s² is under the 110 Hz string's wedge";
+        << "the 110 Hz string's attack at 3 N and 20 m/s² begins with extra slips";
+    EXPECT_FALSE(message_of(maps->attack()).contains("The model has changed"));
+    // Moving an element on the canvas changes no physics: the map stays the model's.
+    const QString mass = QString::fromStdString(window.document().model().mats.front().id);
+    window.document().move({mass}, QPointF(10, 10), false);
+    EXPECT_FALSE(message_of(maps->attack()).contains("The model has changed"));
+}
+
+TEST(AttackPanelTest, AMapComputedWhileTheModelChangedSaysSoAndClosingStopsASweep) {
+    const Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    BowingMapsWindow maps(model, {});
+    maps.show_tab(BowingMapsWindow::Tab::Attack);
+    AttackPanel& panel = maps.attack();
+    QString error = "not yet";
+    QObject::connect(&panel, &AttackPanel::computed, [&](const QString& e) { error = e; });
+    panel.set_grid(one_attack());
+    panel.compute();
+    maps.set_model(load_model_file(test::resource("models/bowed-string-110.json")));
+    ASSERT_TRUE(test::wait_until([&] { return error != "not yet"; }, 300000));
+    EXPECT_TRUE(message_of(panel).contains("The model has changed since this map"))
+        << "an edit during the sweep: the map is of the model before it";
+    // Closing the window stops a sweep under way; the window and its last map stay.
+    AttackGrid large = one_attack();
+    large.acceleration_steps = large.force_steps = 60;
+    large.acceleration_max = 40, large.force_max = 6;
+    panel.set_grid(large);
+    error = "not yet";
+    panel.compute();
+    ASSERT_TRUE(panel.busy());
+    maps.close();
+    ASSERT_TRUE(test::wait_until([&] { return error != "not yet"; }, 300000));
+    EXPECT_TRUE(error.contains("cancelled")) << error.toStdString();
+    EXPECT_EQ(panel.points().size(), 1u);
 }
 
 TEST(StrokeDriverTest, SlidesFromRestWithTheChosenAccelerationToTheEdge) {

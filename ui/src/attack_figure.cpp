@@ -131,7 +131,7 @@ void AttackFigure::show_attacks(const AttackGrid& grid, const std::vector<Attack
             });
     }
     // A margin around the grid: a factor on log axes, a twentieth of the span on linear ones
-    // (a tenth of the value for a grid of one step, whose span is nothing).
+    // (a tenth of the value for a range without span: one step, or MIN = MAX).
     auto set_range = [&](QCPAxis* axis, double lo, double hi) {
         if (grid.log_axes) return axis->setRange(lo / 1.15, hi * 1.15);
         const double pad = hi > lo ? 0.05 * (hi - lo) : 0.1 * std::abs(hi);

@@ -52,11 +52,11 @@ AttackPanel::AttackPanel(const Model& model, QWidget* parent) : QWidget(parent),
     connect(compute_, &QPushButton::clicked, this, &AttackPanel::compute);
     connect(cancel_button_, &QPushButton::clicked, this, &AttackPanel::cancel);
     connect(figure_, &AttackFigure::point_clicked, this, &AttackPanel::listen);
-    resize(1000, 800);
 }
 
 void AttackPanel::set_model(const Model& model) {
     model_ = model;
+    ++freshness_.model;
     if (!points_.empty() && !busy()) message_->setText(model_changed_text());
 }
 
@@ -97,8 +97,8 @@ void AttackPanel::compute() {
                 [&control](std::size_t done, std::size_t total) { control.progress(done, total); },
                 &control.cancel_flag());
         },
-        [this, model = model_](AttackMap map) {
-            shown_model_ = model;
+        [this, model = model_, edit = freshness_.model](AttackMap map) {
+            shown_model_ = model, freshness_.shown = edit;
             finished(std::move(map), {});
         },
         [this](const QString& error) { finished({}, error); });
@@ -115,10 +115,11 @@ void AttackPanel::finished(AttackMap map, QString error) {
         figure_->show_attacks(grid_, points_, QString::fromStdString(shown_model_.name));
         int perfect = 0;
         for (const auto& p : points_) perfect += p.transient.kind == AttackKind::Perfect;
-        message_->setText(tr("%1 of %2 attacks perfect (Helmholtz motion from the first slip). "
-                             "Click a point to hear its attack.")
-                              .arg(perfect)
-                              .arg(points_.size()));
+        message_->setText(
+            freshness_.note(tr("%1 of %2 attacks perfect (Helmholtz motion from the first slip). "
+                               "Click a point to hear its attack.")
+                                .arg(perfect)
+                                .arg(points_.size())));
     }
     emit computed(error);
 }
@@ -134,12 +135,12 @@ void AttackPanel::listen(long index) {
             p.transient.kind == AttackKind::Never
                 ? tr("no Helmholtz motion in %1 periods").arg(grid_.periods_max)
                 : tr("%1 periods to Helmholtz motion").arg(p.transient.periods, 0, 'f', 1);
-        message_->setText(tr("%1 m/s², %2 N: %3, %4 — playing on %5")
-                              .arg(p.acceleration, 0, 'g', 3)
-                              .arg(p.force, 0, 'g', 3)
-                              .arg(transient_name(p.transient.transient))
-                              .arg(length)
-                              .arg(QString::fromStdString(player_.description())));
+        message_->setText(freshness_.note(tr("%1 m/s², %2 N: %3, %4 — playing on %5")
+                                              .arg(p.acceleration, 0, 'g', 3)
+                                              .arg(p.force, 0, 'g', 3)
+                                              .arg(transient_name(p.transient.transient))
+                                              .arg(length)
+                                              .arg(QString::fromStdString(player_.description()))));
     } catch (const std::exception& e) {
         message_->setText(QString::fromUtf8(e.what()));
     }

@@ -24,7 +24,7 @@ BowingMapsWindow::BowingMapsWindow(
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(0, 0, 0, 0);
     layout->addWidget(tabs_);
-    set_model(model);
+    setWindowTitle(tr("Bowing maps — %1").arg(QString::fromStdString(model.name)));
     resize(1000, 860);
 }
 
@@ -37,6 +37,12 @@ void BowingMapsWindow::show_tab(Tab tab) {
 
 BowingMapsWindow::Tab BowingMapsWindow::current_tab() const {
     return tabs_->currentIndex() == 0 ? Tab::Playability : Tab::Attack;
+}
+
+void BowingMapsWindow::reject() {
+    playability_->cancel();
+    attack_->cancel();
+    QDialog::reject();
 }
 
 void BowingMapsWindow::set_model(const Model& model) {

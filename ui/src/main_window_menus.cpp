@@ -216,9 +216,12 @@ void MainWindow::open_bowing_maps(BowingMapsWindow::Tab tab) {
         }
     };
     maps_ = new BowingMapsWindow(document_->model(), here, this);
-    auto follow = [this] { maps_->set_model(document_->model()); };
-    connect(document_, &ModelDocument::changed, maps_, follow);
-    connect(document_, &ModelDocument::replaced, maps_, follow);
+    // Moving an element on the canvas changes no physics.
+    connect(document_, &ModelDocument::changed, maps_, [this](ModelDocument::Change change) {
+        if (change != ModelDocument::Change::Layout) maps_->set_model(document_->model());
+    });
+    connect(document_, &ModelDocument::replaced, maps_,
+            [this] { maps_->set_model(document_->model()); });
     maps_->show_tab(tab);
 }
 

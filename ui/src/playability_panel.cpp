@@ -54,14 +54,15 @@ PlayabilityPanel::PlayabilityPanel(
     connect(figure_, &PlayabilityFigure::point_clicked, this, &PlayabilityPanel::listen);
     // The player's bow moves while the map is shown: its cross follows.
     connect(refresh_, &QTimer::timeout, this, [this] {
-        if (!points_.empty()) figure_->mark(gesture_point_ ? gesture_point_() : std::nullopt);
+        if (!points_.empty() && isVisible())
+            figure_->mark(gesture_point_ ? gesture_point_() : std::nullopt);
     });
     refresh_->start(200);
-    resize(1000, 800);
 }
 
 void PlayabilityPanel::set_model(const Model& model) {
     model_ = model;
+    ++freshness_.model;
     if (!points_.empty() && !busy()) message_->setText(model_changed_text());
 }
 
@@ -101,8 +102,8 @@ void PlayabilityPanel::compute() {
                 &control.cancel_flag());
         },
         // Clicks play points of the grid the figure shows, which changes only now.
-        [this, grid, model = model_](std::vector<MapPoint> points) {
-            grid_ = grid, shown_model_ = model;
+        [this, grid, model = model_, edit = freshness_.model](std::vector<MapPoint> points) {
+            grid_ = grid, shown_model_ = model, freshness_.shown = edit;
             finished(std::move(points), {});
         },
         [this](const QString& error) { finished({}, error); });
@@ -122,11 +123,12 @@ void PlayabilityPanel::finished(std::vector<MapPoint> points, QString error) {
                               : tr(", playing %1 to %2 cents against the string's first mode")
                                     .arg(pitch.flattest, 0, 'f', 1)
                                     .arg(pitch.sharpest, 0, 'f', 1);
-        message_->setText(tr("%1 of %2 points in Helmholtz motion%3; the cross is where you bow "
-                             "now. Click a point to hear it.")
-                              .arg(pitch.points)
-                              .arg(points_.size())
-                              .arg(flattening));
+        message_->setText(
+            freshness_.note(tr("%1 of %2 points in Helmholtz motion%3; the cross is where you "
+                               "bow now. Click a point to hear it.")
+                                .arg(pitch.points)
+                                .arg(points_.size())
+                                .arg(flattening)));
     }
     emit computed(error);
 }
@@ -138,13 +140,14 @@ void PlayabilityPanel::listen(long index) {
         const MapPoint p =
             play_map_point(shown_model_, grid_, static_cast<std::size_t>(index), 0, &sound);
         player_.play(sound, shown_model_.sample_rate);
-        message_->setText(tr("β %1, %2 N: %3 (%4 slips per period, %5 cents) — playing on %6")
-                              .arg(p.position, 0, 'f', 3)
-                              .arg(p.force, 0, 'g', 3)
-                              .arg(regime_name(p.analysis.regime))
-                              .arg(p.analysis.slips_per_period, 0, 'f', 2)
-                              .arg(p.analysis.pitch_cents, 0, 'f', 1)
-                              .arg(QString::fromStdString(player_.description())));
+        message_->setText(
+            freshness_.note(tr("β %1, %2 N: %3 (%4 slips per period, %5 cents) — playing on %6")
+                                .arg(p.position, 0, 'f', 3)
+                                .arg(p.force, 0, 'g', 3)
+                                .arg(regime_name(p.analysis.regime))
+                                .arg(p.analysis.slips_per_period, 0, 'f', 2)
+                                .arg(p.analysis.pitch_cents, 0, 'f', 1)
+                                .arg(QString::fromStdString(player_.description()))));
     } catch (const std::exception& e) {
         message_->setText(QString::fromUtf8(e.what()));
     }

@@ -105,20 +105,17 @@ AttackTransient judge_transient(const std::vector<Slip>& slips, double period, d
     t.transient = Transient::Sliding;  // unless a period of it says otherwise
     const double first = slips.front().onset, latest_start = first + periods_max * period;
     auto interval = [&](std::size_t i) { return slips[i + 1].onset - slips[i].onset; };
-    // Helmholtz motion slips for β of the period: a slip through half of it or more is the
-    // bow sliding, whatever the spacing of the slips.
-    auto slid = [&](std::size_t i) {
-        return !slips[i].ended() || slips[i].end - slips[i].onset >= 0.5 * period;
-    };
+    auto slid = [&](std::size_t i) { return slips[i].slid_through(slips[i + 1].onset); };
     auto steady = [&](std::size_t i) {
         return std::abs(interval(i) - period) <= tolerance * period && !slid(i);
     };
     // The transient is named by its first period that is not steady.
     for (std::size_t i = 0; i + 1 < slips.size() && slips[i].onset <= latest_start; ++i) {
         if (steady(i)) continue;
-        t.transient = slid(i)                ? Transient::Sliding
-                      : interval(i) < period ? Transient::MultipleSlip
-                                             : Transient::Prolonged;
+        // A second slip within the period; else a slip through most of it; else too long.
+        t.transient = interval(i) < (1 - tolerance) * period ? Transient::MultipleSlip
+                      : slid(i)                              ? Transient::Sliding
+                                                             : Transient::Prolonged;
         break;
     }
     for (std::size_t k = 0; k < slips.size() && slips[k].onset <= latest_start; ++k) {
@@ -175,7 +172,7 @@ AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::s
     const double fs = sim.sample_rate();
     const auto start = static_cast<std::size_t>(std::lround(kBowStart * fs));
     const auto end = static_cast<std::size_t>(stroke.duration() * fs);
-    SlipOnsets detector(fs);
+    SlipDetector detector(fs);
     std::vector<Slip> slips;
     double give_up = kNoSlipWait;  // s after the bow's start
     bool judged = false;

@@ -10,7 +10,7 @@ bool BowingAnalysis::helmholtz() const {
            std::abs(pitch_cents) < 50.0 && slip_share > 0.0 && slip_share < 0.5;
 }
 
-bool SlipOnsets::add(std::size_t i, double v) {
+bool SlipDetector::add(std::size_t i, double v) {
     const double a1 = std::abs(v);
     const bool slip = a1 > threshold_;
     const bool starts = slip && !slipping_ && started_;
@@ -32,7 +32,7 @@ std::vector<double> onsets_and_share(const std::vector<double>& v, double fs, st
                                      std::size_t last, double threshold, std::size_t* slipping) {
     std::vector<double> onsets;
     std::size_t count = 0;
-    SlipOnsets detector(fs, threshold);
+    SlipDetector detector(fs, threshold);
     for (std::size_t i = first; i < last; ++i) {
         if (detector.add(i, v[i])) onsets.push_back(detector.onset());
         count += detector.slipping();
@@ -46,7 +46,7 @@ std::vector<double> onsets_and_share(const std::vector<double>& v, double fs, st
 std::vector<Slip> slips_in(const std::vector<double>& v, double fs, std::size_t first,
                            std::size_t last, double threshold) {
     std::vector<Slip> slips;
-    SlipOnsets detector(fs, threshold);
+    SlipDetector detector(fs, threshold);
     for (std::size_t i = first; i < std::min(last, v.size()); ++i) {
         if (detector.add(i, v[i])) slips.push_back({detector.onset()});
         if (detector.ended() && !slips.empty()) slips.back().end = detector.end();
@@ -64,13 +64,13 @@ AttackAnalysis analyse_attack(const std::vector<double>& v, const std::vector<do
     if (contact >= end) return a;
     a.contact = static_cast<double>(contact) / fs;
     while (end > contact && !(normal[end - 1] > 0.0)) --end;  // up to the bow's last contact
-    const auto onsets = onsets_and_share(v, fs, contact, end, threshold, nullptr);
-    if (onsets.size() < static_cast<std::size_t>(2 * settle) + 1) return a;
+    const std::vector<Slip> slips = slips_in(v, fs, contact, end, threshold);
+    if (slips.size() < static_cast<std::size_t>(2 * settle) + 1) return a;
+    auto interval = [&](std::size_t i) { return slips[i + 1].onset - slips[i].onset; };
     // The steady period: the median interval over the second half of the contact, which
     // outvotes the lift at its end.
     std::vector<double> later;
-    for (std::size_t i = onsets.size() / 2 + 1; i < onsets.size(); ++i)
-        later.push_back(onsets[i] - onsets[i - 1]);
+    for (std::size_t i = slips.size() / 2; i + 1 < slips.size(); ++i) later.push_back(interval(i));
     std::nth_element(later.begin(), later.begin() + later.size() / 2, later.end());
     const double period = later[later.size() / 2];
     if (std::abs(std::log2(period * pitch)) > 0.1) return a;  // not near the pitch: no Helmholtz
@@ -79,12 +79,16 @@ AttackAnalysis analyse_attack(const std::vector<double>& v, const std::vector<do
     // Steady Helmholtz motion starts after the last irregular period before the bow lifts
     // (the last 50 ms of contact are the lift and do not count).
     const double lift = static_cast<double>(end) / fs - 0.05;
-    std::size_t last_good = 0;  // onsets [start, last_good] are one slip a period apart
-    while (last_good + 1 < onsets.size() && onsets[last_good + 1] <= lift) ++last_good;
+    std::size_t last_good = 0;  // slips [start, last_good] are one a period apart
+    while (last_good + 1 < slips.size() && slips[last_good + 1].onset <= lift) ++last_good;
+    auto steady = [&](std::size_t i) {
+        return std::abs(interval(i) - period) <= allowed &&
+               !slips[i].slid_through(slips[i + 1].onset);
+    };
     std::size_t start = last_good;
-    while (start > 0 && std::abs(onsets[start] - onsets[start - 1] - period) <= allowed) --start;
+    while (start > 0 && steady(start - 1)) --start;
     if (last_good - start < static_cast<std::size_t>(settle)) return a;
-    a.helmholtz = onsets[start];
+    a.helmholtz = slips[start].onset;
     a.period = period;
     return a;
 }

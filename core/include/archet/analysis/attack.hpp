@@ -50,7 +50,7 @@ struct AttackTransient {
 
 /// Judges an attack from its slips (in order) against the string's period (s). A period is
 /// steady when it lasts within `tolerance`·period of the string's and its slip lasts less than
-/// half of it (Helmholtz motion slips for β of the period). Steady Helmholtz motion starts at
+/// half of it (Slip::slid_through). Steady Helmholtz motion starts at
 /// the first slip followed by `settle` steady periods, at most `periods_max` periods after
 /// the first slip. The transient is named by its first period that is not steady: a slip
 /// through most of it, a second slip in it, or too long. `now` (s) is how far the stroke has
@@ -68,12 +68,13 @@ inline constexpr double kPressRamp = 0.02, kBowStart = 0.05, kNoSlipWait = 1.0;
 /// rate) on the parabola slide = ½·a·(t − kBowStart)², up to `duration`.
 Gesture attack_gesture(double press, double acceleration, double step, double duration);
 
-/// The default grid spans the shipped strings' wedges (from about 0.2 N at 1 m/s² to several
-/// newtons at 40 m/s²), on log axes where a wedge from the origin is a band.
+/// The default grid spans the boundary between too little and too much force on the shipped
+/// strings (0.25–0.65 N at 1 m/s²; 3–10 N at 40 m/s² on the 220 and 440 Hz strings), on log
+/// axes, where a wedge from the origin is a band.
 struct AttackGrid {
     double acceleration_min = 1, acceleration_max = 40;  ///< m/s², of the hand
     int acceleration_steps = 16;
-    double force_min = 0.05, force_max = 5;  ///< N, the bow's steady normal force
+    double force_min = 0.05, force_max = 10;  ///< N, the bow's steady normal force
     int force_steps = 16;
     bool log_axes = true;  ///< log-spaced grid (else linear)
     double position = 0;   ///< β; 0 keeps the model's own bow position

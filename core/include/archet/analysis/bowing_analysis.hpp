@@ -24,14 +24,20 @@ struct BowingAnalysis {
 struct Slip {
     double onset = 0, end = -1;
     bool ended() const { return end >= onset; }
+    /// Whether the bow slid through half or more of the period this slip begins, up to the
+    /// next slip's `next_onset`: Helmholtz motion bowed at β slips for β of it, a bow with too
+    /// little force can slip once a period and grip only briefly.
+    bool slid_through(double next_onset) const {
+        return !ended() || end - onset >= 0.5 * (next_onset - onset);
+    }
 };
 
 /// Finds where the slip velocity rises through `threshold` (m/s), one sample at a time:
 /// the times the bow starts to slip, interpolated between samples, and the times it grips
 /// again (the first sample under the threshold).
-class SlipOnsets {
+class SlipDetector {
   public:
-    explicit SlipOnsets(double sample_rate, double threshold = 1e-3)
+    explicit SlipDetector(double sample_rate, double threshold = 1e-3)
         : fs_(sample_rate), threshold_(threshold) {}
     /// Sample i's slip velocity; true when a slip starts at it (its time is then onset()).
     bool add(std::size_t i, double slip_velocity);
@@ -59,8 +65,8 @@ BowingAnalysis analyse_bowing(const std::vector<double>& slip_velocity, double s
                               double threshold = 1e-3);
 
 /// The attack of a stroke (the paper's Fig. 2): from the bow's first contact to the slip
-/// after which every period holds exactly one slip, each interval within `tolerance` of the
-/// steady period, until the bow lifts (at least `settle` periods of it).
+/// after which every period holds exactly one slip, shorter than half of it, each interval
+/// within `tolerance` of the steady period, until the bow lifts (at least `settle` periods).
 struct AttackAnalysis {
     double contact = -1;    ///< s, first sample with normal force
     double helmholtz = -1;  ///< s, start of steady Helmholtz motion (−1: never)

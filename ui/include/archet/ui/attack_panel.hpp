@@ -8,6 +8,7 @@
 #include "archet/model/model.hpp"
 #include "archet/preview_player.hpp"
 #include "archet/ui/background_job.hpp"
+#include "archet/ui/sweep_form.hpp"
 
 class QCheckBox;
 class QDoubleSpinBox;
@@ -48,8 +49,9 @@ class AttackPanel : public QWidget {
 
     Model model_;        ///< the open model, mapped by the next Compute
     Model shown_model_;  ///< the model the figure shows
-    AttackGrid grid_;    ///< the grid the figure shows
-    double pitch_ = 0;   ///< the string's first mode its periods count
+    MapFreshness freshness_;
+    AttackGrid grid_;   ///< the grid the figure shows
+    double pitch_ = 0;  ///< the string's first mode its periods count
     QDoubleSpinBox *acceleration_min_, *acceleration_max_, *force_min_, *force_max_;
     QSpinBox *acceleration_steps_, *force_steps_, *periods_max_;
     QCheckBox* log_axes_;

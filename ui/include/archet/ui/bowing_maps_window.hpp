@@ -1,7 +1,8 @@
 #pragma once
 // The bowing maps of the open model side by side as tabs of one window: Playability (steady
 // bowing, the Schelleng diagram) and Attack (how a note starts, the Guettler diagram). Each
-// computes in the background; the window stays with the studio so its maps outlive a close.
+// computes in the background; the window stays with the studio so its maps outlive a close
+// (a sweep still running stops there: it would compete with the live engine for every core).
 
 #include <QDialog>
 #include <functional>
@@ -34,6 +35,8 @@ class BowingMapsWindow : public QDialog {
     void set_model(const Model& model);
     PlayabilityPanel& playability() { return *playability_; }
     AttackPanel& attack() { return *attack_; }
+    /// Closing the window (or Escape) stops a sweep under way; the maps drawn stay.
+    void reject() override;
 
   private:
     QTabWidget* tabs_;

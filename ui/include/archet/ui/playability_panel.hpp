@@ -10,6 +10,7 @@
 #include "archet/model/model.hpp"
 #include "archet/preview_player.hpp"
 #include "archet/ui/background_job.hpp"
+#include "archet/ui/sweep_form.hpp"
 
 class QDoubleSpinBox;
 class QLabel;
@@ -53,7 +54,8 @@ class PlayabilityPanel : public QWidget {
 
     Model model_;        ///< the open model, mapped by the next Compute
     Model shown_model_;  ///< the model the figure shows
-    MapGrid grid_;       ///< the grid the figure shows
+    MapFreshness freshness_;
+    MapGrid grid_;  ///< the grid the figure shows
     std::function<std::optional<std::pair<double, double>>()> gesture_point_;
     QDoubleSpinBox *force_min_, *force_max_, *position_min_, *position_max_, *speed_, *duration_;
     QSpinBox *force_steps_, *position_steps_;

@@ -32,4 +32,15 @@ SweepButtons sweep_buttons(BackgroundJob& job, QWidget* owner);
 /// What a panel says when the open model changes under the map it shows.
 QString model_changed_text();
 
+/// Which edit of the open model a panel's map was computed for: a map of an older one says so
+/// under every message the panel writes.
+struct MapFreshness {
+    int model = 0;  ///< bumped at each change of the open model
+    int shown = 0;  ///< `model` when the map shown was computed
+    bool stale() const { return model != shown; }
+    QString note(const QString& message) const {
+        return stale() ? message + " " + model_changed_text() : message;
+    }
+};
+
 }  // namespace archet::ui
