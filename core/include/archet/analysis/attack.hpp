@@ -50,12 +50,11 @@ struct AttackTransient {
 
 /// Judges an attack from its slips (in order) against the string's period (s). A period is
 /// steady when it lasts within `tolerance`·period of the string's and its slip lasts less than
-/// half of it (Slip::slid_through). Steady Helmholtz motion starts at
-/// the first slip followed by `settle` steady periods, at most `periods_max` periods after
-/// the first slip. The transient is named by its first period that is not steady: a slip
-/// through most of it, a second slip in it, or too long. `now` (s) is how far the stroke has
-/// been played: a transient that has not settled by then is Never only once no later start
-/// could count.
+/// half of it (Slip::slid_through). Steady Helmholtz motion starts at the first slip followed
+/// by `settle` steady periods, at most `periods_max` periods after the first slip. The
+/// transient is named by its first period that is not steady: a second slip in it, else a slip
+/// through most of it, else too long. `now` (s) is how far the stroke has been played: a
+/// transient that has not settled by then is Never only once no later start could count.
 AttackTransient judge_transient(const std::vector<Slip>& slips, double period, double now,
                                 int periods_max, int settle = 10, double tolerance = 0.1);
 
@@ -69,7 +68,7 @@ inline constexpr double kPressRamp = 0.02, kBowStart = 0.05, kNoSlipWait = 1.0;
 Gesture attack_gesture(double press, double acceleration, double step, double duration);
 
 /// The default grid spans the boundary between too little and too much force on the shipped
-/// strings (0.25–0.65 N at 1 m/s²; 3–10 N at 40 m/s² on the 220 and 440 Hz strings), on log
+/// strings (0.25–0.65 N at 1 m/s²; 3–7 N at 40 m/s² on the 220 and 440 Hz strings), on log
 /// axes, where a wedge from the origin is a band.
 struct AttackGrid {
     double acceleration_min = 1, acceleration_max = 40;  ///< m/s², of the hand
