@@ -292,6 +292,32 @@ LV2_Worker_Status work_response(LV2_Handle handle, std::uint32_t size, const voi
 
 // ---- state: the model's path ----
 
+// The host's path features for a save or restore: state:mapPath, and state:freePath, which
+// frees the paths mapPath returns (they may come from another allocator than ours).
+struct HostPaths {
+    const LV2_State_Map_Path* map = nullptr;
+    const LV2_State_Free_Path* free_path = nullptr;
+
+    explicit HostPaths(const LV2_Feature* const* features) {
+        for (int i = 0; features && features[i]; ++i) {
+            if (!std::strcmp(features[i]->URI, LV2_STATE__mapPath))
+                map = static_cast<const LV2_State_Map_Path*>(features[i]->data);
+            if (!std::strcmp(features[i]->URI, LV2_STATE__freePath))
+                free_path = static_cast<const LV2_State_Free_Path*>(features[i]->data);
+        }
+    }
+    /// A path the host mapped, copied and freed the host's way; `otherwise` if it gave none.
+    std::string take(char* mapped, const std::string& otherwise) const {
+        if (!mapped) return otherwise;
+        std::string copy = mapped;
+        if (free_path)
+            free_path->free_path(free_path->handle, mapped);
+        else
+            std::free(mapped);  // hosts without freePath allocate with malloc (state.h)
+        return copy;
+    }
+};
+
 LV2_State_Status save(LV2_Handle handle, LV2_State_Store_Function store,
                       LV2_State_Handle state_handle, std::uint32_t,
                       const LV2_Feature* const* features) {
@@ -301,13 +327,9 @@ LV2_State_Status save(LV2_Handle handle, LV2_State_Store_Function store,
         const std::lock_guard lock(p.path_mutex);
         path = p.model_path;
     }
-    const LV2_State_Map_Path* map_path = nullptr;
-    for (int i = 0; features && features[i]; ++i)
-        if (!std::strcmp(features[i]->URI, LV2_STATE__mapPath))
-            map_path = static_cast<const LV2_State_Map_Path*>(features[i]->data);
-    char* abstract = map_path ? map_path->abstract_path(map_path->handle, path.c_str()) : nullptr;
-    const std::string stored = abstract ? abstract : path;
-    std::free(abstract);
+    const HostPaths host(features);
+    const std::string stored =
+        host.map ? host.take(host.map->abstract_path(host.map->handle, path.c_str()), path) : path;
     return store(state_handle, p.uris.model, stored.c_str(), stored.size() + 1, p.uris.atom_path,
                  LV2_STATE_IS_POD | LV2_STATE_IS_PORTABLE);
 }
@@ -320,15 +342,12 @@ LV2_State_Status restore(LV2_Handle handle, LV2_State_Retrieve_Function retrieve
     std::uint32_t type = 0, flags = 0;
     const void* value = retrieve(state_handle, p.uris.model, &size, &type, &flags);
     if (!value || type != p.uris.atom_path) return LV2_STATE_ERR_NO_PROPERTY;
-    const LV2_State_Map_Path* map_path = nullptr;
-    for (int i = 0; features && features[i]; ++i)
-        if (!std::strcmp(features[i]->URI, LV2_STATE__mapPath))
-            map_path = static_cast<const LV2_State_Map_Path*>(features[i]->data);
+    const HostPaths host(features);
     const std::string stored(static_cast<const char*>(value),
                              strnlen(static_cast<const char*>(value), size));
-    char* absolute = map_path ? map_path->absolute_path(map_path->handle, stored.c_str()) : nullptr;
-    const std::string path = absolute ? absolute : stored;
-    std::free(absolute);
+    const std::string path =
+        host.map ? host.take(host.map->absolute_path(host.map->handle, stored.c_str()), stored)
+                 : stored;
     // Never at the same time as run() (the state extension says so): swapped here.
     Instrument* fresh = load(p, path, port(p, BowPosition, 0));
     if (!fresh) return LV2_STATE_ERR_UNKNOWN;

@@ -131,8 +131,8 @@ class Lv2Host {
             worker_->work_response(lilv_instance_get_handle(instance_),
                                    static_cast<std::uint32_t>(r.size()), r.data());
     }
-    /// The model path the plugin's state holds.
-    std::string saved_model() {
+    /// The model path the plugin's state holds, saved with the host `features` given.
+    std::string saved_model(const LV2_Feature* const* features = nullptr) {
         std::string saved;
         state_->save(
             lilv_instance_get_handle(instance_),
@@ -141,8 +141,25 @@ class Lv2Host {
                 static_cast<std::string*>(h)->assign(static_cast<const char*>(value), size - 1);
                 return LV2_STATE_SUCCESS;
             },
-            &saved, 0, nullptr);
+            &saved, 0, features);
         return saved;
+    }
+    /// Restores a state whose model path is `stored`, with the host `features` given.
+    bool restore_model(const std::string& stored, const LV2_Feature* const* features = nullptr) {
+        struct Stored {
+            const std::string* path;
+            LV2_URID type;
+        } value{&stored, urid(LV2_ATOM__Path)};
+        return state_->restore(
+                   lilv_instance_get_handle(instance_),
+                   [](LV2_State_Handle h, std::uint32_t, std::size_t* size, std::uint32_t* type,
+                      std::uint32_t* flags) -> const void* {
+                       const auto& v = *static_cast<const Stored*>(h);
+                       *size = v.path->size() + 1, *type = v.type;
+                       *flags = LV2_STATE_IS_POD | LV2_STATE_IS_PORTABLE;
+                       return v.path->c_str();
+                   },
+                   &value, 0, features) == LV2_STATE_SUCCESS;
     }
     LV2_URID urid(const std::string& uri) {
         auto [it, added] = urids_.emplace(uri, static_cast<LV2_URID>(urids_.size() + 1));

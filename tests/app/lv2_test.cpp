@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <numeric>
 
 #include "archet/analysis/bowing_analysis.hpp"
@@ -213,6 +214,45 @@ TEST(Lv2, APatchSetLoadsAnotherModelAndTheStateKeepsItsPath) {
     const Periodicity p = periodicity(note, 24000);
     // The paper's coarse chaplet, bowed hard, plays some 20 cents flat (pitch flattening).
     EXPECT_LT(std::abs(1200 * std::log2(p.hz / 110.0)), 30) << p.hz;
+}
+
+// A host's state:mapPath with the state:freePath its paths must be freed with: its own
+// allocator (new[] here), never the plugin's free().
+struct PathHost {
+    int mapped = 0, freed = 0;
+    static char* copy(const std::string& text) {
+        char* p = new char[text.size() + 1];
+        std::memcpy(p, text.c_str(), text.size() + 1);
+        return p;
+    }
+    LV2_State_Map_Path map{this,
+                           [](LV2_State_Map_Path_Handle h, const char* path) {
+                               ++static_cast<PathHost*>(h)->mapped;
+                               return copy(std::string("abstract:") + path);
+                           },
+                           [](LV2_State_Map_Path_Handle h, const char* path) {
+                               ++static_cast<PathHost*>(h)->mapped;
+                               return copy(std::string(path).substr(9));  // drops "abstract:"
+                           }};
+    LV2_State_Free_Path free{this, [](LV2_State_Free_Path_Handle h, char* path) {
+                                 ++static_cast<PathHost*>(h)->freed;
+                                 delete[] path;
+                             }};
+    LV2_Feature map_feature{LV2_STATE__mapPath, &map}, free_feature{LV2_STATE__freePath, &free};
+    const LV2_Feature* features[3]{&map_feature, &free_feature, nullptr};
+};
+
+TEST(Lv2, TheStateMapsItsPathWithTheHostAndFreesItTheHostsWay) {
+    Lv2Host host(ARCHET_LV2_BUNDLE);
+    ASSERT_TRUE(host.ready());
+    const std::string path = host.saved_model();
+    PathHost paths;
+    const std::string stored = host.saved_model(paths.features);
+    EXPECT_EQ(stored, "abstract:" + path);
+    EXPECT_TRUE(host.restore_model(stored, paths.features));
+    EXPECT_EQ(host.saved_model(), path) << "restored from the host's abstract path";
+    EXPECT_EQ(paths.mapped, 2);
+    EXPECT_EQ(paths.freed, 2) << "each mapped path freed through state:freePath";
 }
 
 }  // namespace
