@@ -25,32 +25,17 @@ bool SlipDetector::add(std::size_t i, double v) {
     return starts;
 }
 
-namespace {
-
-// Times (s) where |v| rises through the threshold, and how many samples were slipping.
-std::vector<double> onsets_and_share(const std::vector<double>& v, double fs, std::size_t first,
-                                     std::size_t last, double threshold, std::size_t* slipping) {
-    std::vector<double> onsets;
-    std::size_t count = 0;
-    SlipDetector detector(fs, threshold);
-    for (std::size_t i = first; i < last; ++i) {
-        if (detector.add(i, v[i])) onsets.push_back(detector.onset());
-        count += detector.slipping();
-    }
-    if (slipping) *slipping = count;
-    return onsets;
-}
-
-}  // namespace
-
 std::vector<Slip> slips_in(const std::vector<double>& v, double fs, std::size_t first,
-                           std::size_t last, double threshold) {
+                           std::size_t last, double threshold, std::size_t* slipping) {
     std::vector<Slip> slips;
+    std::size_t count = 0;
     SlipDetector detector(fs, threshold);
     for (std::size_t i = first; i < std::min(last, v.size()); ++i) {
         if (detector.add(i, v[i])) slips.push_back({detector.onset()});
         if (detector.ended() && !slips.empty()) slips.back().end = detector.end();
+        count += detector.slipping();
     }
+    if (slipping) *slipping = count;
     return slips;
 }
 
@@ -99,16 +84,17 @@ BowingAnalysis analyse_bowing(const std::vector<double>& v, double fs, double pi
     last = std::min(last, v.size());
     if (last <= first + 1) return a;
     std::size_t slipping = 0;
-    const std::vector<double> onsets = onsets_and_share(v, fs, first, last, threshold, &slipping);
-    a.slips = static_cast<int>(onsets.size());
+    const std::vector<Slip> slips = slips_in(v, fs, first, last, threshold, &slipping);
+    a.slips = static_cast<int>(slips.size());
     a.periods = static_cast<double>(last - first) / fs * pitch;
     a.slips_per_period = a.slips / a.periods;
     a.slip_share = static_cast<double>(slipping) / static_cast<double>(last - first);
-    if (onsets.size() >= 3) {
+    if (slips.size() >= 3) {
         std::vector<double> intervals;
-        for (std::size_t i = 1; i < onsets.size(); ++i)
-            intervals.push_back(onsets[i] - onsets[i - 1]);
-        a.period = (onsets.back() - onsets.front()) / static_cast<double>(intervals.size());
+        for (std::size_t i = 1; i < slips.size(); ++i)
+            intervals.push_back(slips[i].onset - slips[i - 1].onset);
+        a.period =
+            (slips.back().onset - slips.front().onset) / static_cast<double>(intervals.size());
         const auto [lo, hi] = std::minmax_element(intervals.begin(), intervals.end());
         a.period_spread = (*hi - *lo) / a.period;
         a.pitch_cents = 1200.0 * std::log2(1.0 / (a.period * pitch));

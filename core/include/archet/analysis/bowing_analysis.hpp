@@ -54,9 +54,10 @@ class SlipDetector {
 };
 
 /// The slips that start in samples [first, last), with their ends (−1: still slipping at
-/// `last`).
+/// `last`); `slipping`, if given, counts the samples of [first, last) that slip.
 std::vector<Slip> slips_in(const std::vector<double>& slip_velocity, double sample_rate,
-                           std::size_t first, std::size_t last, double threshold = 1e-3);
+                           std::size_t first, std::size_t last, double threshold = 1e-3,
+                           std::size_t* slipping = nullptr);
 
 /// `slip_velocity` sampled at `sample_rate`; analyses samples [first, last). A sample counts
 /// as slipping when |v| exceeds `threshold` (m/s).
