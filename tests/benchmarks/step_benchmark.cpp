@@ -35,9 +35,6 @@ void BM_BowedString(benchmark::State& state) {
 }
 BENCHMARK(BM_BowedString)->Arg(110)->Arg(220)->Arg(440)->Arg(880);
 
-// The chain loop alone on a bare string's audio level (the string's masses, its bridges and
-// the bow's, with their grounds), in each build this CPU runs: its cost apart from the rest
-// of a step.
 // The chain loop alone, in each build: on a 60-mass string (with its losses to rest, as
 // shipped) and on long bare chains (archet bench --chain), to split a step's cost between
 // the loop and the rest.
