@@ -67,27 +67,34 @@ void Simulation::enable_accounting(bool on) {
 }
 
 void Simulation::step() {
+    // The level arrays once, in locals: the calls below could otherwise change them for all
+    // the compiler knows, and it would read them again after each.
+    const int levels = static_cast<int>(model_.levels.size());
+    CompiledLevel* const level = model_.levels.data();
+    const int* const active = active_.data();
     // Countdowns rather than tick % divider: a 64-bit division per level costs more than
     // the whole step of a small model.
-    for (std::size_t l = 0; l < model_.levels.size(); ++l) {
-        const CompiledLevel& lv = model_.levels[l];
-        active_[l] = countdown_[l] == 0;
-        countdown_[l] = active_[l] ? lv.divider - 1 : countdown_[l] - 1;
+    for (int l = 0; l < levels; ++l) {
+        const bool ticks = countdown_[l] == 0;
+        active_[l] = ticks;
+        countdown_[l] = ticks ? level[l].divider - 1 : countdown_[l] - 1;
         // How far into its period a faster link sees this level (see seen_position()).
-        period_done_[l] = active_[l] ? 1.0 : (lv.divider - 1 - countdown_[l]) * lv.inverse_divider;
+        period_done_[l] =
+            ticks ? 1.0 : (level[l].divider - 1 - countdown_[l]) * level[l].inverse_divider;
     }
     if (!model_.controls.empty()) apply_controls();
     // Phase 1: every active LIA computes its force from x[n] (and x[n−1]).
-    for (std::size_t l = 0; l < model_.levels.size(); ++l)
-        if (active_[l]) compute_link_forces(model_.levels[l]);
+    for (int l = 0; l < levels; ++l)
+        if (active[l]) compute_link_forces(level[l]);
     compute_hand_link_forces();
-    compute_cross_link_forces();
+    if (model_.cross_links.size() > static_cast<std::size_t>(model_.hand_links))
+        compute_cross_link_forces();
     // Phase 2: every active MAT integrates; the bow modules solve on the prediction.
-    for (std::size_t l = 0; l < model_.levels.size(); ++l)
-        if (active_[l]) integrate(model_.levels[l]);
+    for (int l = 0; l < levels; ++l)
+        if (active[l]) integrate(level[l]);
     // Phase 3: x[n+1] becomes x[n].
-    for (std::size_t l = 0; l < model_.levels.size(); ++l)
-        if (active_[l]) model_.levels[l].current = CompiledLevel::after(model_.levels[l].current);
+    for (int l = 0; l < levels; ++l)
+        if (active[l]) level[l].current = CompiledLevel::after(level[l].current);
     ++tick_;
 }
 
@@ -139,26 +146,32 @@ void Simulation::compute_link_forces(CompiledLevel& lv) {
 // worth the mean of the last two forces (the newest half is pending, see hand_work()).
 // Exact at every step, and short: they tick at every step of their level.
 void Simulation::compute_hand_link_forces() {
+    const int* const active = active_.data();
+    const double* const done = period_done_.data();
+    const bool accounting = accounting_;
     double hand_work = 0;
     for (HandLinkPlan& p : hand_plan_) {
-        if (!active_[p.link->level]) continue;
         CompiledCrossLink& l = *p.link;
-        const double* hx = p.hand_level->x();
-        const double* hxp = p.hand_level->x_prev();
-        const double from = hxp[p.hand_index], to = hx[p.hand_index];
-        const double h = from + (to - from) * period_done_[p.hand_level_index];
-        const double d = l.hand_sign * (h - p.end_level->x()[p.end_index]);  // x(a) − x(b)
+        if (!active[l.level]) continue;
+        const CompiledLevel& hand = *p.hand_level;
+        const double from = hand.x_prev()[p.hand_index], to = hand.x()[p.hand_index];
+        const double h = from + (to - from) * done[p.hand_level_index];
+        // x(a) − x(b), and the force the end takes: a negation rather than a product with
+        // hand_sign (the same bits, a shorter wait for the friction solve downstream).
+        const double gap = h - p.end_level->x()[p.end_index];
+        const double d = l.hand_is_a ? gap : -gap;
         const double d_prev = l.d_prev, d_before = l.d_before, force = l.force;
         const double f = l.k * (d - l.length) + l.zdt * (d - d_prev);
+        const double end_force = l.hand_is_a ? f : -f;
         const double work = l.hand_sign * 0.5 * (force + f) * (h - l.hand_seen);
-        if (accounting_) dissipated_[l.element] += 0.25 * l.zdt * (d - d_before) * (d - d_before);
+        if (accounting) dissipated_[l.element] += 0.25 * l.zdt * (d - d_before) * (d - d_before);
         l.d_before = d_prev, l.d_prev = d, l.force = f, l.hand_seen = h;
-        *p.end_force += l.hand_sign * f;
+        *p.end_force += end_force;
         // The hand's point takes the mean force over its period when it ticks.
-        l.hand_force_sum -= l.hand_sign * f;
+        l.hand_force_sum -= end_force;
         hand_work += work;
         l.hand_work_sum += work;
-        if (active_[p.hand_level_index]) {
+        if (active[p.hand_level_index]) {
             const double mean = l.hand_force_sum * p.hand_weight;
             *p.hand_force += mean;
             p.gesture->faster_links_force += mean;
