@@ -1,7 +1,8 @@
 // The chain loop against the scheme it computes, lane by lane: every build this CPU runs
 // (plain, AVX2, AVX-512) must give the scalar scheme's bits, for every length of chain (its
-// last vector runs past the last MAT), with and without rest lengths and grounds; and the arrays
-// it runs over start MAT 1 on a cache line, so that its whole-vector loads never straddle two.
+// last vector runs past the last MAT), with and without rest lengths and grounds, keeping the
+// links' forces or not; and the arrays it runs over start MAT 1 on a cache line, so that its
+// whole-vector loads never straddle two.
 
 #include <gtest/gtest.h>
 
@@ -20,15 +21,17 @@ namespace {
 
 // A level of n MATs with random motion and coefficients; links 0 and n and the padding MATs
 // are zero, as compile() leaves them.
-CompiledLevel random_level(int n, bool lengths, bool grounds, std::mt19937_64& random) {
+CompiledLevel random_level(int n, bool lengths, bool grounds, std::mt19937_64& random,
+                           bool keep_forces = false) {
     std::uniform_real_distribution<double> u(-1.0, 1.0);
     CompiledLevel lv;
     lv.size = n;
     const int storage = n + 2;
     for (auto& b : lv.buffer) b.assign(storage + CompiledLevel::kReadAhead, 0.0);
     for (auto* v : {&lv.coeff, &lv.chain_k, &lv.chain_zdt, &lv.chain_length, &lv.ground_k,
-                    &lv.ground_zdt, &lv.ground_rest})
+                    &lv.ground_zdt, &lv.ground_rest, &lv.chain_force})
         v->assign(storage + CompiledLevel::kReadAhead, 0.0);
+    lv.keep_chain_forces = keep_forces;
     for (int s = 1; s <= n; ++s) {
         lv.buffer[0][s] = 1e-3 * u(random), lv.buffer[2][s] = 1e-3 * u(random);
         lv.coeff[s] = 1e-6 * (1.5 + u(random));
@@ -70,6 +73,33 @@ std::vector<double> scheme(const CompiledLevel& lv, std::vector<double>& forces)
     return xn;
 }
 
+// One build on one random level: every MAT's new position is the scheme's, to the bit; the
+// forces a small level keeps, and those the step computes again beside the loop, are the
+// scheme's too; the padding stays zero.
+void expect_schemes_bits(ChainBuild build, int n, bool lengths, bool grounds, bool keep,
+                         std::mt19937_64& random) {
+    CompiledLevel lv = random_level(n, lengths, grounds, random, keep);
+    std::vector<double> forces;
+    const std::vector<double> expected = scheme(lv, forces);
+    integrate_chain(lv, lv.buffer[1].data(), build);
+    SCOPED_TRACE(std::string(chain_build_name(build)) + " n=" + std::to_string(n) +
+                 (lengths ? " lengths" : "") + (grounds ? " grounds" : "") +
+                 (keep ? " keeping forces" : ""));
+    for (int s = 1; s <= n; ++s) {
+        ASSERT_EQ(std::memcmp(&expected[s], &lv.buffer[1][s], 8), 0)
+            << "MAT " << s << ": " << expected[s] << " vs " << lv.buffer[1][s];
+        const double f = chain_link_force(lv, lv.buffer[0].data(), lv.buffer[2].data(), s);
+        ASSERT_EQ(std::memcmp(&forces[s], &f, 8), 0) << "link " << s;
+    }
+    for (int j = 0; j <= n; ++j) {
+        const double kept = keep ? forces[j] : 0.0;
+        ASSERT_EQ(std::memcmp(&kept, &lv.chain_force[j], 8), 0) << "kept force of link " << j;
+    }
+    // The padding and the zeros after it stay zero: the last vector ran into them.
+    for (std::size_t s = n + 1; s < lv.buffer[1].size(); ++s)
+        ASSERT_EQ(lv.buffer[1][s], 0.0) << "storage " << s;
+}
+
 TEST(ChainKernel, EveryBuildGivesTheSchemesBitsForEveryLength) {
     std::mt19937_64 random(20261202);
     int builds_run = 0;
@@ -82,26 +112,9 @@ TEST(ChainKernel, EveryBuildGivesTheSchemesBitsForEveryLength) {
         ++builds_run;
         for (int n : {1, 2, 3, 5, 7, 8, 9, 15, 16, 17, 31, 33, 64, 67, 1000})
             for (bool lengths : {false, true})
-                for (bool grounds : {false, true}) {
-                    CompiledLevel lv = random_level(n, lengths, grounds, random);
-                    std::vector<double> forces;
-                    const std::vector<double> expected = scheme(lv, forces);
-                    integrate_chain(lv, lv.buffer[1].data(), build);
-                    SCOPED_TRACE(std::string(chain_build_name(build)) + " n=" + std::to_string(n) +
-                                 (lengths ? " lengths" : "") + (grounds ? " grounds" : ""));
-                    for (int s = 1; s <= n; ++s) {
-                        ASSERT_EQ(std::memcmp(&expected[s], &lv.buffer[1][s], 8), 0)
-                            << "MAT " << s << ": " << expected[s] << " vs " << lv.buffer[1][s];
-                        // What the step computes again beside the loop, for the few
-                        // links it needs, is the loop's force too.
-                        const double f =
-                            chain_link_force(lv, lv.buffer[0].data(), lv.buffer[2].data(), s);
-                        ASSERT_EQ(std::memcmp(&forces[s], &f, 8), 0) << "link " << s;
-                    }
-                    // The padding and the zeros after it stay zero: the last vector ran into them.
-                    for (std::size_t s = n + 1; s < lv.buffer[1].size(); ++s)
-                        ASSERT_EQ(lv.buffer[1][s], 0.0) << "storage " << s;
-                }
+                for (bool grounds : {false, true})
+                    for (bool keep : {false, true})
+                        expect_schemes_bits(build, n, lengths, grounds, keep, random);
     }
     EXPECT_GE(builds_run, 1);
     EXPECT_TRUE(chain_build_runs_here(chosen_chain_build()));

@@ -69,6 +69,7 @@ template <class V>
 struct ChainArrays {
     const double *x, *xp;          ///< x[n], x[n−1]
     double* xn;                    ///< x[n+1]
+    double* forces;                ///< link j's force at j, if the level keeps them
     const double *k, *z, *length;  ///< chain link j joins storage j and j + 1
     const double* c;               ///< T²/m
     const double *ground_k, *ground_z, *rest;
@@ -85,7 +86,7 @@ template <bool kWithGrounds, class T>
 }
 
 // MATs 1 … n; storage 0 and n + 1 are padding, and links 0 and n have zero coefficients.
-template <int W, bool kWithLength, bool kWithGrounds>
+template <int W, bool kWithLength, bool kWithGrounds, bool kKeepForces>
 [[gnu::always_inline]] inline void chain_loop(const ChainArrays& arrays, int n) {
     using V = Doubles<W>;
     // Local restrict copies: the vector stores are byte copies, which the compiler would
@@ -93,6 +94,7 @@ template <int W, bool kWithLength, bool kWithGrounds>
     const double* __restrict x = arrays.x;
     const double* __restrict xp = arrays.xp;
     double* __restrict xn = arrays.xn;
+    double* __restrict kept = arrays.forces;
     const double* __restrict k = arrays.k;
     const double* __restrict z = arrays.z;
     const double* __restrict length = arrays.length;
@@ -105,6 +107,7 @@ template <int W, bool kWithLength, bool kWithGrounds>
     V forces{};
     forces[W - 1] = link_force<kWithLength>(x[0] - x[1], xp[0] - xp[1], k[0], z[0],
                                             kWithLength ? length[0] : 0.0);
+    if constexpr (kKeepForces) kept[0] = forces[W - 1];
     // Whole rounds only: the last one runs up to W − 1 MATs past MAT n into the zeros kept
     // after the storage, whose zero coefficients keep them zero (while the motion is finite:
     // a blown-up level, which is never stepped again, may leave NaN there), and each round
@@ -116,6 +119,7 @@ template <int W, bool kWithLength, bool kWithGrounds>
         const V d = xs - next_of(xs, x_after), dp = xps - next_of(xps, xp_after);
         const V right = link_force<kWithLength>(d, dp, load<V>(k + s), load<V>(z + s),
                                                 kWithLength ? load<V>(length + s) : zero);
+        if constexpr (kKeepForces) store(kept + s, right);
         store(xn + s, mat_update<kWithGrounds>(xs, xps, load<V>(c + s), shift_in(forces, right),
                                                right, kWithGrounds ? load<V>(ground_k + s) : zero,
                                                kWithGrounds ? load<V>(ground_z + s) : zero,
@@ -124,13 +128,22 @@ template <int W, bool kWithLength, bool kWithGrounds>
     }
 }
 
-template <int W>
+template <int W, bool kKeepForces>
 [[gnu::always_inline]] inline void chain_variant(const ChainArrays& a, int n, bool lengths,
                                                  bool grounds) {
     if (lengths)
-        grounds ? chain_loop<W, true, true>(a, n) : chain_loop<W, true, false>(a, n);
+        grounds ? chain_loop<W, true, true, kKeepForces>(a, n)
+                : chain_loop<W, true, false, kKeepForces>(a, n);
     else
-        grounds ? chain_loop<W, false, true>(a, n) : chain_loop<W, false, false>(a, n);
+        grounds ? chain_loop<W, false, true, kKeepForces>(a, n)
+                : chain_loop<W, false, false, kKeepForces>(a, n);
+}
+
+template <int W>
+[[gnu::always_inline]] inline void chain_variant(const ChainArrays& a, int n, bool lengths,
+                                                 bool grounds) {
+    a.forces ? chain_variant<W, true>(a, n, lengths, grounds)
+             : chain_variant<W, false>(a, n, lengths, grounds);
 }
 
 // What MAT s of a level stores, with its chain link to s + 1 and its ground: kinetic
@@ -237,6 +250,7 @@ void run_chain(ChainLoop loop, CompiledLevel& lv, double* xn) {
     const ChainArrays arrays{lv.x(),
                              lv.x_prev(),
                              xn,
+                             lv.keep_chain_forces ? lv.chain_force.data() : nullptr,
                              lv.chain_k.data(),
                              lv.chain_zdt.data(),
                              lv.chain_length.data(),

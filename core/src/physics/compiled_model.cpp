@@ -83,12 +83,11 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
     // What the chain loop reads or writes, with the zeros it runs into past the last MAT.
     for (auto* values :
          {&lv.buffer[0], &lv.buffer[1], &lv.buffer[2], &lv.coeff, &lv.chain_k, &lv.chain_zdt,
-          &lv.chain_length, &lv.ground_k, &lv.ground_zdt, &lv.ground_rest})
+          &lv.chain_length, &lv.ground_k, &lv.ground_zdt, &lv.ground_rest, &lv.chain_force})
         values->assign(storage + CompiledLevel::kReadAhead, 0.0);
     lv.mass.assign(storage, 0.0);
     lv.external.assign(storage, 0.0);
     lv.held.assign(storage, 0.0);
-    lv.chain_force.assign(storage, 0.0);
     lv.chain_element.assign(storage, -1);
     lv.element_of.assign(storage, -1);
     lv.modal_point_of.assign(storage, -1);
@@ -298,7 +297,8 @@ void compile_readouts(CompiledModel& c, const Model& model) {
         for (int s : lv.watched) used.insert({s - 1, s});
         if (grounds_in_chain_loop(lv))
             for (int s : lv.touched) used.insert({s - 1, s});
-        lv.chain_forces_used.assign(used.begin(), used.end());
+        lv.keep_chain_forces = keeps_chain_forces(lv.size, used.size());
+        if (!lv.keep_chain_forces) lv.chain_forces_used.assign(used.begin(), used.end());
     }
 }
 

@@ -26,8 +26,8 @@ template <bool kWithLength, class T>
 }
 
 /// The force of chain link j (joining storage j and j + 1) at this step, as the chain loop
-/// computes it; the loop keeps none of them, so the few the step needs beside it (next to
-/// the MATs other forces touch and the watched ones) are computed again here.
+/// computes it: the few the step needs beside the loop (next to the MATs other forces touch
+/// and the watched ones), computed again here on a level whose loop keeps none.
 inline double chain_link_force(const CompiledLevel& lv, const double* x, const double* xp, int j) {
     return link_force<true>(x[j] - x[j + 1], xp[j] - xp[j + 1], lv.chain_k[j], lv.chain_zdt[j],
                             lv.chain_length[j]);
@@ -48,6 +48,15 @@ template <class T>
     return c * (k * (x - rest) + z * (x - xp));
 }
 
+/// Whether a level's chain loop keeps the force of every chain link (CompiledLevel::
+/// keep_chain_forces) rather than the step computing again the `used` forces it needs (beside
+/// the bow, the bridge, the body): one more store a round, which pays on a short string and
+/// costs a fifth more on a chain that outgrows the first-level cache (`archet bench --chain`,
+/// 900–3,000 masses).
+inline bool keeps_chain_forces(int level_size, std::size_t used) {
+    return used > 0 && level_size <= 512;
+}
+
 /// Whether the chain loop also takes the level's grounds: when most MATs have one (a string
 /// with losses to its rest points); a few bridges do not repay the loop's extra flops.
 inline bool grounds_in_chain_loop(const CompiledLevel& level) {
@@ -55,7 +64,7 @@ inline bool grounds_in_chain_loop(const CompiledLevel& level) {
 }
 
 /// Writes x[n+1] of every MAT of the level into `xn` from its chain links (and its grounds,
-/// see grounds_in_chain_loop()).
+/// see grounds_in_chain_loop()), and their forces into chain_force if it keeps them.
 void integrate_chain(CompiledLevel& level, double* xn);
 /// The same with a given build, which must run here (for tests and benchmarks).
 void integrate_chain(CompiledLevel& level, double* xn, ChainBuild build);

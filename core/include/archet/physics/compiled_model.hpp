@@ -123,9 +123,11 @@ struct CompiledLevel {
     std::vector<double> held;      ///< forces of slower links, held between their ticks, N
     MatArray chain_k, chain_zdt, chain_length;  ///< link j joins storage j, j+1
     bool has_chain_lengths = false;             ///< any non-zero chain_length
-    /// Scratch: this step's force of the chain links in chain_forces_used (the chain loop
-    /// keeps none).
-    std::vector<double> chain_force;
+    /// Scratch: this step's force of the chain links, link j at j. A small level's chain loop
+    /// keeps them all (keep_chain_forces); a large one's keeps none, and the step computes
+    /// again the few in chain_forces_used.
+    MatArray chain_force;
+    bool keep_chain_forces = false;
     std::vector<int> chain_forces_used;  ///< links on either side of touched and watched MATs
     std::vector<int> chain_element;      ///< index into Model::lias, −1 for none
     std::vector<CompiledLink> links;
