@@ -69,24 +69,22 @@ template <class V>
 struct ChainArrays {
     const double *x, *xp;          ///< x[n], x[n−1]
     double* xn;                    ///< x[n+1]
-    double* forces;                ///< link j's force at j, if the level keeps them
     const double *k, *z, *length;  ///< chain link j joins storage j and j + 1
     const double* c;               ///< T²/m
-    const double *ground_k, *ground_z, *rest;
+    const double *a, *b, *e;       ///< the grounds folded into the update (fold_ground())
 };
 
-// A MAT's new position from its two chain links, less what its ground takes off.
+// A MAT's new position from its two chain links, and its ground where the loop takes them.
 template <bool kWithGrounds, class T>
-[[gnu::always_inline]] inline T mat_update(T x, T xp, T c, T left, T right, T gk, T gz, T rest) {
-    const T update = chain_update(x, xp, c, left, right);
+[[gnu::always_inline]] inline T mat_update(T x, T xp, T c, T left, T right, T a, T b, T e) {
     if constexpr (kWithGrounds)
-        return update - ground_pull(x, xp, c, gk, gz, rest);
+        return grounded_update(x, xp, a, b, e, c, left, right);
     else
-        return update;
+        return chain_update(x, xp, c, left, right);
 }
 
 // MATs 1 … n; storage 0 and n + 1 are padding, and links 0 and n have zero coefficients.
-template <int W, bool kWithLength, bool kWithGrounds, bool kKeepForces>
+template <int W, bool kWithLength, bool kWithGrounds>
 [[gnu::always_inline]] inline void chain_loop(const ChainArrays& arrays, int n) {
     using V = Doubles<W>;
     // Local restrict copies: the vector stores are byte copies, which the compiler would
@@ -94,20 +92,18 @@ template <int W, bool kWithLength, bool kWithGrounds, bool kKeepForces>
     const double* __restrict x = arrays.x;
     const double* __restrict xp = arrays.xp;
     double* __restrict xn = arrays.xn;
-    double* __restrict kept = arrays.forces;
     const double* __restrict k = arrays.k;
     const double* __restrict z = arrays.z;
     const double* __restrict length = arrays.length;
     const double* __restrict c = arrays.c;
-    const double* __restrict ground_k = arrays.ground_k;
-    const double* __restrict ground_z = arrays.ground_z;
-    const double* __restrict rest = arrays.rest;
+    const double* __restrict a = arrays.a;
+    const double* __restrict b = arrays.b;
+    const double* __restrict e = arrays.e;
     // Link 0, on the left of MAT 1, enters as the last lane of the round before the first.
     const V zero{};
     V forces{};
     forces[W - 1] = link_force<kWithLength>(x[0] - x[1], xp[0] - xp[1], k[0], z[0],
                                             kWithLength ? length[0] : 0.0);
-    if constexpr (kKeepForces) kept[0] = forces[W - 1];
     // Whole rounds only: the last one runs up to W − 1 MATs past MAT n into the zeros kept
     // after the storage, whose zero coefficients keep them zero (while the motion is finite:
     // a blown-up level, which is never stepped again, may leave NaN there), and each round
@@ -119,31 +115,21 @@ template <int W, bool kWithLength, bool kWithGrounds, bool kKeepForces>
         const V d = xs - next_of(xs, x_after), dp = xps - next_of(xps, xp_after);
         const V right = link_force<kWithLength>(d, dp, load<V>(k + s), load<V>(z + s),
                                                 kWithLength ? load<V>(length + s) : zero);
-        if constexpr (kKeepForces) store(kept + s, right);
         store(xn + s, mat_update<kWithGrounds>(xs, xps, load<V>(c + s), shift_in(forces, right),
-                                               right, kWithGrounds ? load<V>(ground_k + s) : zero,
-                                               kWithGrounds ? load<V>(ground_z + s) : zero,
-                                               kWithGrounds ? load<V>(rest + s) : zero));
+                                               right, kWithGrounds ? load<V>(a + s) : zero,
+                                               kWithGrounds ? load<V>(b + s) : zero,
+                                               kWithGrounds ? load<V>(e + s) : zero));
         forces = right, xs = x_after, xps = xp_after;
     }
-}
-
-template <int W, bool kKeepForces>
-[[gnu::always_inline]] inline void chain_variant(const ChainArrays& a, int n, bool lengths,
-                                                 bool grounds) {
-    if (lengths)
-        grounds ? chain_loop<W, true, true, kKeepForces>(a, n)
-                : chain_loop<W, true, false, kKeepForces>(a, n);
-    else
-        grounds ? chain_loop<W, false, true, kKeepForces>(a, n)
-                : chain_loop<W, false, false, kKeepForces>(a, n);
 }
 
 template <int W>
 [[gnu::always_inline]] inline void chain_variant(const ChainArrays& a, int n, bool lengths,
                                                  bool grounds) {
-    a.forces ? chain_variant<W, true>(a, n, lengths, grounds)
-             : chain_variant<W, false>(a, n, lengths, grounds);
+    if (lengths)
+        grounds ? chain_loop<W, true, true>(a, n) : chain_loop<W, true, false>(a, n);
+    else
+        grounds ? chain_loop<W, false, true>(a, n) : chain_loop<W, false, false>(a, n);
 }
 
 // What MAT s of a level stores, with its chain link to s + 1 and its ground: kinetic
@@ -250,14 +236,13 @@ void run_chain(ChainLoop loop, CompiledLevel& lv, double* xn) {
     const ChainArrays arrays{lv.x(),
                              lv.x_prev(),
                              xn,
-                             lv.keep_chain_forces ? lv.chain_force.data() : nullptr,
                              lv.chain_k.data(),
                              lv.chain_zdt.data(),
                              lv.chain_length.data(),
                              lv.coeff.data(),
-                             lv.ground_k.data(),
-                             lv.ground_zdt.data(),
-                             lv.ground_rest.data()};
+                             lv.update_x.data(),
+                             lv.update_xp.data(),
+                             lv.update_rest.data()};
     loop(arrays, lv.size, lv.has_chain_lengths, grounds_in_chain_loop(lv));
 }
 
@@ -281,6 +266,17 @@ const char* chain_build_name(ChainBuild build) {
             break;
     }
     return "plain";
+}
+
+void fold_ground(CompiledLevel& lv, int s) {
+    const double c = lv.coeff[s], k = lv.ground_k[s], z = lv.ground_zdt[s];
+    lv.update_x[s] = (2.0 - c * k) - c * z;
+    lv.update_xp[s] = c * z - 1.0;
+    lv.update_rest[s] = c * k * lv.ground_rest[s];
+}
+
+void fold_grounds(CompiledLevel& lv) {
+    for (int s = 1; s <= lv.size; ++s) fold_ground(lv, s);
 }
 
 double level_stored_energy(const CompiledLevel& lv) {

@@ -81,13 +81,14 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
     lv.size = static_cast<int>(order.size());
     const int storage = lv.size + 2;
     // What the chain loop reads or writes, with the zeros it runs into past the last MAT.
-    for (auto* values :
-         {&lv.buffer[0], &lv.buffer[1], &lv.buffer[2], &lv.coeff, &lv.chain_k, &lv.chain_zdt,
-          &lv.chain_length, &lv.ground_k, &lv.ground_zdt, &lv.ground_rest, &lv.chain_force})
+    for (auto* values : {&lv.buffer[0], &lv.buffer[1], &lv.buffer[2], &lv.coeff, &lv.chain_k,
+                         &lv.chain_zdt, &lv.chain_length, &lv.ground_k, &lv.ground_zdt,
+                         &lv.ground_rest, &lv.update_x, &lv.update_xp, &lv.update_rest})
         values->assign(storage + CompiledLevel::kReadAhead, 0.0);
     lv.mass.assign(storage, 0.0);
     lv.external.assign(storage, 0.0);
     lv.held.assign(storage, 0.0);
+    lv.chain_force.assign(storage, 0.0);
     lv.chain_element.assign(storage, -1);
     lv.element_of.assign(storage, -1);
     lv.modal_point_of.assign(storage, -1);
@@ -125,6 +126,7 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
             lv.chain_element[s] = link;
         }
     }
+    fold_grounds(lv);
 }
 
 // Rate levels that share a divider tick together: they compile into one level, so links
@@ -291,14 +293,10 @@ void compile_readouts(CompiledModel& c, const Model& model) {
         std::sort(lv.touched.begin(), lv.touched.end());
         lv.touched.erase(std::unique(lv.touched.begin(), lv.touched.end()), lv.touched.end());
         lv.watched_force.assign(lv.watched.size(), 0.0);
-        // The watched MATs' totals need their chain links; a touched MAT needs them only when
-        // the step updates it again whole (grounds in the chain loop, see integrate()).
+        // The watched MATs' totals need their chain links.
         std::set<int> used;
         for (int s : lv.watched) used.insert({s - 1, s});
-        if (grounds_in_chain_loop(lv))
-            for (int s : lv.touched) used.insert({s - 1, s});
-        lv.keep_chain_forces = keeps_chain_forces(lv.size, used.size());
-        if (!lv.keep_chain_forces) lv.chain_forces_used.assign(used.begin(), used.end());
+        lv.chain_forces_used.assign(used.begin(), used.end());
     }
 }
 

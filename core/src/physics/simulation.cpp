@@ -233,20 +233,14 @@ void Simulation::integrate(CompiledLevel& lv) {
     for (int j : lv.chain_forces_used) f[j] = chain_link_force(lv, x, xp, j);
     // The update is linear in force, so the other forces add their share afterwards, only
     // where there are any: the other links' (`external`), held forces of slower links, and
-    // grounds the chain loop did not take. Where it took them, a MAT with other forces is
-    // updated again whole, in the scheme's order (chain, other forces, ground): same bits.
+    // grounds the chain loop did not take.
     const double* ext = lv.external.data();
     const double* held = lv.held.data();
-    if (grounds_in_chain_loop(lv)) {
-        for (int s : lv.touched)
-            xn[s] = (chain_update(x[s], xp[s], c[s], f[s - 1], f[s]) + c[s] * (ext[s] + held[s])) -
-                    ground_pull(x[s], xp[s], c[s], gk[s], gz[s], rest[s]);
-    } else {
-        for (int s : lv.touched) xn[s] += c[s] * (ext[s] + held[s]);
+    for (int s : lv.touched) xn[s] += c[s] * (ext[s] + held[s]);
+    if (!grounds_in_chain_loop(lv))
         for (const auto& g : lv.grounds)
             xn[g.index] -= ground_pull(x[g.index], xp[g.index], c[g.index], gk[g.index],
                                        gz[g.index], rest[g.index]);
-    }
     if (!lv.modal_points.empty()) {
         for (const auto& p : lv.modal_points) {
             const double force = ext[p.index] + held[p.index];

@@ -1,6 +1,7 @@
 // Writing and reading a running simulation's parameters by their compiled slots (resolved
 // once from ELEMENT.PARAM by CompiledModel::resolve_parameter).
 
+#include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/simulation.hpp"
 
 namespace archet {
@@ -17,6 +18,17 @@ auto& finger_field(Finger& f, ParameterSlot::Kind kind) {
                                        : f.pressure;
 }
 
+// A MAT's mass, with what follows it: T²/m, its folded ground, the modal points' responses.
+void set_mass(CompiledLevel& lv, int s, double mass) {
+    lv.mass[s] = mass, lv.coeff[s] = lv.dt * lv.dt / mass;
+    fold_ground(lv, s);
+    for (auto& point : lv.modal_points) {  // a point's response follows its modes'
+        point.coeff = 0;
+        for (std::size_t k = 0; k < point.modes.size(); ++k)
+            point.coeff += point.weights[k] * point.weights[k] * lv.coeff[point.modes[k]];
+    }
+}
+
 }  // namespace
 
 void Simulation::write_slot(const ParameterSlot& s, double v) {
@@ -24,12 +36,7 @@ void Simulation::write_slot(const ParameterSlot& s, double v) {
     CompiledLevel& lv = model_.levels[s.level];
     switch (s.kind) {
         case K::Mass:
-            lv.mass[s.index] = v, lv.coeff[s.index] = lv.dt * lv.dt / v;
-            for (auto& point : lv.modal_points) {  // a point's response follows its modes'
-                point.coeff = 0;
-                for (std::size_t k = 0; k < point.modes.size(); ++k)
-                    point.coeff += point.weights[k] * point.weights[k] * lv.coeff[point.modes[k]];
-            }
+            set_mass(lv, s.index, v);
             break;
         case K::ChainK:
             lv.chain_k[s.index] = v;
@@ -55,9 +62,11 @@ void Simulation::write_slot(const ParameterSlot& s, double v) {
             break;
         case K::GroundK:
             lv.ground_k[lv.grounds[s.index].index] = v;
+            fold_ground(lv, lv.grounds[s.index].index);
             break;
         case K::GroundZ:
             lv.ground_zdt[lv.grounds[s.index].index] = v / lv.dt;
+            fold_ground(lv, lv.grounds[s.index].index);
             break;
         case K::CrossK:
             model_.cross_links[s.index].k = v;

@@ -3,6 +3,7 @@
 
 #include <type_traits>
 
+#include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/simulation.hpp"
 
 namespace archet {
@@ -63,6 +64,7 @@ void Simulation::save_state(double* out) const {
 void Simulation::load_state(const double* in) {
     for_each_state(*this,
                    [&](auto& v) { v = static_cast<std::remove_reference_t<decltype(v)>>(*in++); });
+    for (auto& lv : model_.levels) fold_grounds(lv);  // the masses and grounds loaded
 }
 
 bool Simulation::continue_from(const Simulation& from, std::span<double> scratch) {

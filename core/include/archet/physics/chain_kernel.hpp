@@ -26,8 +26,8 @@ template <bool kWithLength, class T>
 }
 
 /// The force of chain link j (joining storage j and j + 1) at this step, as the chain loop
-/// computes it: the few the step needs beside the loop (next to the MATs other forces touch
-/// and the watched ones), computed again here on a level whose loop keeps none.
+/// computes it; the loop keeps none of them, so the few the step needs beside it (on either
+/// side of the watched MATs) are computed again here.
 inline double chain_link_force(const CompiledLevel& lv, const double* x, const double* xp, int j) {
     return link_force<true>(x[j] - x[j + 1], xp[j] - xp[j + 1], lv.chain_k[j], lv.chain_zdt[j],
                             lv.chain_length[j]);
@@ -42,20 +42,27 @@ template <class T>
 }
 
 /// What an oscillator's spring and damper to ground take off that update (zero for a MAT
-/// without them).
+/// without them), on a level whose chain loop leaves its grounds to the step.
 template <class T>
 [[gnu::always_inline]] inline T ground_pull(T x, T xp, T c, T k, T z, T rest) {
     return c * (k * (x - rest) + z * (x - xp));
 }
 
-/// Whether a level's chain loop keeps the force of every chain link (CompiledLevel::
-/// keep_chain_forces) rather than the step computing again the `used` forces it needs (beside
-/// the bow, the bridge, the body): one more store a round, which pays on a short string and
-/// costs a fifth more on a chain that outgrows the first-level cache (`archet bench --chain`,
-/// 900–3,000 masses).
-inline bool keeps_chain_forces(int level_size, std::size_t used) {
-    return used > 0 && level_size <= 512;
+/// The new position of a MAT with its ground folded into a, b and e (fold_ground()), for a
+/// double or a vector of them: the chain loop of a level that takes its grounds, and the MATs
+/// updated again after it, must agree to the bit.
+template <class T>
+[[gnu::always_inline]] inline T grounded_update(T x, T xp, T a, T b, T e, T c, T left, T right) {
+    return ((a * x + b * xp) + e) + c * (left - right);
 }
+
+/// Folds MAT s's spring and damper to ground into its update: 2x − x⁻ − T²/m·(K(x − rest) +
+/// Z/T(x − x⁻)) is a·x + b·x⁻ + e with a = (2 − T²/m·K) − T²/m·Z/T, b = T²/m·Z/T − 1 and
+/// e = T²/m·K·rest (a MAT without a ground: 2, −1, 0). The same update up to rounding, in seven
+/// operations a MAT instead of twelve; call it again whenever T²/m or the ground changes.
+void fold_ground(CompiledLevel& level, int s);
+/// fold_ground() for every MAT of the level.
+void fold_grounds(CompiledLevel& level);
 
 /// Whether the chain loop also takes the level's grounds: when most MATs have one (a string
 /// with losses to its rest points); a few bridges do not repay the loop's extra flops.
@@ -64,7 +71,7 @@ inline bool grounds_in_chain_loop(const CompiledLevel& level) {
 }
 
 /// Writes x[n+1] of every MAT of the level into `xn` from its chain links (and its grounds,
-/// see grounds_in_chain_loop()), and their forces into chain_force if it keeps them.
+/// see grounds_in_chain_loop()).
 void integrate_chain(CompiledLevel& level, double* xn);
 /// The same with a given build, which must run here (for tests and benchmarks).
 void integrate_chain(CompiledLevel& level, double* xn, ChainBuild build);

@@ -123,16 +123,17 @@ struct CompiledLevel {
     std::vector<double> held;      ///< forces of slower links, held between their ticks, N
     MatArray chain_k, chain_zdt, chain_length;  ///< link j joins storage j, j+1
     bool has_chain_lengths = false;             ///< any non-zero chain_length
-    /// Scratch: this step's force of the chain links, link j at j. A small level's chain loop
-    /// keeps them all (keep_chain_forces); a large one's keeps none, and the step computes
-    /// again the few in chain_forces_used.
-    MatArray chain_force;
-    bool keep_chain_forces = false;
-    std::vector<int> chain_forces_used;  ///< links on either side of touched and watched MATs
+    /// Scratch: this step's force of the chain links in chain_forces_used (the chain loop
+    /// keeps none).
+    std::vector<double> chain_force;
+    std::vector<int> chain_forces_used;  ///< links on either side of watched MATs
     std::vector<int> chain_element;      ///< index into Model::lias, −1 for none
     std::vector<CompiledLink> links;
     std::vector<CompiledGround> grounds;
     MatArray ground_k, ground_zdt, ground_rest;  ///< per storage index, 0 if none
+    /// The update of a MAT with its ground, folded (see fold_ground()): x[n+1] =
+    /// ((a·x[n] + b·x[n−1]) + e) + T²/m·(forces). Refreshed whenever T²/m or a ground changes.
+    MatArray update_x, update_xp, update_rest;  ///< a, b, e per storage index
     std::vector<CompiledGesturePoint> gestures;
     std::vector<int> bows;     ///< indices into CompiledModel::bows
     std::vector<int> fingers;  ///< indices into CompiledModel::fingers
