@@ -12,6 +12,7 @@
 #include "archet/common/input_error.hpp"
 #include "archet/common/input_limits.hpp"
 #include "archet/common/number_text.hpp"
+#include "archet/common/scheme_revision.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/files/state_file.hpp"
 #include "archet/files/take_file.hpp"
@@ -108,6 +109,11 @@ RenderPlan plan_from_take(const RenderArguments& a) {
                   << " s; rendering what was recorded\n";
     }
     too_long(take);
+    if (take.scheme != kSchemeRevision)
+        std::cerr << "archet: note: " << folder.string() << " was played with scheme revision "
+                  << take.scheme << "; this Archet computes revision " << kSchemeRevision
+                  << " (docs/physics.md), so the re-render matches take.wav up to rounding, "
+                     "not to the byte\n";
     if (take.frames == 0)
         throw InputError((folder / "take.json").string(),
                          "the take holds no sample (it ended before it began); nothing to render");

@@ -1,6 +1,7 @@
 // Live takes: re-rendering a take's gesture reproduces its audio to the byte; SIGINT, SIGTERM
 // and SIGHUP finish the take cleanly; a take killed outright is recovered by `render --take`;
-// a take that clips says so; a take never writes into a folder that holds files.
+// a take that clips says so; a take never writes into a folder that holds files; a take of an
+// older scheme revision says it matches only up to rounding.
 
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -20,6 +21,7 @@
 
 #include "archet/builders/bowed_string.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/common/scheme_revision.hpp"
 #include "archet/engine/take_recorder.hpp"
 #include "archet/files/take_file.hpp"
 #include "archet/files/take_recovery.hpp"
@@ -70,6 +72,8 @@ void expect_reproduced(const std::vector<std::string>& play_extra, const std::st
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(test::read_file(dir / "replayed.wav"), test::read_file(dir / "take" / "take.wav"))
         << "render --take differs";
+    EXPECT_EQ(read_json(dir / "take" / "take.json")["scheme"], kSchemeRevision);
+    EXPECT_EQ(r.err.find("scheme revision"), std::string::npos) << r.err;
     // And it was a real take: bowed, with probes for every sample.
     const std::string csv = test::read_file(dir / "take" / "probes.csv");
     EXPECT_EQ(static_cast<sf_count_t>(std::count(csv.begin(), csv.end(), '\n')), frames + 1);
@@ -219,6 +223,31 @@ TEST(Take, AKilledTakeIsRecoveredByRender) {
 }
 
 // A take being recorded is not "recovered" under its recorder's feet: render refuses it.
+// A take records the scheme revision it was played with. One played before the scheme's
+// arithmetic last changed (here the golden take, of revision 1) re-renders with a note that it
+// matches up to rounding, not to the byte; a revision this Archet does not know is refused.
+TEST(Take, ATakeOfAnOlderSchemeSaysItMatchesUpToRounding) {
+    const auto dir = test::temp_dir("older_scheme");
+    std::filesystem::copy(test::test_data("golden/take"), dir / "take");
+    auto r = test::run_archet(
+        {"render", "--take", (dir / "take").string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("was played with scheme revision 1; this Archet computes revision " +
+                         std::to_string(kSchemeRevision)),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("up to rounding, not to the byte"), std::string::npos) << r.err;
+
+    nlohmann::json description = read_json(dir / "take" / "take.json");
+    description["scheme"] = kSchemeRevision + 1;
+    std::ofstream(dir / "take" / "take.json") << description.dump(2);
+    r = test::run_archet(
+        {"render", "--take", (dir / "take").string(), "-o", (dir / "newer.wav").string()});
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("take.json.scheme"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "newer.wav"));
+}
+
 TEST(Take, RenderRefusesATakeStillBeingRecorded) {
     const auto dir = test::temp_dir("take-busy-render");
     const auto take = dir / "take";

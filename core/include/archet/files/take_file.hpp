@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "archet/common/scheme_revision.hpp"
+
 namespace archet {
 
 struct TakeDescription {
@@ -28,6 +30,7 @@ struct TakeDescription {
     std::string interrupted_by;    ///< why: "SIGTERM", "the studio exited", ...
     std::uint64_t clipped_samples = 0;  ///< samples of take.wav at or beyond full scale
     double peak = 0;                    ///< the largest |sample| the model played
+    int scheme = kSchemeRevision;       ///< the scheme revision it was played with
 };
 
 /// A parameter change made while playing: it starts gliding at master tick `tick`, before
@@ -45,7 +48,8 @@ struct ParameterChange {
 
 std::string format_take(const TakeDescription& take);
 /// Reads take.json's text; `source` names it in errors. Older takes (without "complete",
-/// "interrupted", "clipped_samples", "peak") read as complete and uninterrupted.
+/// "interrupted", "clipped_samples", "peak", "scheme") read as complete and uninterrupted,
+/// played with scheme revision 1.
 TakeDescription parse_take(const std::string& text, const std::string& source);
 TakeDescription read_take_file(const std::filesystem::path& path);
 
