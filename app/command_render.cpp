@@ -22,6 +22,7 @@
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/parameter_smoother.hpp"
 #include "archet/physics/renderer.hpp"
+#include "archet/physics/scheme_changes.hpp"
 #include "archet/probe_csv_writer.hpp"
 #include "archet/sound_file_writer.hpp"
 #include "commands.hpp"
@@ -109,16 +110,17 @@ RenderPlan plan_from_take(const RenderArguments& a) {
                   << " s; rendering what was recorded\n";
     }
     too_long(take);
-    if (take.scheme != kSchemeRevision)
-        std::cerr << "archet: note: " << folder.string() << " was played with scheme revision "
-                  << take.scheme << "; this Archet computes revision " << kSchemeRevision
-                  << " (docs/physics.md), so the re-render matches take.wav up to rounding, "
-                     "not to the byte\n";
     if (take.frames == 0)
         throw InputError((folder / "take.json").string(),
                          "the take holds no sample (it ended before it began); nothing to render");
     RenderPlan plan;
     plan.model = load_validated_model((folder / "model.json").string(), {}, take.sample_rate);
+    if (computes_differently_since(compile(plan.model, take.sample_rate), take.scheme))
+        std::cerr << "archet: note: " << folder.string() << " was played with scheme revision "
+                  << take.scheme << "; this Archet computes its model with revision "
+                  << kSchemeRevision
+                  << " (docs/physics.md): the same physics, but the re-render may differ from "
+                     "take.wav by rounding, which a bowed string can carry on\n";
     plan.gesture = load_gesture_file(folder / "gesture.json");
     plan.frames = take.frames;
     plan.duration = static_cast<double>(take.frames) / take.sample_rate;

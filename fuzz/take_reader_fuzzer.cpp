@@ -18,11 +18,13 @@ void take(const std::string& text) {
     if (!(t.sample_rate >= 1000 && t.sample_rate <= 1e6) || !std::isfinite(t.peak) || t.peak < 0)
         __builtin_trap();
     if (t.interrupted == t.interrupted_by.empty()) __builtin_trap();
+    if (t.scheme < 1 || t.scheme > archet::kSchemeRevision) __builtin_trap();
     // What it writes, it reads back the same.
     const archet::TakeDescription again = archet::parse_take(archet::format_take(t), "again");
     if (again.frames != t.frames || again.start_tick != t.start_tick ||
         again.complete != t.complete || again.interrupted_by != t.interrupted_by ||
-        again.clipped_samples != t.clipped_samples || again.peak != t.peak)
+        again.clipped_samples != t.clipped_samples || again.peak != t.peak ||
+        again.scheme != t.scheme)
         __builtin_trap();
 }
 

@@ -79,23 +79,26 @@ std::vector<double> scheme(const CompiledLevel& lv, std::vector<double>& forces)
     return xn;
 }
 
-// The folded update is the scheme's update with the ground subtracted, up to rounding: a
-// few units in the last place of the largest term, over the motions and the stable grounds
-// (T²/m·K below 4) of every scale the models use.
+// The folded update (fold_ground(), grounded_update()) is the scheme's update with the ground
+// subtracted, up to rounding: a few units in the last place of the largest term, over the
+// motions and the stable grounds (T²/m·K below 4) of every scale the models use.
 TEST(ChainKernel, TheFoldedGroundIsTheGroundUpToRounding) {
     std::mt19937_64 random(42);
     std::uniform_real_distribution<double> u(-1.0, 1.0), decades(-7.0, 0.3);
+    CompiledLevel lv = random_level(1, false, true, random);
     for (int trial = 0; trial < 100000; ++trial) {
         const double x = 1e-3 * u(random), xp = x + 1e-6 * u(random);
         const double c = 1e-6 * (1.5 + u(random));             // T²/m
         const double k = std::pow(10.0, decades(random)) / c;  // T²/m·K from 1e-7 to 2
         const double z = 0.25 * std::pow(10.0, decades(random)) / c;
         const double rest = 1e-4 * u(random), forces = 1e2 * u(random);
-        const double a = (2.0 - c * k) - c * z, b = c * z - 1.0, e = c * k * rest;
-        const double folded = ((a * x + b * xp) + e) + c * forces;
+        lv.coeff[1] = c, lv.ground_k[1] = k, lv.ground_zdt[1] = z, lv.ground_rest[1] = rest;
+        fold_ground(lv, 1);
+        const double folded = grounded_update(x, xp, lv.update_x[1], lv.update_xp[1],
+                                              lv.update_rest[1], c, forces, 0.0);
         const double unfolded = (2.0 * x - xp + c * forces) - c * (k * (x - rest) + z * (x - xp));
-        const double largest =
-            std::max({std::abs(2.0 * x), std::abs(xp), std::abs(c * forces), std::abs(e)});
+        const double largest = std::max(
+            {std::abs(2.0 * x), std::abs(xp), std::abs(c * forces), std::abs(lv.update_rest[1])});
         ASSERT_NEAR(folded, unfolded, 8 * std::numeric_limits<double>::epsilon() * largest)
             << "x=" << x << " x⁻=" << xp << " T²/m·K=" << c * k << " T²/m·Z/T=" << c * z;
     }
@@ -186,7 +189,8 @@ void expect_mat1_on_a_line(const CompiledModel& model, const std::string& where)
     for (const CompiledLevel& lv : model.levels) {
         std::vector<const MatArray*> arrays{&lv.coeff,      &lv.mass,         &lv.chain_k,
                                             &lv.chain_zdt,  &lv.chain_length, &lv.ground_k,
-                                            &lv.ground_zdt, &lv.ground_rest};
+                                            &lv.ground_zdt, &lv.ground_rest,  &lv.update_x,
+                                            &lv.update_xp,  &lv.update_rest};
         for (const MatArray& b : lv.buffer) arrays.push_back(&b);
         for (const MatArray* a : arrays)
             EXPECT_EQ(reinterpret_cast<std::uintptr_t>(a->data() + 1) % 64, 0u)

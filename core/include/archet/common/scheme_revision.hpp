@@ -2,8 +2,8 @@
 // Which revision of the scheme's arithmetic this Archet computes. Under one revision the same
 // model, gesture and starting state give the same bytes on every machine and build; a new
 // revision changes the order or form of the arithmetic (never the physics), so what an older
-// one rendered comes out again equal up to rounding, not to the byte. A take records the
-// revision it was played with, and a re-render by another revision says so.
+// one rendered comes out again with the same physics but not to the byte. A take records the
+// revision it was played with, and a re-render that may differ says so.
 //   1  up to December 2026
 //   2  a level that takes its grounds in the chain loop folds them into the update's
 //      coefficients (docs/physics.md, The scheme)

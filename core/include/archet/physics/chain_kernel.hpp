@@ -34,8 +34,8 @@ inline double chain_link_force(const CompiledLevel& lv, const double* x, const d
 }
 
 /// The scheme's new position of a MAT from the forces of its two chain links,
-/// 2x − x⁻ + T²/m·(f_left − f_right), for a double or a vector of them: the chain loop and
-/// the MATs updated again after it (Simulation::integrate) must agree to the bit.
+/// 2x − x⁻ + T²/m·(f_left − f_right), for a double or a vector of them (every build of the
+/// chain loop computes it in this order).
 template <class T>
 [[gnu::always_inline]] inline T chain_update(T x, T xp, T c, T left, T right) {
     return 2.0 * x - xp + c * (left - right);
@@ -48,9 +48,9 @@ template <class T>
     return c * (k * (x - rest) + z * (x - xp));
 }
 
-/// The new position of a MAT with its ground folded into a, b and e (fold_ground()), for a
-/// double or a vector of them: the chain loop of a level that takes its grounds, and the MATs
-/// updated again after it, must agree to the bit.
+/// The new position of a MAT with its ground folded into a, b and e (fold_ground()),
+/// ((a·x + b·x⁻) + e) + T²/m·(f_left − f_right), for a double or a vector of them: the update
+/// of the chain loop of a level that takes its grounds.
 template <class T>
 [[gnu::always_inline]] inline T grounded_update(T x, T xp, T a, T b, T e, T c, T left, T right) {
     return ((a * x + b * xp) + e) + c * (left - right);

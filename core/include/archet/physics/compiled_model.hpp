@@ -54,7 +54,8 @@ struct CompiledCrossLink {  ///< a link whose MATs run at other rate levels
 };
 
 /// An oscillator's spring and damper to ground; its stiffness, damping/T and rest position are
-/// the level's ground_k, ground_zdt and ground_rest at `index`.
+/// the level's ground_k, ground_zdt and ground_rest at `index`. Whatever changes them (or
+/// T²/m) calls fold_ground() for that MAT: the chain loop reads them folded into update_x, …
 struct CompiledGround {
     int index = 0;
     int element = -1;
@@ -111,8 +112,8 @@ struct CompiledLevel {
     double dt = 0;
     int size = 0;  ///< MATs at this level
     /// Zeros after the storage of the arrays the chain loop uses (positions, chain links,
-    /// grounds, T²/m): it updates whole vectors of up to 8 MATs, the last one running past
-    /// the last MAT into these zeros (which it leaves zero), and reads the vector after each
+    /// T²/m, the folded grounds): it updates whole vectors of up to 8 MATs, the last one running
+    /// past the last MAT into these zeros (which it leaves zero), and reads the vector after each
     /// (see chain_kernel.cpp).
     static constexpr int kReadAhead = 16;
     MatArray buffer[3];            ///< positions at n+1, n, n−1 by rotation

@@ -1,0 +1,14 @@
+#pragma once
+// What changed between revisions of the scheme's arithmetic (common/scheme_revision.hpp), for a
+// given model: a take played under an older revision re-renders to the byte unless it did.
+
+#include "archet/physics/compiled_model.hpp"
+
+namespace archet {
+
+/// Whether `model` computes other bits under this Archet's revision than under `revision`
+/// (1 … kSchemeRevision): from revision 2 on, a level whose chain loop takes its grounds folds
+/// them into the update's coefficients.
+bool computes_differently_since(const CompiledModel& model, int revision);
+
+}  // namespace archet
