@@ -94,7 +94,7 @@ TakeDescription parse_take(const std::string& text, const std::string& source) {
         throw InputError(source + ".peak", "must be a finite level of 0 or more");
     if (t.clipped_samples > t.frames && t.complete)
         throw InputError(source + ".clipped_samples", "counts more samples than the take holds");
-    t.scheme = static_cast<int>(r.integer("scheme", 1));
+    t.scheme = r.integer("scheme", 1);
     if (t.scheme < 1 || t.scheme > kSchemeRevision)
         throw InputError(source + ".scheme", "must be 1 to " + std::to_string(kSchemeRevision) +
                                                  " (a take played by this Archet or an older one)");
