@@ -115,7 +115,8 @@ RenderPlan plan_from_take(const RenderArguments& a) {
                          "the take holds no sample (it ended before it began); nothing to render");
     RenderPlan plan;
     plan.model = load_validated_model((folder / "model.json").string(), {}, take.sample_rate);
-    if (computes_differently_since(compile(plan.model, take.sample_rate), take.scheme))
+    if (take.scheme != kSchemeRevision &&
+        computes_differently_since(compile(plan.model, take.sample_rate), take.scheme))
         std::cerr << "archet: note: " << folder.string() << " was played with scheme revision "
                   << take.scheme << "; this Archet computes its model with revision "
                   << kSchemeRevision
