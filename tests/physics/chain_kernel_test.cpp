@@ -1,8 +1,8 @@
 // The chain loop against the scheme it computes, lane by lane: every build this CPU runs
 // (plain, AVX2, AVX-512) must give the scalar scheme's bits, for every length of chain (its
 // last vector runs past the last MAT), with and without rest lengths and grounds (folded into
-// the update); and the arrays it runs over start MAT 1 on a cache line, so that its
-// whole-vector loads never straddle two.
+// the update), and where it broadcasts the coefficients of a run of alike MATs; and the arrays
+// it runs over start MAT 1 on a cache line, so that its whole-vector loads never straddle two.
 
 #include <gtest/gtest.h>
 
@@ -16,6 +16,7 @@
 #include "archet/files/model_file.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/simulation.hpp"
+#include "archet/physics/uniform_span.hpp"
 #include "test_support.hpp"
 
 namespace archet {
@@ -143,6 +144,87 @@ TEST(ChainKernel, EveryBuildGivesTheSchemesBitsForEveryLength) {
     }
     EXPECT_GE(builds_run, 1);
     EXPECT_TRUE(chain_build_runs_here(chosen_chain_build()));
+}
+
+// MATs first … last given MAT first's coefficients (T²/m, ground, the chain link after it), as
+// a homogeneous string has them, and the run found as compile() finds it.
+void make_alike(CompiledLevel& lv, int first, int last) {
+    for (int s = first + 1; s <= last; ++s) {
+        lv.coeff[s] = lv.coeff[first];
+        lv.ground_k[s] = lv.ground_k[first], lv.ground_zdt[s] = lv.ground_zdt[first];
+        lv.ground_rest[s] = lv.ground_rest[first];
+        lv.chain_k[s] = lv.chain_k[first], lv.chain_zdt[s] = lv.chain_zdt[first];
+        lv.chain_length[s] = lv.chain_length[first];
+    }
+    fold_grounds(lv);
+    find_uniform_span(lv);
+}
+
+// The rounds inside a run of alike MATs broadcast the coefficients they share: the same bits
+// as reading them, wherever the run starts and ends against the rounds of each build.
+TEST(ChainKernel, ARunOfAlikeMatsGivesTheSchemesBits) {
+    std::mt19937_64 random(7);
+    int runs = 0;
+    for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
+        if (!chain_build_runs_here(build)) continue;
+        for (int n : {16, 40, 67, 200})
+            for (auto [first, last] : {std::pair{1, n - 1},
+                                       {2, n - 1},
+                                       {1, 9},
+                                       {3, 12},
+                                       {9, 24},
+                                       {5, n - 3},
+                                       {n / 2, n / 2 + 3}})
+                for (bool lengths : {false, true})
+                    for (bool grounds : {false, true}) {
+                        if (last >= n) continue;  // link n is the padding's, zero
+                        CompiledLevel lv = random_level(n, lengths, grounds, random);
+                        make_alike(lv, first, last);
+                        SCOPED_TRACE(std::string(chain_build_name(build)) +
+                                     " n=" + std::to_string(n) + " run " + std::to_string(first) +
+                                     "…" + std::to_string(last) + (lengths ? " lengths" : "") +
+                                     (grounds ? " grounds" : ""));
+                        ASSERT_EQ(lv.uniform.first, first);
+                        ASSERT_EQ(lv.uniform.last, last);
+                        std::vector<double> forces;
+                        const std::vector<double> expected = scheme(lv, forces);
+                        integrate_chain(lv, lv.buffer[1].data(), build);
+                        for (int s = 1; s <= n; ++s)
+                            ASSERT_EQ(std::memcmp(&expected[s], &lv.buffer[1][s], 8), 0)
+                                << "MAT " << s << ": " << expected[s] << " vs " << lv.buffer[1][s];
+                        for (std::size_t s = n + 1; s < lv.buffer[1].size(); ++s)
+                            ASSERT_EQ(lv.buffer[1][s], 0.0) << "storage " << s;
+                        ++runs;
+                    }
+    }
+    EXPECT_GT(runs, 0);
+}
+
+// A MAT changed while playing leaves the run: the run keeps its longer side, and a change
+// that leaves the MAT alike, or a MAT outside the run, keeps it whole.
+TEST(ChainKernel, AChangedMatLeavesTheLongerSideOfTheRun) {
+    std::mt19937_64 random(11);
+    CompiledLevel lv = random_level(60, false, true, random);
+    make_alike(lv, 3, 50);
+    const ChainCoefficients shared = lv.uniform.shared;
+    auto change = [&](int s, double coeff) {
+        lv.coeff[s] = coeff;
+        fold_ground(lv, s);
+        narrow_uniform_span(lv, s);
+        return std::pair{lv.uniform.first, lv.uniform.last};
+    };
+    EXPECT_EQ(change(20, shared.c), std::pair(3, 50));      // alike still
+    EXPECT_EQ(change(55, 2 * shared.c), std::pair(3, 50));  // outside the run
+    EXPECT_EQ(change(10, 2 * shared.c), std::pair(11, 50));
+    EXPECT_EQ(change(40, 2 * shared.c), std::pair(11, 39));
+    EXPECT_EQ(change(11, 2 * shared.c), std::pair(12, 39));
+    EXPECT_EQ(change(39, 2 * shared.c), std::pair(12, 38));
+    EXPECT_TRUE(lv.uniform.shared == shared);
+    // Compiled again (or a state loaded), the run is found afresh: the longest one.
+    find_uniform_span(lv);
+    EXPECT_EQ(std::pair(lv.uniform.first, lv.uniform.last), std::pair(12, 38));
+    make_alike(lv, 1, 59);
+    EXPECT_EQ(std::pair(lv.uniform.first, lv.uniform.last), std::pair(1, 59));
 }
 
 // The level's stored energy, summed MAT by MAT in one chain of additions: the sum the

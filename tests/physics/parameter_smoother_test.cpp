@@ -87,8 +87,9 @@ TEST(SimulationParameters, EveryKindReadsBackWhatWasSet) {
 // A string whose masses have grounds takes them in its update's coefficients (fold_ground()):
 // a mass or a ground set while running, or loaded with a saved state, must play exactly as if
 // the model had been compiled with it. (The string's masses have a damper to their rest point
-// and no spring; the bridges have both.)
-TEST(SimulationParameters, AMassOrGroundSetWhilePlayingPlaysAsIfCompiledWithIt) {
+// and no spring; the bridges have both.) So must a chain link's, and a mass's in the middle of
+// the run of alike MATs whose coefficients the chain loop broadcasts.
+TEST(SimulationParameters, ACoefficientSetWhilePlayingPlaysAsIfCompiledWithIt) {
     const Model model = build_bowed_string({});
     struct Change {
         std::string element, name;
@@ -100,7 +101,13 @@ TEST(SimulationParameters, AMassOrGroundSetWhilePlayingPlaysAsIfCompiledWithIt) 
                              {"s5", "stiffness", 2000.0},
                              {"s5", "damping", 1.7 * get_parameter(model, {"s5", "damping"})},
                              {"nut", "stiffness", 1.7 * nut_k},
-                             {"nut", "damping", 1.7 * get_parameter(model, {"nut", "damping"})}}) {
+                             {"nut", "damping", 1.7 * get_parameter(model, {"nut", "damping"})},
+                             // Mid-string, where the chain loop broadcasts the coefficients
+                             // the MATs share (uniform_span.hpp).
+                             {"s30", "mass", 1.7 * get_parameter(model, {"s30", "mass"})},
+                             {"k30", "stiffness", 0.6 * get_parameter(model, {"k30", "stiffness"})},
+                             {"k30", "damping", 1.7 * get_parameter(model, {"k30", "damping"})},
+                             {"k30", "length", 1e-4}}) {
         const std::string what = c.element + "." + c.name;
         ASSERT_NE(c.value, get_parameter(model, {c.element, c.name})) << what;
         Model changed = model;

@@ -2,7 +2,8 @@
 // vectors of doubles and built for AVX-512, AVX2 and plain x86-64; the widest build the CPU
 // runs is chosen once, at load time.
 // Each lane does what the scalar scheme does, in the same order and without FMA contraction,
-// so every build gives the same bits (the golden renders check it).
+// so every build gives the same bits (the golden renders check it). Over a run of MATs that
+// share their coefficients (uniform_span.hpp) it broadcasts them instead of reading them.
 //
 // Why vectors by hand: each MAT needs the force of the link on its left, which is the force
 // the MAT before it computed on its right. Reading it back from memory makes a load straddle
@@ -12,6 +13,7 @@
 
 #include "archet/physics/chain_kernel.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <type_traits>
@@ -72,6 +74,7 @@ struct ChainArrays {
     const double *k, *z, *length;  ///< chain link j joins storage j and j + 1
     const double* c;               ///< T²/m
     const double *a, *b, *e;       ///< the grounds folded into the update (fold_ground())
+    const UniformSpan* uniform;    ///< MATs whose coefficients are broadcast rather than read
 };
 
 // A MAT's new position from its two chain links, and its ground where the loop takes them.
@@ -83,44 +86,114 @@ template <bool kWithGrounds, class T>
         return chain_update(x, xp, c, left, right);
 }
 
+template <class V>
+[[gnu::always_inline]] inline V broadcast(double value) {
+    V v;
+    for (int lane = 0; lane < static_cast<int>(sizeof v / sizeof value); ++lane) v[lane] = value;
+    return v;
+}
+
+// The rounds of the chain loop, W MATs each, carrying from one round to the next the force of
+// the link on the left of its first MAT and the positions it has already read.
+template <int W, bool kWithLength, bool kWithGrounds>
+class ChainRounds {
+    using V = Doubles<W>;
+
+  public:
+    explicit ChainRounds(const ChainArrays& arrays)
+        : x_(arrays.x),
+          xp_(arrays.xp),
+          xn_(arrays.xn),
+          k_(arrays.k),
+          z_(arrays.z),
+          length_(arrays.length),
+          c_(arrays.c),
+          a_(arrays.a),
+          b_(arrays.b),
+          e_(arrays.e) {
+        const ChainCoefficients& shared = arrays.uniform->shared;
+        shared_ = {broadcast<V>(shared.k), broadcast<V>(shared.zdt), broadcast<V>(shared.length),
+                   broadcast<V>(shared.c), broadcast<V>(shared.a),   broadcast<V>(shared.b),
+                   broadcast<V>(shared.e)};
+        // Link 0, on the left of MAT 1, enters as the last lane of the round before the first.
+        forces_[W - 1] = link_force<kWithLength>(x_[0] - x_[1], xp_[0] - xp_[1], k_[0], z_[0],
+                                                 kWithLength ? length_[0] : 0.0);
+        xs_ = load<V>(x_ + 1), xps_ = load<V>(xp_ + 1);
+    }
+
+    // The rounds from storage `begin` up to before `end`, both 1 + a multiple of W; with
+    // kShared, MATs whose coefficients are all `shared_`.
+    template <bool kShared>
+    [[gnu::always_inline]] void run(int begin, int end) {
+        for (int s = begin; s < end; s += W) {
+            const V x_after = load<V>(x_ + s + W), xp_after = load<V>(xp_ + s + W);
+            const V d = xs_ - next_of(xs_, x_after), dp = xps_ - next_of(xps_, xp_after);
+            const V right =
+                link_force<kWithLength>(d, dp, coefficient<kShared>(k_, s, shared_.k),
+                                        coefficient<kShared>(z_, s, shared_.z), length<kShared>(s));
+            store(xn_ + s,
+                  mat_update<kWithGrounds>(
+                      xs_, xps_, coefficient<kShared>(c_, s, shared_.c), shift_in(forces_, right),
+                      right, ground<kShared>(a_, s, shared_.a), ground<kShared>(b_, s, shared_.b),
+                      ground<kShared>(e_, s, shared_.e)));
+            forces_ = right, xs_ = x_after, xps_ = xp_after;
+        }
+    }
+
+  private:
+    template <bool kShared>
+    [[gnu::always_inline]] V coefficient(const double* __restrict array, int s, V shared) const {
+        if constexpr (kShared)
+            return shared;
+        else
+            return load<V>(array + s);
+    }
+    template <bool kShared>
+    [[gnu::always_inline]] V length(int s) const {
+        if constexpr (kWithLength)
+            return coefficient<kShared>(length_, s, shared_.length);
+        else
+            return V{};
+    }
+    template <bool kShared>
+    [[gnu::always_inline]] V ground(const double* __restrict array, int s, V shared) const {
+        if constexpr (kWithGrounds)
+            return coefficient<kShared>(array, s, shared);
+        else
+            return V{};
+    }
+
+    // Restrict copies: the vector stores are byte copies, which the compiler would otherwise
+    // assume may overwrite the pointers themselves, reloading them every round.
+    const double* __restrict x_;
+    const double* __restrict xp_;
+    double* __restrict xn_;
+    const double* __restrict k_, * __restrict z_, * __restrict length_, * __restrict c_;
+    const double* __restrict a_, * __restrict b_, * __restrict e_;
+    struct {
+        V k, z, length, c, a, b, e;
+    } shared_;
+    V forces_{}, xs_, xps_;
+};
+
 // MATs 1 … n; storage 0 and n + 1 are padding, and links 0 and n have zero coefficients.
+// Whole rounds only: the last one runs up to W − 1 MATs past MAT n into the zeros kept after
+// the storage, whose zero coefficients keep them zero (while the motion is finite: a blown-up
+// level, which is never stepped again, may leave NaN there), and each round also reads the
+// vector after its own from x and x⁻ (CompiledLevel::kReadAhead ≥ 2W − 1). The rounds that
+// lie wholly inside the level's uniform span broadcast its coefficients.
 template <int W, bool kWithLength, bool kWithGrounds>
 [[gnu::always_inline]] inline void chain_loop(const ChainArrays& arrays, int n) {
-    using V = Doubles<W>;
-    // Local restrict copies: the vector stores are byte copies, which the compiler would
-    // otherwise assume may overwrite the pointers themselves, reloading them every round.
-    const double* __restrict x = arrays.x;
-    const double* __restrict xp = arrays.xp;
-    double* __restrict xn = arrays.xn;
-    const double* __restrict k = arrays.k;
-    const double* __restrict z = arrays.z;
-    const double* __restrict length = arrays.length;
-    const double* __restrict c = arrays.c;
-    const double* __restrict a = arrays.a;
-    const double* __restrict b = arrays.b;
-    const double* __restrict e = arrays.e;
-    // Link 0, on the left of MAT 1, enters as the last lane of the round before the first.
-    const V zero{};
-    V forces{};
-    forces[W - 1] = link_force<kWithLength>(x[0] - x[1], xp[0] - xp[1], k[0], z[0],
-                                            kWithLength ? length[0] : 0.0);
-    // Whole rounds only: the last one runs up to W − 1 MATs past MAT n into the zeros kept
-    // after the storage, whose zero coefficients keep them zero (while the motion is finite:
-    // a blown-up level, which is never stepped again, may leave NaN there), and each round
-    // also reads the vector after its own from x and x⁻ (CompiledLevel::kReadAhead ≥ 2W − 1).
     static_assert(CompiledLevel::kReadAhead >= 2 * W - 1);
-    V xs = load<V>(x + 1), xps = load<V>(xp + 1);
-    for (int s = 1; s <= n; s += W) {
-        const V x_after = load<V>(x + s + W), xp_after = load<V>(xp + s + W);
-        const V d = xs - next_of(xs, x_after), dp = xps - next_of(xps, xp_after);
-        const V right = link_force<kWithLength>(d, dp, load<V>(k + s), load<V>(z + s),
-                                                kWithLength ? load<V>(length + s) : zero);
-        store(xn + s, mat_update<kWithGrounds>(xs, xps, load<V>(c + s), shift_in(forces, right),
-                                               right, kWithGrounds ? load<V>(a + s) : zero,
-                                               kWithGrounds ? load<V>(b + s) : zero,
-                                               kWithGrounds ? load<V>(e + s) : zero));
-        forces = right, xs = x_after, xps = xp_after;
-    }
+    const UniformSpan& uniform = *arrays.uniform;
+    // Rounds start at 1 + W·r: the first starting at or after `first`, the first that would
+    // end after `last` (the same round for an empty run or one shorter than a round).
+    const int shared_begin = 1 + W * ((uniform.first - 1 + W - 1) / W);
+    const int shared_end = std::max(shared_begin, 1 + W * (uniform.last / W));
+    ChainRounds<W, kWithLength, kWithGrounds> rounds(arrays);
+    rounds.template run<false>(1, shared_begin);
+    rounds.template run<true>(shared_begin, shared_end);
+    rounds.template run<false>(shared_end, n + 1);
 }
 
 template <int W>
@@ -242,7 +315,8 @@ void run_chain(ChainLoop loop, CompiledLevel& lv, double* xn) {
                              lv.coeff.data(),
                              lv.update_x.data(),
                              lv.update_xp.data(),
-                             lv.update_rest.data()};
+                             lv.update_rest.data(),
+                             &lv.uniform};
     loop(arrays, lv.size, lv.has_chain_lengths, grounds_in_chain_loop(lv));
 }
 

@@ -6,6 +6,7 @@
 #include "archet/common/input_error.hpp"
 #include "archet/model/model_parameters.hpp"
 #include "archet/physics/chain_kernel.hpp"
+#include "archet/physics/uniform_span.hpp"
 
 namespace archet {
 
@@ -127,6 +128,7 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
         }
     }
     fold_grounds(lv);
+    find_uniform_span(lv);
 }
 
 // Rate levels that share a divider tick together: they compile into one level, so links
@@ -163,10 +165,10 @@ void compile_modal_points(CompiledModel& c, const Model& model) {
         for (std::size_t k = 0; k < m.modes.size(); ++k) {
             const int mode = slot_of(c, m.modes[k]).index;
             point.modes.push_back(mode);
-            point.coeff += m.weights[k] * m.weights[k] * lv.coeff[mode];
             lv.x()[p.index] += m.weights[k] * lv.x()[mode];
             lv.x_prev()[p.index] += m.weights[k] * lv.x_prev()[mode];
         }
+        point.coeff = modal_point_response(lv, point);
         lv.modal_point_of[p.index] = static_cast<int>(lv.modal_points.size());
         lv.modal_points.push_back(std::move(point));
     }
@@ -301,6 +303,13 @@ void compile_readouts(CompiledModel& c, const Model& model) {
 }
 
 }  // namespace
+
+double modal_point_response(const CompiledLevel& lv, const CompiledModalPoint& point) {
+    double response = 0;
+    for (std::size_t k = 0; k < point.modes.size(); ++k)
+        response += point.weights[k] * point.weights[k] * lv.coeff[point.modes[k]];
+    return response;
+}
 
 CompiledModel compile(const Model& model, double sample_rate) {
     CompiledModel c;

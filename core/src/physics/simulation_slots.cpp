@@ -3,6 +3,7 @@
 
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/simulation.hpp"
+#include "archet/physics/uniform_span.hpp"
 
 namespace archet {
 
@@ -18,15 +19,17 @@ auto& finger_field(Finger& f, ParameterSlot::Kind kind) {
                                        : f.pressure;
 }
 
+// What follows a change of MAT s's ground: its folded update, the run of alike MATs.
+void set_ground(CompiledLevel& lv, int s) {
+    fold_ground(lv, s);
+    narrow_uniform_span(lv, s);
+}
+
 // A MAT's mass, with what follows it: T²/m, its folded ground, the modal points' responses.
 void set_mass(CompiledLevel& lv, int s, double mass) {
     lv.mass[s] = mass, lv.coeff[s] = lv.dt * lv.dt / mass;
-    fold_ground(lv, s);
-    for (auto& point : lv.modal_points) {  // a point's response follows its modes'
-        point.coeff = 0;
-        for (std::size_t k = 0; k < point.modes.size(); ++k)
-            point.coeff += point.weights[k] * point.weights[k] * lv.coeff[point.modes[k]];
-    }
+    set_ground(lv, s);
+    for (auto& point : lv.modal_points) point.coeff = modal_point_response(lv, point);
 }
 
 }  // namespace
@@ -40,15 +43,18 @@ void Simulation::write_slot(const ParameterSlot& s, double v) {
             break;
         case K::ChainK:
             lv.chain_k[s.index] = v;
+            narrow_uniform_span(lv, s.index);
             break;
         case K::ChainZ:
             lv.chain_zdt[s.index] = v / lv.dt;
+            narrow_uniform_span(lv, s.index);
             break;
         case K::ChainLength: {
             const Lia& l = model_.source.lias[lv.chain_element[s.index]];
             const bool forward = model_.source.mats[lv.element_of[s.index]].id == l.from;
             lv.chain_length[s.index] = forward ? v : -v;
             lv.has_chain_lengths = lv.has_chain_lengths || v != 0.0;
+            narrow_uniform_span(lv, s.index);
             break;
         }
         case K::LinkK:
@@ -62,11 +68,11 @@ void Simulation::write_slot(const ParameterSlot& s, double v) {
             break;
         case K::GroundK:
             lv.ground_k[lv.grounds[s.index].index] = v;
-            fold_ground(lv, lv.grounds[s.index].index);
+            set_ground(lv, lv.grounds[s.index].index);
             break;
         case K::GroundZ:
             lv.ground_zdt[lv.grounds[s.index].index] = v / lv.dt;
-            fold_ground(lv, lv.grounds[s.index].index);
+            set_ground(lv, lv.grounds[s.index].index);
             break;
         case K::CrossK:
             model_.cross_links[s.index].k = v;

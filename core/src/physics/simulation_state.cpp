@@ -1,10 +1,12 @@
 // The state of a running simulation as a flat list of numbers, in one fixed order, so that a
 // take started mid-performance can be re-rendered from exactly where it began.
 
+#include <algorithm>
 #include <type_traits>
 
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/simulation.hpp"
+#include "archet/physics/uniform_span.hpp"
 
 namespace archet {
 
@@ -64,7 +66,12 @@ void Simulation::save_state(double* out) const {
 void Simulation::load_state(const double* in) {
     for_each_state(*this,
                    [&](auto& v) { v = static_cast<std::remove_reference_t<decltype(v)>>(*in++); });
-    for (auto& lv : model_.levels) fold_grounds(lv);  // the masses and grounds loaded
+    for (auto& lv : model_.levels) {  // the masses, grounds and chain links loaded
+        fold_grounds(lv);
+        find_uniform_span(lv);
+        lv.has_chain_lengths = std::any_of(lv.chain_length.begin(), lv.chain_length.end(),
+                                           [](double length) { return length != 0.0; });
+    }
 }
 
 bool Simulation::continue_from(const Simulation& from, std::span<double> scratch) {
@@ -78,10 +85,9 @@ bool Simulation::continue_from(const Simulation& from, std::span<double> scratch
 void Simulation::refresh_modal_points() {
     for (auto& lv : model_.levels)
         for (auto& p : lv.modal_points) {
-            p.coeff = 0;
+            p.coeff = modal_point_response(lv, p);
             double now = 0, before = 0;
             for (std::size_t k = 0; k < p.modes.size(); ++k) {
-                p.coeff += p.weights[k] * p.weights[k] * lv.coeff[p.modes[k]];
                 now += p.weights[k] * lv.x()[p.modes[k]];
                 before += p.weights[k] * lv.x_prev()[p.modes[k]];
             }

@@ -105,6 +105,21 @@ struct CompiledFinger {
     int element = -1;
 };
 
+/// Every coefficient the chain loop reads for MAT s: T²/m, the chain link from s to s + 1
+/// (K, Z/T, rest length) and the ground folded into the update (a, b, e; see fold_ground()).
+struct ChainCoefficients {
+    double c = 0, k = 0, zdt = 0, length = 0, a = 0, b = 0, e = 0;
+    bool operator==(const ChainCoefficients&) const;  ///< bit for bit
+};
+
+/// The longest run of MATs first … last (storage indices) that share their ChainCoefficients,
+/// `shared`: the chain loop broadcasts them over the run instead of reading seven arrays
+/// (uniform_span.hpp). Empty when last < first.
+struct UniformSpan {
+    int first = 1, last = 0;
+    ChainCoefficients shared;
+};
+
 struct CompiledLevel {
     std::string id;
     int divider = 1;
@@ -135,6 +150,7 @@ struct CompiledLevel {
     /// The update of a MAT with its ground, folded (see fold_ground()): x[n+1] =
     /// ((a·x[n] + b·x[n−1]) + e) + T²/m·(forces). Refreshed whenever T²/m or a ground changes.
     MatArray update_x, update_xp, update_rest;  ///< a, b, e per storage index
+    UniformSpan uniform;  ///< kept by whatever writes the arrays above (uniform_span.hpp)
     std::vector<CompiledGesturePoint> gestures;
     std::vector<int> bows;     ///< indices into CompiledModel::bows
     std::vector<int> fingers;  ///< indices into CompiledModel::fingers
@@ -155,6 +171,10 @@ struct CompiledLevel {
     const double* x_prev() const { return buffer[before(current)].data(); }
     const double* x_next() const { return buffer[after(current)].data(); }
 };
+
+/// Σ weight²·T²/m over a modal point's modes: its displacement per newton over a step, the
+/// `coeff` it keeps, again whenever a mode's mass changes.
+double modal_point_response(const CompiledLevel& lv, const CompiledModalPoint& point);
 
 /// A runtime-settable parameter resolved to its array slot.
 struct ParameterSlot {
