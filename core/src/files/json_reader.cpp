@@ -52,21 +52,28 @@ bool JsonObjectReader::has(const std::string& key) const {
     return object_.contains(key);
 }
 
+void JsonObjectReader::ask(const std::string& key) {
+    if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.push_back(key);
+}
+
 const nlohmann::ordered_json& JsonObjectReader::get(const std::string& key) {
-    known_.insert(key);
-    auto it = object_.find(key);
-    if (it == object_.end()) throw InputError(where_, "missing key " + quoted_text(key));
-    return *it;
+    const nlohmann::ordered_json* v = optional(key);
+    if (!v) throw InputError(where_, "missing key " + quoted_text(key));
+    return *v;
 }
 
 const nlohmann::ordered_json* JsonObjectReader::optional(const std::string& key) {
-    known_.insert(key);
+    ask(key);
     auto it = object_.find(key);
     return it == object_.end() ? nullptr : &*it;
 }
 
 double JsonObjectReader::number(const std::string& key) {
-    const auto& v = get(key);
+    return checked_number(key, get(key));
+}
+
+double JsonObjectReader::checked_number(const std::string& key,
+                                        const nlohmann::ordered_json& v) const {
     if (!v.is_number())
         throw InputError(where_, quoted_text(key) + " must be a number, found " + type_name(v));
     const double x = v.get<double>();
@@ -75,14 +82,14 @@ double JsonObjectReader::number(const std::string& key) {
 }
 
 double JsonObjectReader::number(const std::string& key, double fallback) {
-    known_.insert(key);
-    return has(key) ? number(key) : fallback;
+    const nlohmann::ordered_json* v = optional(key);
+    return v ? checked_number(key, *v) : fallback;
 }
 
 int JsonObjectReader::integer(const std::string& key, int fallback) {
-    known_.insert(key);
-    if (!has(key)) return fallback;
-    const auto& v = object_.at(key);
+    const nlohmann::ordered_json* found = optional(key);
+    if (!found) return fallback;
+    const auto& v = *found;
     if (!v.is_number_integer())
         throw InputError(where_, quoted_text(key) + " must be an integer, found " + type_name(v));
     const bool fits = v.is_number_unsigned()
@@ -97,15 +104,19 @@ int JsonObjectReader::integer(const std::string& key, int fallback) {
 }
 
 std::string JsonObjectReader::text(const std::string& key) {
-    const auto& v = get(key);
+    return checked_text(key, get(key));
+}
+
+std::string JsonObjectReader::checked_text(const std::string& key,
+                                           const nlohmann::ordered_json& v) const {
     if (!v.is_string())
         throw InputError(where_, quoted_text(key) + " must be a string, found " + type_name(v));
     return v.get<std::string>();
 }
 
 std::string JsonObjectReader::text(const std::string& key, const std::string& fallback) {
-    known_.insert(key);
-    return has(key) ? text(key) : fallback;
+    const nlohmann::ordered_json* v = optional(key);
+    return v ? checked_text(key, *v) : fallback;
 }
 
 const nlohmann::ordered_json& JsonObjectReader::array(const std::string& key) {
@@ -124,9 +135,10 @@ const nlohmann::ordered_json& JsonObjectReader::object(const std::string& key) {
 
 void JsonObjectReader::finish() const {
     for (auto it = object_.begin(); it != object_.end(); ++it) {
-        if (known_.count(it.key())) continue;
+        if (std::find(known_.begin(), known_.end(), it.key()) != known_.end()) continue;
         std::string message = "unknown key " + quoted_text(it.key());
-        const std::string hint = closest_word(it.key(), known_);
+        const std::string hint =
+            closest_word(it.key(), std::set<std::string>(known_.begin(), known_.end()));
         if (!hint.empty()) message += "; did you mean " + quoted_text(hint) + "?";
         throw InputError(where_, message);
     }

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "archet/common/input_error.hpp"
 
@@ -31,10 +32,14 @@ class JsonObjectReader {
 
   private:
     const nlohmann::ordered_json& get(const std::string& key);
+    /// Notes a key as one this object may hold (for finish()).
+    void ask(const std::string& key);
+    double checked_number(const std::string& key, const nlohmann::ordered_json& v) const;
+    std::string checked_text(const std::string& key, const nlohmann::ordered_json& v) const;
 
     const nlohmann::ordered_json& object_;
     std::string where_;
-    std::set<std::string> known_;
+    std::vector<std::string> known_;  ///< the keys asked for: a handful, searched in order
 };
 
 /// The closest of `candidates` to `word` by edit distance, or "" when none is close.
