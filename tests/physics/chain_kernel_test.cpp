@@ -160,14 +160,46 @@ void make_alike(CompiledLevel& lv, int first, int last) {
     find_uniform_span(lv);
 }
 
+// The loop runs the rounds before a run of alike MATs, those wholly inside it (broadcast), and
+// those after: together exactly the rounds s = 1, 1 + W, … ≤ n of the plain loop, in order,
+// for every width, chain length and run (empty and narrowed ones too), on any CPU.
+TEST(ChainKernel, SharedRoundsAreTheRoundsWhollyInsideTheRun) {
+    for (int W : {2, 4, 8})
+        for (int n = 0; n <= 40; ++n)
+            for (int first = 1; first <= n + 1; ++first)
+                for (int last = first - 1; last <= n; ++last) {
+                    const SharedRounds shared = shared_rounds(first, last, W);
+                    std::vector<int> ran, inside;
+                    for (int s = 1; s < shared.begin; s += W) ran.push_back(s);
+                    for (int s = shared.begin; s < shared.end; s += W) ran.push_back(s);
+                    for (int s = shared.begin; s < shared.end; s += W) inside.push_back(s);
+                    for (int s = shared.end; s < n + 1; s += W) ran.push_back(s);
+                    std::vector<int> expected_ran, expected_inside;
+                    for (int s = 1; s <= n; s += W) {
+                        expected_ran.push_back(s);
+                        if (s >= first && s + W - 1 <= last) expected_inside.push_back(s);
+                    }
+                    const std::string where = "W=" + std::to_string(W) + " n=" + std::to_string(n) +
+                                              " run " + std::to_string(first) + "…" +
+                                              std::to_string(last);
+                    ASSERT_EQ(ran, expected_ran) << where;
+                    ASSERT_EQ(inside, expected_inside) << where;
+                }
+}
+
+int lanes(ChainBuild build) {
+    return build == ChainBuild::Avx512 ? 8 : build == ChainBuild::Avx2 ? 4 : 2;
+}
+
 // The rounds inside a run of alike MATs broadcast the coefficients they share: the same bits
-// as reading them, wherever the run starts and ends against the rounds of each build.
+// as reading them, wherever the run starts and ends against the rounds of each build. Their
+// arrays are spoilt with NaN once the run is found, so a round that read them would show it.
 TEST(ChainKernel, ARunOfAlikeMatsGivesTheSchemesBits) {
     std::mt19937_64 random(7);
-    int runs = 0;
+    int runs = 0, broadcast_rounds = 0;
     for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
         if (!chain_build_runs_here(build)) continue;
-        for (int n : {16, 40, 67, 200})
+        for (int n : {3, 9, 16, 40, 67, 200})
             for (auto [first, last] : {std::pair{1, n - 1},
                                        {2, n - 1},
                                        {1, 9},
@@ -177,7 +209,8 @@ TEST(ChainKernel, ARunOfAlikeMatsGivesTheSchemesBits) {
                                        {n / 2, n / 2 + 3}})
                 for (bool lengths : {false, true})
                     for (bool grounds : {false, true}) {
-                        if (last >= n) continue;  // link n is the padding's, zero
+                        // Link n is the padding's, zero; one MAT alone is no run.
+                        if (last >= n || last <= first) continue;
                         CompiledLevel lv = random_level(n, lengths, grounds, random);
                         make_alike(lv, first, last);
                         SCOPED_TRACE(std::string(chain_build_name(build)) +
@@ -188,6 +221,13 @@ TEST(ChainKernel, ARunOfAlikeMatsGivesTheSchemesBits) {
                         ASSERT_EQ(lv.uniform.last, last);
                         std::vector<double> forces;
                         const std::vector<double> expected = scheme(lv, forces);
+                        const SharedRounds shared = shared_rounds(first, last, lanes(build));
+                        const double nan = std::numeric_limits<double>::quiet_NaN();
+                        for (int s = shared.begin; s < shared.end; ++s)
+                            for (auto* a : {&lv.coeff, &lv.chain_k, &lv.chain_zdt, &lv.chain_length,
+                                            &lv.update_x, &lv.update_xp, &lv.update_rest})
+                                (*a)[s] = nan;
+                        broadcast_rounds += (shared.end - shared.begin) / lanes(build);
                         integrate_chain(lv, lv.buffer[1].data(), build);
                         for (int s = 1; s <= n; ++s)
                             ASSERT_EQ(std::memcmp(&expected[s], &lv.buffer[1][s], 8), 0)
@@ -198,6 +238,7 @@ TEST(ChainKernel, ARunOfAlikeMatsGivesTheSchemesBits) {
                     }
     }
     EXPECT_GT(runs, 0);
+    EXPECT_GT(broadcast_rounds, 100);
 }
 
 // A MAT changed while playing leaves the run: the run keeps its longer side, and a change

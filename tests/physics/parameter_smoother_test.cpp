@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -94,26 +95,31 @@ TEST(SimulationParameters, ACoefficientSetWhilePlayingPlaysAsIfCompiledWithIt) {
     struct Change {
         std::string element, name;
         double value;
+        bool mid_run = false;  ///< well inside the run the chain loop broadcasts
     };
     const double nut_k = get_parameter(model, {"nut", "stiffness"});
-    for (const Change& c :
-         std::vector<Change>{{"s5", "mass", 1.7 * get_parameter(model, {"s5", "mass"})},
-                             {"s5", "stiffness", 2000.0},
-                             {"s5", "damping", 1.7 * get_parameter(model, {"s5", "damping"})},
-                             {"nut", "stiffness", 1.7 * nut_k},
-                             {"nut", "damping", 1.7 * get_parameter(model, {"nut", "damping"})},
-                             // Mid-string, where the chain loop broadcasts the coefficients
-                             // the MATs share (uniform_span.hpp).
-                             {"s30", "mass", 1.7 * get_parameter(model, {"s30", "mass"})},
-                             {"k30", "stiffness", 0.6 * get_parameter(model, {"k30", "stiffness"})},
-                             {"k30", "damping", 1.7 * get_parameter(model, {"k30", "damping"})},
-                             {"k30", "length", 1e-4}}) {
+    for (const Change& c : std::vector<Change>{
+             {"s5", "mass", 1.7 * get_parameter(model, {"s5", "mass"})},
+             {"s5", "stiffness", 2000.0},
+             {"s5", "damping", 1.7 * get_parameter(model, {"s5", "damping"})},
+             {"nut", "stiffness", 1.7 * nut_k},
+             {"nut", "damping", 1.7 * get_parameter(model, {"nut", "damping"})},
+             // Mid-string, where the chain loop broadcasts the coefficients
+             // the MATs share (uniform_span.hpp).
+             {"s30", "mass", 1.7 * get_parameter(model, {"s30", "mass"}), true},
+             {"k30", "stiffness", 0.6 * get_parameter(model, {"k30", "stiffness"}), true},
+             {"k30", "damping", 1.7 * get_parameter(model, {"k30", "damping"}), true},
+             {"k30", "length", 1e-4, true}}) {
         const std::string what = c.element + "." + c.name;
         ASSERT_NE(c.value, get_parameter(model, {c.element, c.name})) << what;
         Model changed = model;
         set_parameter(changed, {c.element, c.name}, c.value);
         Simulation set_live(compile(model)), compiled(compile(changed));
-        set_live.write_slot(set_live.model().resolve_parameter({c.element, c.name}), c.value);
+        const ParameterSlot slot = set_live.model().resolve_parameter({c.element, c.name});
+        const UniformSpan& run = set_live.model().levels[slot.level].uniform;
+        if (c.mid_run) ASSERT_TRUE(run.first + 8 <= slot.index && slot.index + 8 <= run.last);
+        set_live.write_slot(slot, c.value);
+        if (c.mid_run) EXPECT_TRUE(slot.index < run.first || slot.index > run.last);
         for (int i = 0; i < 4800; ++i) {
             set_live.step(), compiled.step();
             ASSERT_EQ(set_live.output(), compiled.output()) << what << " step " << i;
@@ -128,6 +134,36 @@ TEST(SimulationParameters, ACoefficientSetWhilePlayingPlaysAsIfCompiledWithIt) {
             ASSERT_EQ(set_live.output(), resumed.output()) << what << " resumed " << i;
         }
     }
+}
+
+// A knob that moves every damper of a string glides each of them; each write takes its MAT
+// out of the run the chain loop broadcasts, and once the last glide ends the MATs, alike
+// again, are one run again.
+TEST(ParameterSmoother, WhenTheLastGlideEndsTheRunOfAlikeMatsIsWholeAgain) {
+    BowedStringOptions o;
+    o.masses = 30;
+    const Model model = build_bowed_string(o);
+    Simulation sim(compile(model));
+    const UniformSpan before = sim.model().levels.front().uniform;
+    ASSERT_GE(before.last - before.first, 20);
+    ParameterSmoother smoother;
+    int glides = 0;
+    for (const Lia& l : model.lias)
+        if (l.id.size() > 1 && l.id[0] == 'k' && std::isdigit(l.id[1])) {
+            const ParameterName damping{l.id, "damping"};
+            smoother.glide(sim, sim.model().resolve_parameter(damping),
+                           1.5 * get_parameter(model, damping), 48);
+            ++glides;
+        }
+    ASSERT_GE(glides, 20);
+    ASSERT_LE(static_cast<std::size_t>(glides), ParameterSmoother::kCapacity);
+    for (int i = 0; i < 24; ++i) smoother.advance(sim), sim.step();
+    const UniformSpan& now = sim.model().levels.front().uniform;
+    EXPECT_LT(now.last - now.first, 2);  // narrowed away while they glide
+    while (smoother.active() > 0) smoother.advance(sim), sim.step();
+    EXPECT_EQ(now.first, before.first);
+    EXPECT_EQ(now.last, before.last);
+    EXPECT_FALSE(now.shared == before.shared);  // the new damping
 }
 
 }  // namespace

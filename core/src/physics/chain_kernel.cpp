@@ -13,7 +13,6 @@
 
 #include "archet/physics/chain_kernel.hpp"
 
-#include <algorithm>
 #include <cstring>
 #include <stdexcept>
 #include <type_traits>
@@ -121,7 +120,7 @@ class ChainRounds {
         xs_ = load<V>(x_ + 1), xps_ = load<V>(xp_ + 1);
     }
 
-    // The rounds from storage `begin` up to before `end`, both 1 + a multiple of W; with
+    // The rounds that start at storage `begin` (1 + a multiple of W) and before `end`; with
     // kShared, MATs whose coefficients are all `shared_`.
     template <bool kShared>
     [[gnu::always_inline]] void run(int begin, int end) {
@@ -185,15 +184,11 @@ class ChainRounds {
 template <int W, bool kWithLength, bool kWithGrounds>
 [[gnu::always_inline]] inline void chain_loop(const ChainArrays& arrays, int n) {
     static_assert(CompiledLevel::kReadAhead >= 2 * W - 1);
-    const UniformSpan& uniform = *arrays.uniform;
-    // Rounds start at 1 + W·r: the first starting at or after `first`, the first that would
-    // end after `last` (the same round for an empty run or one shorter than a round).
-    const int shared_begin = 1 + W * ((uniform.first - 1 + W - 1) / W);
-    const int shared_end = std::max(shared_begin, 1 + W * (uniform.last / W));
+    const SharedRounds shared = shared_rounds(arrays.uniform->first, arrays.uniform->last, W);
     ChainRounds<W, kWithLength, kWithGrounds> rounds(arrays);
-    rounds.template run<false>(1, shared_begin);
-    rounds.template run<true>(shared_begin, shared_end);
-    rounds.template run<false>(shared_end, n + 1);
+    rounds.template run<false>(1, shared.begin);
+    rounds.template run<true>(shared.begin, shared.end);
+    rounds.template run<false>(shared.end, n + 1);
 }
 
 template <int W>

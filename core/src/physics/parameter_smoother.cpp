@@ -26,6 +26,7 @@ bool ParameterSmoother::resume(const Glide& glide) {
 }
 
 void ParameterSmoother::advance(Simulation& sim) {
+    if (count_ == 0) return;
     for (std::size_t i = 0; i < count_;) {
         Glide& g = glides_[i];
         ++g.done;
@@ -36,6 +37,9 @@ void ParameterSmoother::advance(Simulation& sim) {
         else
             ++i;
     }
+    // The glides narrowed the chain loop's runs of alike MATs; the values they reached may
+    // leave the MATs alike again (a knob that moves every damper of a string).
+    if (count_ == 0) sim.refresh_uniform_spans();
 }
 
 }  // namespace archet

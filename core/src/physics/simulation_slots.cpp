@@ -20,7 +20,7 @@ auto& finger_field(Finger& f, ParameterSlot::Kind kind) {
 }
 
 // What follows a change of MAT s's ground: its folded update, the run of alike MATs.
-void set_ground(CompiledLevel& lv, int s) {
+void ground_changed(CompiledLevel& lv, int s) {
     fold_ground(lv, s);
     narrow_uniform_span(lv, s);
 }
@@ -28,11 +28,15 @@ void set_ground(CompiledLevel& lv, int s) {
 // A MAT's mass, with what follows it: T²/m, its folded ground, the modal points' responses.
 void set_mass(CompiledLevel& lv, int s, double mass) {
     lv.mass[s] = mass, lv.coeff[s] = lv.dt * lv.dt / mass;
-    set_ground(lv, s);
+    ground_changed(lv, s);
     for (auto& point : lv.modal_points) point.coeff = modal_point_response(lv, point);
 }
 
 }  // namespace
+
+void Simulation::refresh_uniform_spans() {
+    for (auto& lv : model_.levels) find_uniform_span(lv);
+}
 
 void Simulation::write_slot(const ParameterSlot& s, double v) {
     using K = ParameterSlot::Kind;
@@ -68,11 +72,11 @@ void Simulation::write_slot(const ParameterSlot& s, double v) {
             break;
         case K::GroundK:
             lv.ground_k[lv.grounds[s.index].index] = v;
-            set_ground(lv, lv.grounds[s.index].index);
+            ground_changed(lv, lv.grounds[s.index].index);
             break;
         case K::GroundZ:
             lv.ground_zdt[lv.grounds[s.index].index] = v / lv.dt;
-            set_ground(lv, lv.grounds[s.index].index);
+            ground_changed(lv, lv.grounds[s.index].index);
             break;
         case K::CrossK:
             model_.cross_links[s.index].k = v;

@@ -3,11 +3,19 @@
 #include <bit>
 #include <cstdint>
 
+#include "archet/physics/compiled_model.hpp"
+
 namespace archet {
 
 namespace {
 bool same_bits(double a, double b) {
     return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+// MAT s's coefficients as the chain loop reads them from the level's arrays.
+ChainCoefficients chain_coefficients(const CompiledLevel& lv, int s) {
+    return {lv.coeff[s],    lv.chain_k[s],   lv.chain_zdt[s],  lv.chain_length[s],
+            lv.update_x[s], lv.update_xp[s], lv.update_rest[s]};
 }
 }  // namespace
 
@@ -15,11 +23,6 @@ bool ChainCoefficients::operator==(const ChainCoefficients& o) const {
     return same_bits(c, o.c) && same_bits(k, o.k) && same_bits(zdt, o.zdt) &&
            same_bits(length, o.length) && same_bits(a, o.a) && same_bits(b, o.b) &&
            same_bits(e, o.e);
-}
-
-ChainCoefficients chain_coefficients(const CompiledLevel& lv, int s) {
-    return {lv.coeff[s],    lv.chain_k[s],   lv.chain_zdt[s],  lv.chain_length[s],
-            lv.update_x[s], lv.update_xp[s], lv.update_rest[s]};
 }
 
 void find_uniform_span(CompiledLevel& lv) {

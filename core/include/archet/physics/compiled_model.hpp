@@ -11,6 +11,7 @@
 
 #include "archet/model/model.hpp"
 #include "archet/physics/mat_array.hpp"
+#include "archet/physics/uniform_span.hpp"
 
 namespace archet {
 
@@ -55,7 +56,8 @@ struct CompiledCrossLink {  ///< a link whose MATs run at other rate levels
 
 /// An oscillator's spring and damper to ground; its stiffness, damping/T and rest position are
 /// the level's ground_k, ground_zdt and ground_rest at `index`. Whatever changes them (or
-/// T²/m) calls fold_ground() for that MAT: the chain loop reads them folded into update_x, …
+/// T²/m) calls fold_ground() for that MAT, then narrow_uniform_span(): the chain loop reads
+/// them folded into update_x, …, and broadcast over the run of alike MATs.
 struct CompiledGround {
     int index = 0;
     int element = -1;
@@ -103,21 +105,6 @@ struct CompiledFinger {
     double k = 0, zdt = 0;  ///< at full pressure
     double position = 1, pressure = 1;
     int element = -1;
-};
-
-/// Every coefficient the chain loop reads for MAT s: T²/m, the chain link from s to s + 1
-/// (K, Z/T, rest length) and the ground folded into the update (a, b, e; see fold_ground()).
-struct ChainCoefficients {
-    double c = 0, k = 0, zdt = 0, length = 0, a = 0, b = 0, e = 0;
-    bool operator==(const ChainCoefficients&) const;  ///< bit for bit
-};
-
-/// The longest run of MATs first … last (storage indices) that share their ChainCoefficients,
-/// `shared`: the chain loop broadcasts them over the run instead of reading seven arrays
-/// (uniform_span.hpp). Empty when last < first.
-struct UniformSpan {
-    int first = 1, last = 0;
-    ChainCoefficients shared;
 };
 
 struct CompiledLevel {

@@ -38,6 +38,10 @@ class Simulation {
     void write_slot(const ParameterSlot& slot, double value);
     /// The slot's current value, in the model file's units.
     double read_slot(const ParameterSlot& slot) const;
+    /// After a batch of writes (a knob that scales every damper, the end of a glide): finds
+    /// again the runs of alike MATs whose coefficients the chain loop broadcasts, which each
+    /// write could only narrow. O(MATs), no allocation.
+    void refresh_uniform_spans();
 
     /// The whole state of a running model (positions, link and bow states, parameters, the
     /// clock) as plain numbers: enough to resume it exactly, e.g. to re-render a take started

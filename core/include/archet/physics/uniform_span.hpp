@@ -4,20 +4,32 @@
 // seven arrays a MAT, which halves what a long chain moves through the caches; the result is
 // the same bits, since the values are the same.
 
-#include "archet/physics/compiled_model.hpp"
-
 namespace archet {
 
-/// MAT s's coefficients as the chain loop reads them from the level's arrays.
-ChainCoefficients chain_coefficients(const CompiledLevel& level, int s);
+struct CompiledLevel;
+
+/// Every coefficient the chain loop reads for MAT s: T²/m, the chain link from s to s + 1
+/// (K, Z/T, rest length) and the ground folded into the update (a, b, e; see fold_ground()).
+struct ChainCoefficients {
+    double c = 0, k = 0, zdt = 0, length = 0, a = 0, b = 0, e = 0;
+    bool operator==(const ChainCoefficients&) const;  ///< bit for bit
+};
+
+/// The longest run of MATs first … last (storage indices) that share their coefficients,
+/// `shared`. Empty when last < first.
+struct UniformSpan {
+    int first = 1, last = 0;
+    ChainCoefficients shared;
+};
 
 /// Sets level.uniform to the longest run of MATs with equal coefficients (the first, if
-/// several are as long). O(MATs): for compile time and for a loaded state.
+/// several are as long). O(MATs) and no allocation: at compile time, when a state is loaded
+/// (a model swap, on the real-time thread too) and after a batch of live changes
+/// (Simulation::refresh_uniform_spans()).
 void find_uniform_span(CompiledLevel& level);
 
 /// After MAT s's coefficients (its mass, ground or chain link to s + 1) changed while playing:
-/// if s no longer matches the run, the run keeps the longer side of it. O(1), real-time safe;
-/// the run does not grow back until the level is compiled or a state is loaded again.
+/// if s no longer matches the run, the run keeps the longer side of it. O(1), real-time safe.
 void narrow_uniform_span(CompiledLevel& level, int s);
 
 }  // namespace archet
