@@ -215,7 +215,7 @@ void RealtimeThread::rt_run_block(LoadedModel& m, float* out, int frames, int ch
         f.tick = sim.tick();
         f.count = static_cast<std::uint32_t>(probes);
         f.reserved = 0;
-        // The stored energy is a sum over every element, as costly as the step: the scopes
+        // The stored energy is a sum over every element, nearly as costly as the step: the scopes
         // get it at every ipc::kEnergyProbeEvery-th sample and hold it in between; a take
         // records it at every sample.
         if (m.has_energy_probe && (rt_recording_ || f.tick % ipc::kEnergyProbeEvery == 0))

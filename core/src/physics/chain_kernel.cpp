@@ -13,6 +13,8 @@
 
 #include "archet/physics/chain_kernel.hpp"
 
+#include <bit>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <type_traits>
@@ -220,15 +222,87 @@ template <class T>
             0.25 * load<T>(lv.ground_zdt.data() + s) * g * g);
 }
 
+// mat_energy over MATs that share their coefficients `c`, read once, leaving out the terms a
+// zero coefficient makes ±0 (a zero rest length, no spring or no damper to ground). The same
+// bits: each product keeps its order (½m, ½K, ¼Z first), and a ±0 term added to the rest,
+// which is never −0 since the kinetic energy is not, changes nothing.
+template <bool kLength, bool kGroundSpring, bool kGroundDamper>
+[[gnu::always_inline]] inline Doubles8 shared_mat_energy(const double* x, const double* xp,
+                                                         const ChainCoefficients& c,
+                                                         double inverse_dt_squared, int s) {
+    using V = Doubles8;
+    const V xs = load<V>(x + s), xps = load<V>(xp + s);
+    const V d = xs - load<V>(x + s + 1), dp = xps - load<V>(xp + s + 1);
+    const V u = d - dp, g = xs - xps;
+    const V length = broadcast<V>(c.length);
+    const V link = kLength ? broadcast<V>(0.5 * c.k) * (d - length) * (dp - length)
+                           : broadcast<V>(0.5 * c.k) * d * dp;
+    V e = broadcast<V>(0.5 * c.mass) * (g * g) * inverse_dt_squared +
+          (link - broadcast<V>(0.25 * c.zdt) * u * u);
+    const V rest = broadcast<V>(c.rest);
+    const V spring = broadcast<V>(0.5 * c.ground_k) * (xs - rest) * (xps - rest);
+    const V damper = broadcast<V>(0.25 * c.ground_zdt) * g * g;
+    if constexpr (kGroundSpring && kGroundDamper)
+        e = e + (spring - damper);
+    else if constexpr (kGroundSpring)
+        e = e + spring;
+    else if constexpr (kGroundDamper)
+        e = e - damper;
+    return e;
+}
+
+template <bool kLength, bool kGroundSpring, bool kGroundDamper>
+[[gnu::always_inline]] inline void add_shared_rounds(Doubles8& sums, const double* x,
+                                                     const double* xp, const ChainCoefficients& c,
+                                                     double inverse_dt_squared, SharedRounds r) {
+    for (int s = r.begin; s < r.end; s += 8)
+        sums += shared_mat_energy<kLength, kGroundSpring, kGroundDamper>(x, xp, c,
+                                                                         inverse_dt_squared, s);
+}
+
+[[gnu::always_inline]] inline void add_shared_energy(Doubles8& sums, const double* x,
+                                                     const double* xp, const ChainCoefficients& c,
+                                                     double inverse_dt_squared, SharedRounds r) {
+    const auto is_zero = [](double v) { return std::bit_cast<std::uint64_t>(v) == 0; };
+    const int terms = (is_zero(c.length) ? 0 : 4) + (is_zero(c.ground_k) ? 0 : 2) +
+                      (is_zero(c.ground_zdt) ? 0 : 1);
+    switch (terms) {  // every combination, each its own loop
+        case 0:
+            return add_shared_rounds<false, false, false>(sums, x, xp, c, inverse_dt_squared, r);
+        case 1:
+            return add_shared_rounds<false, false, true>(sums, x, xp, c, inverse_dt_squared, r);
+        case 2:
+            return add_shared_rounds<false, true, false>(sums, x, xp, c, inverse_dt_squared, r);
+        case 3:
+            return add_shared_rounds<false, true, true>(sums, x, xp, c, inverse_dt_squared, r);
+        case 4:
+            return add_shared_rounds<true, false, false>(sums, x, xp, c, inverse_dt_squared, r);
+        case 5:
+            return add_shared_rounds<true, false, true>(sums, x, xp, c, inverse_dt_squared, r);
+        case 6:
+            return add_shared_rounds<true, true, false>(sums, x, xp, c, inverse_dt_squared, r);
+        default:
+            return add_shared_rounds<true, true, true>(sums, x, xp, c, inverse_dt_squared, r);
+    }
+}
+
 // Σ mat_energy over MATs 1 … size in eight interleaved partial sums (MAT s in lane
 // (s − 1) mod 8), added up in a fixed tree: the same bits on every build, and eight
-// independent additions in flight instead of one chain of them.
+// independent additions in flight instead of one chain of them. Rounds of eight wholly
+// inside the level's run of alike MATs read its coefficients once.
 [[gnu::always_inline]] inline double level_energy(const CompiledLevel& lv) {
     const double* x = lv.x();
     const double* xp = lv.x_prev();
     const double inverse_dt_squared = 1.0 / (lv.dt * lv.dt);
+    const SharedRounds shared = shared_rounds(lv.uniform.first, lv.uniform.last, 8);
     Doubles8 sums{};
     int s = 1;
+    for (; s < shared.begin && s + 7 <= lv.size; s += 8)
+        sums += mat_energy<Doubles8>(lv, x, xp, inverse_dt_squared, s);
+    if (shared.begin < shared.end) {
+        add_shared_energy(sums, x, xp, lv.uniform.shared, inverse_dt_squared, shared);
+        s = shared.end;
+    }
     for (; s + 7 <= lv.size; s += 8) sums += mat_energy<Doubles8>(lv, x, xp, inverse_dt_squared, s);
     for (int lane = 0; s <= lv.size; ++s, ++lane)
         sums[lane] += mat_energy<double>(lv, x, xp, inverse_dt_squared, s);

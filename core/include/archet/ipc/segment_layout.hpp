@@ -19,7 +19,7 @@ inline constexpr std::uint16_t kMinimumCompatibleVersion = 4;
 
 inline constexpr std::size_t kMaxProbes = 16;  ///< probe values per probe frame
 /// Samples between two readings of the stored energy in the probe frames, held in between: a
-/// sum over the whole model, it costs as much as a step (a take records every sample).
+/// sum over the whole model, it costs nearly as much as a step (a take records every sample).
 inline constexpr std::uint64_t kEnergyProbeEvery = 16;
 inline constexpr std::size_t kMaxShapePoints = 512;  ///< string positions per shape frame
 inline constexpr std::size_t kTextSize = 256;        ///< paths, ids and messages, NUL-terminated

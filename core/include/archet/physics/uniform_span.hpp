@@ -1,17 +1,19 @@
 #pragma once
 // The run of a level's MATs whose chain-loop coefficients are all alike: a homogeneous string
-// or chain between its ends. The chain loop reads them once for the whole run rather than
-// seven arrays a MAT, which halves what a long chain moves through the caches; the result is
-// the same bits, since the values are the same.
+// or chain between its ends. The chain loop and the stored energy read them once for the whole
+// run rather than seven arrays a MAT, which halves what a long chain moves through the caches;
+// the result is the same bits, since the values are the same.
 
 namespace archet {
 
 struct CompiledLevel;
 
-/// Every coefficient the chain loop reads for MAT s: T²/m, the chain link from s to s + 1
-/// (K, Z/T, rest length) and the ground folded into the update (a, b, e; see fold_ground()).
+/// Every coefficient the chain loop and the stored energy read for MAT s: T²/m and the mass,
+/// the chain link from s to s + 1 (K, Z/T, rest length), the ground (K, Z/T, rest position)
+/// and the ground folded into the update (a, b, e; see fold_ground()).
 struct ChainCoefficients {
-    double c = 0, k = 0, zdt = 0, length = 0, a = 0, b = 0, e = 0;
+    double c = 0, mass = 0, k = 0, zdt = 0, length = 0;
+    double ground_k = 0, ground_zdt = 0, rest = 0, a = 0, b = 0, e = 0;
     bool operator==(const ChainCoefficients&) const;  ///< bit for bit
 };
 
