@@ -224,8 +224,8 @@ template <class T>
 
 // mat_energy over MATs that share their coefficients `c`, read once, leaving out the terms a
 // zero coefficient makes ±0 (a zero rest length, no spring or no damper to ground). The same
-// bits: each product keeps its order (½m, ½K, ¼Z first), and a ±0 term added to the rest,
-// which is never −0 since the kinetic energy is not, changes nothing.
+// bits while the motion is finite: each product keeps its order (½m, ½K, ¼Z first), and a ±0
+// term added to the rest, which is never −0 since the kinetic energy is not, changes nothing.
 template <bool kLength, bool kGroundSpring, bool kGroundDamper>
 [[gnu::always_inline]] inline Doubles8 shared_mat_energy(const double* x, const double* xp,
                                                          const ChainCoefficients& c,
@@ -260,30 +260,29 @@ template <bool kLength, bool kGroundSpring, bool kGroundDamper>
                                                                          inverse_dt_squared, s);
 }
 
+inline bool is_plus_zero(double v) {
+    return std::bit_cast<std::uint64_t>(v) == 0;
+}
+
+// Each combination of the terms in a loop of its own, as for the chain loop's variants.
+template <bool kLength, bool kGroundSpring>
 [[gnu::always_inline]] inline void add_shared_energy(Doubles8& sums, const double* x,
                                                      const double* xp, const ChainCoefficients& c,
                                                      double inverse_dt_squared, SharedRounds r) {
-    const auto is_zero = [](double v) { return std::bit_cast<std::uint64_t>(v) == 0; };
-    const int terms = (is_zero(c.length) ? 0 : 4) + (is_zero(c.ground_k) ? 0 : 2) +
-                      (is_zero(c.ground_zdt) ? 0 : 1);
-    switch (terms) {  // every combination, each its own loop
-        case 0:
-            return add_shared_rounds<false, false, false>(sums, x, xp, c, inverse_dt_squared, r);
-        case 1:
-            return add_shared_rounds<false, false, true>(sums, x, xp, c, inverse_dt_squared, r);
-        case 2:
-            return add_shared_rounds<false, true, false>(sums, x, xp, c, inverse_dt_squared, r);
-        case 3:
-            return add_shared_rounds<false, true, true>(sums, x, xp, c, inverse_dt_squared, r);
-        case 4:
-            return add_shared_rounds<true, false, false>(sums, x, xp, c, inverse_dt_squared, r);
-        case 5:
-            return add_shared_rounds<true, false, true>(sums, x, xp, c, inverse_dt_squared, r);
-        case 6:
-            return add_shared_rounds<true, true, false>(sums, x, xp, c, inverse_dt_squared, r);
-        default:
-            return add_shared_rounds<true, true, true>(sums, x, xp, c, inverse_dt_squared, r);
-    }
+    if (is_plus_zero(c.ground_zdt))
+        add_shared_rounds<kLength, kGroundSpring, false>(sums, x, xp, c, inverse_dt_squared, r);
+    else
+        add_shared_rounds<kLength, kGroundSpring, true>(sums, x, xp, c, inverse_dt_squared, r);
+}
+
+template <bool kLength>
+[[gnu::always_inline]] inline void add_shared_energy(Doubles8& sums, const double* x,
+                                                     const double* xp, const ChainCoefficients& c,
+                                                     double inverse_dt_squared, SharedRounds r) {
+    if (is_plus_zero(c.ground_k))
+        add_shared_energy<kLength, false>(sums, x, xp, c, inverse_dt_squared, r);
+    else
+        add_shared_energy<kLength, true>(sums, x, xp, c, inverse_dt_squared, r);
 }
 
 // Σ mat_energy over MATs 1 … size in eight interleaved partial sums (MAT s in lane
@@ -300,7 +299,11 @@ template <bool kLength, bool kGroundSpring, bool kGroundDamper>
     for (; s < shared.begin && s + 7 <= lv.size; s += 8)
         sums += mat_energy<Doubles8>(lv, x, xp, inverse_dt_squared, s);
     if (shared.begin < shared.end) {
-        add_shared_energy(sums, x, xp, lv.uniform.shared, inverse_dt_squared, shared);
+        const ChainCoefficients& c = lv.uniform.shared;
+        if (is_plus_zero(c.length))
+            add_shared_energy<false>(sums, x, xp, c, inverse_dt_squared, shared);
+        else
+            add_shared_energy<true>(sums, x, xp, c, inverse_dt_squared, shared);
         s = shared.end;
     }
     for (; s + 7 <= lv.size; s += 8) sums += mat_energy<Doubles8>(lv, x, xp, inverse_dt_squared, s);
