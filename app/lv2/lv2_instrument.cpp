@@ -73,7 +73,7 @@ void Instrument::set_controls(double bow_force, double bow_speed, double damping
     if (damping_scale == damping_scale_) return;
     damping_scale_ = damping_scale;
     for (const Damping& d : damping_) sim_.write_slot(d.slot, d.base * damping_scale);
-    sim_.refresh_uniform_spans();  // the string's MATs are alike again
+    sim_.refresh_uniform_runs();  // the string's MATs are alike again
 }
 
 void Instrument::apply_round(double seconds) {

@@ -2,7 +2,9 @@
 
 #include <benchmark/benchmark.h>
 
+#include <functional>
 #include <memory>
+#include <string>
 
 #include "archet/builders/bowed_chain.hpp"
 #include "archet/builders/bowed_string.hpp"
@@ -10,6 +12,7 @@
 #include "archet/files/model_file.hpp"
 #include "archet/model/gesture.hpp"
 #include "archet/model/model_validation.hpp"
+#include "archet/model/parameter_name.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
@@ -18,9 +21,12 @@ namespace {
 
 // Steps a model while it plays: one steady stroke at 0.1 m/s, as long as any run can last.
 // (A model's own gesture ends within seconds, and a benchmark runs for minutes of model time:
-// it would time a bow resting on a string that has died away.)
-void run_steps(benchmark::State& state, const archet::Model& model) {
+// it would time a bow resting on a string that has died away.) `prepare` may change the
+// simulation first.
+void run_steps(benchmark::State& state, const archet::Model& model,
+               const std::function<void(archet::Simulation&)>& prepare = {}) {
     archet::Simulation sim(archet::compile(model));
+    if (prepare) prepare(sim);
     const archet::Gesture stroke = archet::steady_bow_gesture(0.1, 0.0015, 1e5);
     sim.set_gesture_track(&stroke);
     const archet::DenormalGuard no_denormals;
@@ -83,7 +89,19 @@ BENCHMARK(BM_StoredEnergy)->Arg(110)->Arg(220);
 void BM_BowedChain(benchmark::State& state) {
     run_steps(state, archet::build_bowed_chain(static_cast<int>(state.range(0))));
 }
-BENCHMARK(BM_BowedChain)->Arg(60)->Arg(1000)->Arg(10000);
+BENCHMARK(BM_BowedChain)->Arg(60)->Arg(1000)->Arg(10000)->Arg(65536);
+
+// A long chain after one of its links was changed while it played (a damper touched up in the
+// studio's inspector): the chain loop still broadcasts what the MATs on either side share.
+void BM_BowedChainAfterOneEdit(benchmark::State& state) {
+    const int n = static_cast<int>(state.range(0));
+    run_steps(state, archet::build_bowed_chain(n), [n](archet::Simulation& sim) {
+        const archet::ParameterSlot damping = sim.model().resolve_parameter(
+            archet::ParameterName{"l" + std::to_string(n / 2), "damping"});
+        sim.write_slot(damping, 2.0 * sim.read_slot(damping));
+    });
+}
+BENCHMARK(BM_BowedChainAfterOneEdit)->Arg(10000)->Arg(65536);
 
 void BM_Compile(benchmark::State& state) {
     const archet::Model model = archet::build_bowed_chain(static_cast<int>(state.range(0)));

@@ -320,8 +320,11 @@ TEST(RealtimeSafety, StepProbesAndOutputMakeNoForbiddenCall) {
     model.controls.push_back(c);
     Simulation sim(compile(model));
     sim.enable_accounting(true);
-    const auto mu_d =
-        sim.model().resolve_parameter({"friction", "mu_d"});  // resolved off the real-time path
+    // Resolved off the real-time path.
+    const auto mu_d = sim.model().resolve_parameter({"friction", "mu_d"});
+    const auto mid_damping = sim.model().resolve_parameter({"k30", "damping"});
+    const auto mid_mass = sim.model().resolve_parameter({"s20", "mass"});
+    ASSERT_EQ(sim.model().levels[mid_damping.level].uniform.count(), 1);
     double sink = 0;
     const RealtimeCalls calls = counted_on_marked_thread([&] {
         for (int i = 0; i < 48000; ++i) {
@@ -330,7 +333,12 @@ TEST(RealtimeSafety, StepProbesAndOutputMakeNoForbiddenCall) {
             for (std::size_t p = 0; p < sim.probe_count(); ++p) sink += sim.probe(p);
         }
         sim.write_slot(mu_d, 0.25);
+        // Each splits the string's run of alike MATs; then they are found afresh.
+        sim.write_slot(mid_damping, 2.0 * sim.read_slot(mid_damping));
+        sim.write_slot(mid_mass, 2.0 * sim.read_slot(mid_mass));
+        sim.refresh_uniform_runs();
     });
+    EXPECT_EQ(sim.model().levels[mid_damping.level].uniform.count(), 3);
     EXPECT_EQ(calls.total(), 0u) << calls.describe();
     EXPECT_TRUE(std::isfinite(sink));
 }

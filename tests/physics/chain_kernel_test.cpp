@@ -160,7 +160,7 @@ void make_alike(CompiledLevel& lv, int first, int last) {
         lv.chain_length[s] = lv.chain_length[first];
     }
     fold_grounds(lv);
-    find_uniform_span(lv);
+    find_uniform_runs(lv);
 }
 
 // The loop runs the rounds before a run of alike MATs, those wholly inside it (broadcast), and
@@ -212,7 +212,7 @@ TEST(ChainKernel, ARunOfAlikeMatsGivesTheSchemesBits) {
                                        {n / 2, n / 2 + 3}})
                 for (bool lengths : {false, true})
                     for (bool grounds : {false, true}) {
-                        // Link n is the padding's, zero; one MAT alone is no run.
+                        // Link n is the padding's, zero.
                         if (last >= n || last <= first) continue;
                         CompiledLevel lv = random_level(n, lengths, grounds, random);
                         make_alike(lv, first, last);
@@ -220,11 +220,17 @@ TEST(ChainKernel, ARunOfAlikeMatsGivesTheSchemesBits) {
                                      " n=" + std::to_string(n) + " run " + std::to_string(first) +
                                      "…" + std::to_string(last) + (lengths ? " lengths" : "") +
                                      (grounds ? " grounds" : ""));
-                        ASSERT_EQ(lv.uniform.first, first);
-                        ASSERT_EQ(lv.uniform.last, last);
+                        // A run too short to hold a round of eight is not kept.
+                        const bool kept = last - first + 1 >= UniformRuns::kShortest;
+                        ASSERT_EQ(lv.uniform.count(), kept ? 1 : 0);
+                        if (kept) {
+                            ASSERT_EQ(lv.uniform[0].first, first);
+                            ASSERT_EQ(lv.uniform[0].last, last);
+                        }
                         std::vector<double> forces;
                         const std::vector<double> expected = scheme(lv, forces);
-                        const SharedRounds shared = shared_rounds(first, last, lanes(build));
+                        const SharedRounds shared =
+                            kept ? shared_rounds(first, last, lanes(build)) : SharedRounds{1, 1};
                         const double nan = std::numeric_limits<double>::quiet_NaN();
                         for (int s = shared.begin; s < shared.end; ++s)
                             for (auto* a : {&lv.coeff, &lv.chain_k, &lv.chain_zdt, &lv.chain_length,
@@ -269,10 +275,10 @@ TEST(ChainKernel, ARunOfAlikeMatsStoresTheSameEnergy) {
                     SCOPED_TRACE(std::string(chain_build_name(build)) + " n=" + std::to_string(n) +
                                  " run " + std::to_string(first) + "…" + std::to_string(last) +
                                  " terms " + std::to_string(terms));
-                    const UniformSpan run = lv.uniform;
-                    lv.uniform = UniformSpan{};
+                    const UniformRuns runs = lv.uniform;
+                    lv.uniform = UniformRuns{};
                     const double expected = level_stored_energy(lv, build);
-                    lv.uniform = run;
+                    lv.uniform = runs;
                     const SharedRounds shared = shared_rounds(first, last, 8);
                     for (int s = shared.begin; s < shared.end; ++s)
                         for (auto* a : {&lv.mass, &lv.chain_k, &lv.chain_zdt, &lv.chain_length,
@@ -287,31 +293,117 @@ TEST(ChainKernel, ARunOfAlikeMatsStoresTheSameEnergy) {
     EXPECT_GT(sums, 50);
 }
 
-// A MAT changed while playing leaves the run: the run keeps its longer side, and a change
-// that leaves the MAT alike, or a MAT outside the run, keeps it whole.
-TEST(ChainKernel, AChangedMatLeavesTheLongerSideOfTheRun) {
+using Spans = std::vector<std::pair<int, int>>;
+
+// The level's runs, first … last each.
+Spans spans(const CompiledLevel& lv) {
+    Spans out;
+    for (const UniformSpan& run : lv.uniform.all()) out.emplace_back(run.first, run.last);
+    return out;
+}
+
+// A MAT changed while playing splits its run: each side stays a run while it is long enough to
+// hold a round, with the run's coefficients; a change that leaves the MAT alike, or a MAT
+// outside every run, changes nothing.
+TEST(ChainKernel, AChangedMatSplitsItsRun) {
     std::mt19937_64 random(11);
     CompiledLevel lv = random_level(60, false, true, random);
     make_alike(lv, 3, 50);
-    const ChainCoefficients shared = lv.uniform.shared;
+    const ChainCoefficients shared = lv.uniform[0].shared;
     auto change = [&](int s, double coeff) {
         lv.coeff[s] = coeff;
         fold_ground(lv, s);
-        narrow_uniform_span(lv, s);
-        return std::pair{lv.uniform.first, lv.uniform.last};
+        split_uniform_run(lv, s);
+        return spans(lv);
     };
-    EXPECT_EQ(change(20, shared.c), std::pair(3, 50));      // alike still
-    EXPECT_EQ(change(55, 2 * shared.c), std::pair(3, 50));  // outside the run
-    EXPECT_EQ(change(10, 2 * shared.c), std::pair(11, 50));
-    EXPECT_EQ(change(40, 2 * shared.c), std::pair(11, 39));
-    EXPECT_EQ(change(11, 2 * shared.c), std::pair(12, 39));
-    EXPECT_EQ(change(39, 2 * shared.c), std::pair(12, 38));
-    EXPECT_TRUE(lv.uniform.shared == shared);
-    // Compiled again (or a state loaded), the run is found afresh: the longest one.
-    find_uniform_span(lv);
-    EXPECT_EQ(std::pair(lv.uniform.first, lv.uniform.last), std::pair(12, 38));
+    EXPECT_EQ(change(20, shared.c), (Spans{{3, 50}}));      // alike still
+    EXPECT_EQ(change(55, 2 * shared.c), (Spans{{3, 50}}));  // outside the run
+    EXPECT_EQ(change(30, 2 * shared.c), (Spans{{3, 29}, {31, 50}}));
+    EXPECT_EQ(change(10, 2 * shared.c), (Spans{{11, 29}, {31, 50}}));
+    EXPECT_EQ(change(45, 2 * shared.c), (Spans{{11, 29}, {31, 44}}));  // 46…50: too short
+    EXPECT_EQ(change(35, 2 * shared.c), (Spans{{11, 29}, {36, 44}}));
+    EXPECT_EQ(change(40, 2 * shared.c), (Spans{{11, 29}}));
+    for (const UniformSpan& run : lv.uniform.all()) EXPECT_TRUE(run.shared == shared);
+    // Compiled again (or a state loaded), the runs are found afresh: the same ones.
+    find_uniform_runs(lv);
+    EXPECT_EQ(spans(lv), (Spans{{11, 29}}));
     make_alike(lv, 1, 59);
-    EXPECT_EQ(std::pair(lv.uniform.first, lv.uniform.last), std::pair(1, 59));
+    EXPECT_EQ(spans(lv), (Spans{{1, 59}}));
+}
+
+// Each string of a level (an instrument of several) has its own run; when there are more than
+// the runs a level keeps, the longest are kept, in order, and a split with no room for both
+// sides keeps the longer one.
+TEST(ChainKernel, EachStringHasItsOwnRunAndTheLongestAreKept) {
+    std::mt19937_64 random(13);
+    CompiledLevel lv = random_level(300, true, true, random);
+    const Spans strings{{1, 20},    {22, 30},   {32, 60},   {62, 71},   {73, 120}, {122, 130},
+                        {132, 150}, {152, 190}, {192, 240}, {242, 249}, {251, 299}};
+    for (auto [first, last] : strings) make_alike(lv, first, last);
+    ASSERT_GT(strings.size(), static_cast<std::size_t>(UniformRuns::kCapacity));
+    // Of lengths 20, 9, 29, 10, 48, 9, 19, 39, 49, 8, 49: the two of 9 and the one of 8 go.
+    EXPECT_EQ(spans(lv), (Spans{{1, 20},
+                                {32, 60},
+                                {62, 71},
+                                {73, 120},
+                                {132, 150},
+                                {152, 190},
+                                {192, 240},
+                                {251, 299}}));
+    const ChainCoefficients shared = lv.uniform[3].shared;
+    lv.chain_k[90] *= 2;
+    split_uniform_run(lv, 90);
+    EXPECT_EQ(spans(lv)[3], std::pair(91, 120));
+    EXPECT_TRUE(lv.uniform[3].shared == shared);
+}
+
+// Several runs in one level, with coefficients of their own: every build gives the scheme's
+// bits and the stored energy the same bits as summing the arrays, which are spoilt with NaN
+// wherever a run's rounds lie.
+TEST(ChainKernel, SeveralRunsGiveTheSchemesBits) {
+    std::mt19937_64 random(17);
+    int checked = 0;
+    for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
+        if (!chain_build_runs_here(build)) continue;
+        for (bool lengths : {false, true})
+            for (bool grounds : {false, true}) {
+                CompiledLevel lv = random_level(120, lengths, grounds, random);
+                for (auto [first, last] : {std::pair{2, 30}, {31, 47}, {50, 58}, {70, 119}})
+                    make_alike(lv, first, last);
+                ASSERT_EQ(lv.uniform.count(), 4);
+                std::vector<double> forces;
+                const std::vector<double> expected = scheme(lv, forces);
+                CompiledLevel read_all = lv;
+                read_all.uniform = UniformRuns{};
+                const double expected_energy = level_stored_energy(read_all, build);
+                CompiledLevel for_energy = lv;
+                const double nan = std::numeric_limits<double>::quiet_NaN();
+                for (const UniformSpan& run : lv.uniform.all()) {
+                    const SharedRounds loop = shared_rounds(run.first, run.last, lanes(build));
+                    for (int s = loop.begin; s < loop.end; ++s)
+                        for (auto* a : {&lv.coeff, &lv.chain_k, &lv.chain_zdt, &lv.chain_length,
+                                        &lv.update_x, &lv.update_xp, &lv.update_rest})
+                            (*a)[s] = nan;
+                    const SharedRounds sum = shared_rounds(run.first, run.last, 8);
+                    for (int s = sum.begin; s < sum.end; ++s)
+                        for (auto* a :
+                             {&for_energy.mass, &for_energy.chain_k, &for_energy.chain_zdt,
+                              &for_energy.chain_length, &for_energy.ground_k,
+                              &for_energy.ground_zdt, &for_energy.ground_rest})
+                            (*a)[s] = nan;
+                }
+                SCOPED_TRACE(std::string(chain_build_name(build)) + (lengths ? " lengths" : "") +
+                             (grounds ? " grounds" : ""));
+                integrate_chain(lv, lv.buffer[1].data(), build);
+                for (int s = 1; s <= lv.size; ++s)
+                    ASSERT_EQ(std::memcmp(&expected[s], &lv.buffer[1][s], 8), 0) << "MAT " << s;
+                const double energy = level_stored_energy(for_energy, build);
+                ASSERT_EQ(std::memcmp(&expected_energy, &energy, 8), 0)
+                    << expected_energy << " vs " << energy;
+                ++checked;
+            }
+    }
+    EXPECT_GT(checked, 0);
 }
 
 // The level's stored energy, summed MAT by MAT in one chain of additions: the sum the

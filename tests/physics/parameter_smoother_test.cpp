@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <string>
@@ -116,10 +117,19 @@ TEST(SimulationParameters, ACoefficientSetWhilePlayingPlaysAsIfCompiledWithIt) {
         set_parameter(changed, {c.element, c.name}, c.value);
         Simulation set_live(compile(model)), compiled(compile(changed));
         const ParameterSlot slot = set_live.model().resolve_parameter({c.element, c.name});
-        const UniformSpan& run = set_live.model().levels[slot.level].uniform;
-        if (c.mid_run) ASSERT_TRUE(run.first + 8 <= slot.index && slot.index + 8 <= run.last);
+        const UniformRuns& runs = set_live.model().levels[slot.level].uniform;
+        auto in_a_run = [&](int s) {
+            return std::any_of(runs.all().begin(), runs.all().end(),
+                               [s](const UniformSpan& r) { return r.first <= s && s <= r.last; });
+        };
+        if (c.mid_run) ASSERT_TRUE(in_a_run(slot.index - 8) && in_a_run(slot.index + 8));
+        if (c.mid_run) ASSERT_TRUE(in_a_run(slot.index));
         set_live.write_slot(slot, c.value);
-        if (c.mid_run) EXPECT_TRUE(slot.index < run.first || slot.index > run.last);
+        if (c.mid_run) {
+            EXPECT_FALSE(in_a_run(slot.index)) << what;
+            EXPECT_TRUE(in_a_run(slot.index - 8) && in_a_run(slot.index + 8))
+                << what << ": both sides of the changed MAT stay runs";
+        }
         for (int i = 0; i < 4800; ++i) {
             set_live.step(), compiled.step();
             ASSERT_EQ(set_live.output(), compiled.output()) << what << " step " << i;
@@ -136,16 +146,17 @@ TEST(SimulationParameters, ACoefficientSetWhilePlayingPlaysAsIfCompiledWithIt) {
     }
 }
 
-// A knob that moves every damper of a string glides each of them; each write takes its MAT
-// out of the run the chain loop broadcasts, and once the last glide ends the MATs, alike
+// A knob that moves every damper of a string glides each of them; each write splits the run
+// the chain loop broadcasts at its MAT, and once the last glide ends the MATs, alike
 // again, are one run again.
 TEST(ParameterSmoother, WhenTheLastGlideEndsTheRunOfAlikeMatsIsWholeAgain) {
     BowedStringOptions o;
     o.masses = 30;
     const Model model = build_bowed_string(o);
     Simulation sim(compile(model));
-    const UniformSpan before = sim.model().levels.front().uniform;
-    ASSERT_GE(before.last - before.first, 20);
+    const UniformRuns before = sim.model().levels.front().uniform;
+    ASSERT_EQ(before.count(), 1);
+    ASSERT_GE(before[0].length(), 20);
     ParameterSmoother smoother;
     int glides = 0;
     for (const Lia& l : model.lias)
@@ -158,12 +169,13 @@ TEST(ParameterSmoother, WhenTheLastGlideEndsTheRunOfAlikeMatsIsWholeAgain) {
     ASSERT_GE(glides, 20);
     ASSERT_LE(static_cast<std::size_t>(glides), ParameterSmoother::kCapacity);
     for (int i = 0; i < 24; ++i) smoother.advance(sim), sim.step();
-    const UniformSpan& now = sim.model().levels.front().uniform;
-    EXPECT_LT(now.last - now.first, 2);  // narrowed away while they glide
+    const UniformRuns& now = sim.model().levels.front().uniform;
+    EXPECT_EQ(now.count(), 0);  // split away while they glide
     while (smoother.active() > 0) smoother.advance(sim), sim.step();
-    EXPECT_EQ(now.first, before.first);
-    EXPECT_EQ(now.last, before.last);
-    EXPECT_FALSE(now.shared == before.shared);  // the new damping
+    ASSERT_EQ(now.count(), 1);
+    EXPECT_EQ(now[0].first, before[0].first);
+    EXPECT_EQ(now[0].last, before[0].last);
+    EXPECT_FALSE(now[0].shared == before[0].shared);  // the new damping
 }
 
 }  // namespace

@@ -75,7 +75,7 @@ struct ChainArrays {
     const double *k, *z, *length;  ///< chain link j joins storage j and j + 1
     const double* c;               ///< T²/m
     const double *a, *b, *e;       ///< the grounds folded into the update (fold_ground())
-    const UniformSpan* uniform;    ///< MATs whose coefficients are broadcast rather than read
+    const UniformRuns* uniform;    ///< MATs whose coefficients are broadcast rather than read
 };
 
 // A MAT's new position from its two chain links, and its ground where the loop takes them.
@@ -112,36 +112,45 @@ class ChainRounds {
           a_(arrays.a),
           b_(arrays.b),
           e_(arrays.e) {
-        const ChainCoefficients& shared = arrays.uniform->shared;
-        shared_ = {broadcast<V>(shared.k), broadcast<V>(shared.zdt), broadcast<V>(shared.length),
-                   broadcast<V>(shared.c), broadcast<V>(shared.a),   broadcast<V>(shared.b),
-                   broadcast<V>(shared.e)};
         // Link 0, on the left of MAT 1, enters as the last lane of the round before the first.
         forces_[W - 1] = link_force<kWithLength>(x_[0] - x_[1], xp_[0] - xp_[1], k_[0], z_[0],
                                                  kWithLength ? length_[0] : 0.0);
         xs_ = load<V>(x_ + 1), xps_ = load<V>(xp_ + 1);
     }
 
-    // The rounds that start at storage `begin` (1 + a multiple of W) and before `end`; with
-    // kShared, MATs whose coefficients are all `shared_`.
+    /// The rounds that start at storage `begin` (1 + a multiple of W) and before `end`,
+    /// reading each MAT's coefficients from the arrays.
+    [[gnu::always_inline]] void run(int begin, int end) { rounds<false>(begin, end, Shared{}); }
+
+    /// The same over MATs whose coefficients are all `shared`: broadcast, not read.
+    [[gnu::always_inline]] void run_shared(int begin, int end, const ChainLanes& shared) {
+        rounds<true>(
+            begin, end,
+            Shared{load<V>(shared.k), load<V>(shared.zdt), load<V>(shared.length),
+                   load<V>(shared.c), load<V>(shared.a), load<V>(shared.b), load<V>(shared.e)});
+    }
+
+  private:
+    struct Shared {
+        V k, z, length, c, a, b, e;
+    };
+
     template <bool kShared>
-    [[gnu::always_inline]] void run(int begin, int end) {
+    [[gnu::always_inline]] void rounds(int begin, int end, const Shared& shared) {
         for (int s = begin; s < end; s += W) {
             const V x_after = load<V>(x_ + s + W), xp_after = load<V>(xp_ + s + W);
             const V d = xs_ - next_of(xs_, x_after), dp = xps_ - next_of(xps_, xp_after);
-            const V right =
-                link_force<kWithLength>(d, dp, coefficient<kShared>(k_, s, shared_.k),
-                                        coefficient<kShared>(z_, s, shared_.z), length<kShared>(s));
-            store(xn_ + s,
-                  mat_update<kWithGrounds>(
-                      xs_, xps_, coefficient<kShared>(c_, s, shared_.c), shift_in(forces_, right),
-                      right, ground<kShared>(a_, s, shared_.a), ground<kShared>(b_, s, shared_.b),
-                      ground<kShared>(e_, s, shared_.e)));
+            const V right = link_force<kWithLength>(d, dp, coefficient<kShared>(k_, s, shared.k),
+                                                    coefficient<kShared>(z_, s, shared.z),
+                                                    length<kShared>(s, shared.length));
+            store(xn_ + s, mat_update<kWithGrounds>(
+                               xs_, xps_, coefficient<kShared>(c_, s, shared.c),
+                               shift_in(forces_, right), right, ground<kShared>(a_, s, shared.a),
+                               ground<kShared>(b_, s, shared.b), ground<kShared>(e_, s, shared.e)));
             forces_ = right, xs_ = x_after, xps_ = xp_after;
         }
     }
 
-  private:
     template <bool kShared>
     [[gnu::always_inline]] V coefficient(const double* __restrict array, int s, V shared) const {
         if constexpr (kShared)
@@ -150,9 +159,9 @@ class ChainRounds {
             return load<V>(array + s);
     }
     template <bool kShared>
-    [[gnu::always_inline]] V length(int s) const {
+    [[gnu::always_inline]] V length(int s, V shared) const {
         if constexpr (kWithLength)
-            return coefficient<kShared>(length_, s, shared_.length);
+            return coefficient<kShared>(length_, s, shared);
         else
             return V{};
     }
@@ -171,9 +180,6 @@ class ChainRounds {
     double* __restrict xn_;
     const double* __restrict k_, * __restrict z_, * __restrict length_, * __restrict c_;
     const double* __restrict a_, * __restrict b_, * __restrict e_;
-    struct {
-        V k, z, length, c, a, b, e;
-    } shared_;
     V forces_{}, xs_, xps_;
 };
 
@@ -182,15 +188,21 @@ class ChainRounds {
 // the storage, whose zero coefficients keep them zero (while the motion is finite: a blown-up
 // level, which is never stepped again, may leave NaN there), and each round also reads the
 // vector after its own from x and x⁻ (CompiledLevel::kReadAhead ≥ 2W − 1). The rounds that
-// lie wholly inside the level's uniform span broadcast its coefficients.
+// lie wholly inside one of the level's runs of alike MATs broadcast its coefficients (the
+// runs are disjoint and in order, so are their rounds).
 template <int W, bool kWithLength, bool kWithGrounds>
 [[gnu::always_inline]] inline void chain_loop(const ChainArrays& arrays, int n) {
     static_assert(CompiledLevel::kReadAhead >= 2 * W - 1);
-    const SharedRounds shared = shared_rounds(arrays.uniform->first, arrays.uniform->last, W);
     ChainRounds<W, kWithLength, kWithGrounds> rounds(arrays);
-    rounds.template run<false>(1, shared.begin);
-    rounds.template run<true>(shared.begin, shared.end);
-    rounds.template run<false>(shared.end, n + 1);
+    int s = 1;
+    for (const UniformSpan& run : arrays.uniform->all()) {
+        const SharedRounds shared = run.rounds(W);
+        if (shared.begin == shared.end) continue;
+        rounds.run(s, shared.begin);
+        rounds.run_shared(shared.begin, shared.end, run.lanes);
+        s = shared.end;
+    }
+    rounds.run(s, n + 1);
 }
 
 template <int W>
@@ -288,22 +300,22 @@ template <bool kLength>
 // Σ mat_energy over MATs 1 … size in eight interleaved partial sums (MAT s in lane
 // (s − 1) mod 8), added up in a fixed tree: the same bits on every build, and eight
 // independent additions in flight instead of one chain of them. Rounds of eight wholly
-// inside the level's run of alike MATs read its coefficients once.
+// inside one of the level's runs of alike MATs read its coefficients once.
 [[gnu::always_inline]] inline double level_energy(const CompiledLevel& lv) {
     const double* x = lv.x();
     const double* xp = lv.x_prev();
     const double inverse_dt_squared = 1.0 / (lv.dt * lv.dt);
-    const SharedRounds shared = shared_rounds(lv.uniform.first, lv.uniform.last, 8);
     Doubles8 sums{};
     int s = 1;
-    for (; s < shared.begin && s + 7 <= lv.size; s += 8)
-        sums += mat_energy<Doubles8>(lv, x, xp, inverse_dt_squared, s);
-    if (shared.begin < shared.end) {
-        const ChainCoefficients& c = lv.uniform.shared;
-        if (is_plus_zero(c.length))
-            add_shared_energy<false>(sums, x, xp, c, inverse_dt_squared, shared);
+    for (const UniformSpan& run : lv.uniform.all()) {
+        const SharedRounds shared = run.rounds(8);
+        if (shared.begin == shared.end) continue;
+        for (; s < shared.begin; s += 8)
+            sums += mat_energy<Doubles8>(lv, x, xp, inverse_dt_squared, s);
+        if (is_plus_zero(run.shared.length))
+            add_shared_energy<false>(sums, x, xp, run.shared, inverse_dt_squared, shared);
         else
-            add_shared_energy<true>(sums, x, xp, c, inverse_dt_squared, shared);
+            add_shared_energy<true>(sums, x, xp, run.shared, inverse_dt_squared, shared);
         s = shared.end;
     }
     for (; s + 7 <= lv.size; s += 8) sums += mat_energy<Doubles8>(lv, x, xp, inverse_dt_squared, s);

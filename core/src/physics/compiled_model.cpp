@@ -128,7 +128,7 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
         }
     }
     fold_grounds(lv);
-    find_uniform_span(lv);
+    find_uniform_runs(lv);
 }
 
 // Rate levels that share a divider tick together: they compile into one level, so links

@@ -39,7 +39,7 @@ void ParameterSmoother::advance(Simulation& sim) {
     }
     // The glides narrowed the chain loop's runs of alike MATs; the values they reached may
     // leave the MATs alike again (a knob that moves every damper of a string).
-    if (count_ == 0) sim.refresh_uniform_spans();
+    if (count_ == 0) sim.refresh_uniform_runs();
 }
 
 }  // namespace archet

@@ -19,10 +19,10 @@ auto& finger_field(Finger& f, ParameterSlot::Kind kind) {
                                        : f.pressure;
 }
 
-// What follows a change of MAT s's ground: its folded update, the run of alike MATs.
+// What follows a change of MAT s's ground: its folded update, its run of alike MATs.
 void ground_changed(CompiledLevel& lv, int s) {
     fold_ground(lv, s);
-    narrow_uniform_span(lv, s);
+    split_uniform_run(lv, s);
 }
 
 // A MAT's mass, with what follows it: T²/m, its folded ground, the modal points' responses.
@@ -34,8 +34,8 @@ void set_mass(CompiledLevel& lv, int s, double mass) {
 
 }  // namespace
 
-void Simulation::refresh_uniform_spans() {
-    for (auto& lv : model_.levels) find_uniform_span(lv);
+void Simulation::refresh_uniform_runs() {
+    for (auto& lv : model_.levels) find_uniform_runs(lv);
 }
 
 void Simulation::write_slot(const ParameterSlot& s, double v) {
@@ -47,18 +47,18 @@ void Simulation::write_slot(const ParameterSlot& s, double v) {
             break;
         case K::ChainK:
             lv.chain_k[s.index] = v;
-            narrow_uniform_span(lv, s.index);
+            split_uniform_run(lv, s.index);
             break;
         case K::ChainZ:
             lv.chain_zdt[s.index] = v / lv.dt;
-            narrow_uniform_span(lv, s.index);
+            split_uniform_run(lv, s.index);
             break;
         case K::ChainLength: {
             const Lia& l = model_.source.lias[lv.chain_element[s.index]];
             const bool forward = model_.source.mats[lv.element_of[s.index]].id == l.from;
             lv.chain_length[s.index] = forward ? v : -v;
             lv.has_chain_lengths = lv.has_chain_lengths || v != 0.0;
-            narrow_uniform_span(lv, s.index);
+            split_uniform_run(lv, s.index);
             break;
         }
         case K::LinkK:

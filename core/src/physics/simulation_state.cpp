@@ -68,7 +68,7 @@ void Simulation::load_state(const double* in) {
                    [&](auto& v) { v = static_cast<std::remove_reference_t<decltype(v)>>(*in++); });
     for (auto& lv : model_.levels) {  // the masses, grounds and chain links loaded
         fold_grounds(lv);
-        find_uniform_span(lv);
+        find_uniform_runs(lv);
         lv.has_chain_lengths = std::any_of(lv.chain_length.begin(), lv.chain_length.end(),
                                            [](double length) { return length != 0.0; });
     }

@@ -1,5 +1,6 @@
 #include "archet/physics/uniform_span.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 
@@ -18,7 +19,24 @@ ChainCoefficients chain_coefficients(const CompiledLevel& lv, int s) {
             lv.chain_length[s], lv.ground_k[s],  lv.ground_zdt[s], lv.ground_rest[s],
             lv.update_x[s],     lv.update_xp[s], lv.update_rest[s]};
 }
+
 }  // namespace
+
+UniformSpan::UniformSpan(int first, int last, const ChainCoefficients& shared)
+    : first(first), last(last), shared(shared) {
+    std::fill_n(lanes.k, 8, shared.k), std::fill_n(lanes.zdt, 8, shared.zdt);
+    std::fill_n(lanes.length, 8, shared.length), std::fill_n(lanes.c, 8, shared.c);
+    std::fill_n(lanes.a, 8, shared.a), std::fill_n(lanes.b, 8, shared.b);
+    std::fill_n(lanes.e, 8, shared.e);
+    for (int i = 0; i < 3; ++i) rounds_[i] = shared_rounds(first, last, 2 << i);
+}
+
+UniformSpan UniformSpan::part(int part_first, int part_last) const {
+    UniformSpan run = *this;
+    run.first = part_first, run.last = part_last;
+    for (int i = 0; i < 3; ++i) run.rounds_[i] = shared_rounds(part_first, part_last, 2 << i);
+    return run;
+}
 
 bool ChainCoefficients::operator==(const ChainCoefficients& o) const {
     return same_bits(c, o.c) && same_bits(mass, o.mass) && same_bits(k, o.k) &&
@@ -27,26 +45,56 @@ bool ChainCoefficients::operator==(const ChainCoefficients& o) const {
            same_bits(rest, o.rest) && same_bits(a, o.a) && same_bits(b, o.b) && same_bits(e, o.e);
 }
 
-void find_uniform_span(CompiledLevel& lv) {
-    lv.uniform = UniformSpan{};
+void UniformRuns::remove(int i) {
+    std::copy(run_.begin() + i + 1, run_.begin() + count_, run_.begin() + i);
+    --count_;
+}
+
+void UniformRuns::keep(const UniformSpan& run) {
+    if (run.length() < kShortest) return;
+    if (count_ == kCapacity) {
+        int shortest = 0;
+        for (int i = 1; i < count_; ++i)
+            if (run_[i].length() <= run_[shortest].length()) shortest = i;
+        if (run.length() <= run_[shortest].length()) return;
+        remove(shortest);
+    }
+    run_[count_++] = run;
+}
+
+void UniformRuns::split(int i, int s) {
+    const UniformSpan left = run_[i].part(run_[i].first, s - 1);
+    const UniformSpan right = run_[i].part(s + 1, run_[i].last);
+    const bool keep_left = left.length() >= kShortest, keep_right = right.length() >= kShortest;
+    if (keep_left && keep_right && count_ < kCapacity) {
+        std::copy_backward(run_.begin() + i + 1, run_.begin() + count_, run_.begin() + count_ + 1);
+        ++count_;
+        run_[i] = left, run_[i + 1] = right;
+    } else if (keep_left || keep_right) {
+        run_[i] = keep_left && (!keep_right || left.length() >= right.length()) ? left : right;
+    } else {
+        remove(i);
+    }
+}
+
+void find_uniform_runs(CompiledLevel& lv) {
+    lv.uniform.clear();
     int start = 1;
     for (int s = 1; s <= lv.size; ++s) {
         const bool run_ends =
             s == lv.size || !(chain_coefficients(lv, s + 1) == chain_coefficients(lv, start));
         if (!run_ends) continue;
-        if (s - start > lv.uniform.last - lv.uniform.first)
-            lv.uniform = {start, s, chain_coefficients(lv, start)};
+        lv.uniform.keep(UniformSpan(start, s, chain_coefficients(lv, start)));
         start = s + 1;
     }
 }
 
-void narrow_uniform_span(CompiledLevel& lv, int s) {
-    UniformSpan& run = lv.uniform;
-    if (s < run.first || s > run.last || chain_coefficients(lv, s) == run.shared) return;
-    if (s - run.first >= run.last - s)
-        run.last = s - 1;
-    else
-        run.first = s + 1;
+void split_uniform_run(CompiledLevel& lv, int s) {
+    const UniformRuns& runs = lv.uniform;
+    int i = 0;
+    while (i < runs.count() && runs[i].last < s) ++i;
+    if (i < runs.count() && runs[i].first <= s && !(chain_coefficients(lv, s) == runs[i].shared))
+        lv.uniform.split(i, s);
 }
 
 }  // namespace archet

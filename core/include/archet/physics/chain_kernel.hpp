@@ -60,7 +60,7 @@ template <class T>
 /// Z/T(x − x⁻)) is a·x + b·x⁻ + e with a = (2 − T²/m·K) − T²/m·Z/T, b = T²/m·Z/T − 1 and
 /// e = T²/m·K·rest (a MAT without a ground: 2, −1, 0). The same update up to rounding, in seven
 /// operations a MAT instead of twelve; call it again whenever T²/m or the ground changes (and
-/// then narrow_uniform_span(), as for any change of the chain loop's coefficients).
+/// then split_uniform_run(), as for any change of the chain loop's coefficients).
 void fold_ground(CompiledLevel& level, int s);
 /// fold_ground() for every MAT of the level.
 void fold_grounds(CompiledLevel& level);
@@ -69,18 +69,6 @@ void fold_grounds(CompiledLevel& level);
 /// with losses to its rest points); a few bridges do not repay the loop's extra flops.
 inline bool grounds_in_chain_loop(const CompiledLevel& level) {
     return 2 * level.grounds.size() > static_cast<std::size_t>(level.size);
-}
-
-/// The rounds of W MATs of the chain loop (they start at storage 1 + W·r) that lie wholly
-/// inside the run first … last: it broadcasts their coefficients. [begin, end), both of the
-/// form 1 + W·r; begin == end for an empty run or one too short to hold a round.
-struct SharedRounds {
-    int begin, end;
-};
-constexpr SharedRounds shared_rounds(int first, int last, int W) {
-    const int begin = 1 + W * ((first - 1 + W - 1) / W);  // the first round from `first` on
-    const int end = 1 + W * (last / W);                   // the first that would pass `last`
-    return {begin, end > begin ? end : begin};
 }
 
 /// Writes x[n+1] of every MAT of the level into `xn` from its chain links (and its grounds,

@@ -56,8 +56,8 @@ struct CompiledCrossLink {  ///< a link whose MATs run at other rate levels
 
 /// An oscillator's spring and damper to ground; its stiffness, damping/T and rest position are
 /// the level's ground_k, ground_zdt and ground_rest at `index`. Whatever changes them (or
-/// T²/m) calls fold_ground() for that MAT, then narrow_uniform_span(): the chain loop reads
-/// them folded into update_x, …, and broadcast over the run of alike MATs.
+/// T²/m) calls fold_ground() for that MAT, then split_uniform_run(): the chain loop reads
+/// them folded into update_x, …, and broadcast over each run of alike MATs.
 struct CompiledGround {
     int index = 0;
     int element = -1;
@@ -137,7 +137,7 @@ struct CompiledLevel {
     /// The update of a MAT with its ground, folded (see fold_ground()): x[n+1] =
     /// ((a·x[n] + b·x[n−1]) + e) + T²/m·(forces). Refreshed whenever T²/m or a ground changes.
     MatArray update_x, update_xp, update_rest;  ///< a, b, e per storage index
-    UniformSpan uniform;  ///< kept by whatever writes the arrays above (uniform_span.hpp)
+    UniformRuns uniform;  ///< kept by whatever writes the arrays above (uniform_span.hpp)
     std::vector<CompiledGesturePoint> gestures;
     std::vector<int> bows;     ///< indices into CompiledModel::bows
     std::vector<int> fingers;  ///< indices into CompiledModel::fingers

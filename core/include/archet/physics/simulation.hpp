@@ -40,8 +40,8 @@ class Simulation {
     double read_slot(const ParameterSlot& slot) const;
     /// After a batch of writes (a knob that scales every damper, the end of a glide): finds
     /// again the runs of alike MATs whose coefficients the chain loop broadcasts, which each
-    /// write could only narrow. O(MATs), no allocation.
-    void refresh_uniform_spans();
+    /// write could only split or shorten. O(MATs), no allocation.
+    void refresh_uniform_runs();
 
     /// The whole state of a running model (positions, link and bow states, parameters, the
     /// clock) as plain numbers: enough to resume it exactly, e.g. to re-render a take started
