@@ -325,6 +325,8 @@ TEST(RealtimeSafety, StepProbesAndOutputMakeNoForbiddenCall) {
     const auto mid_damping = sim.model().resolve_parameter({"k30", "damping"});
     const auto mid_mass = sim.model().resolve_parameter({"s20", "mass"});
     ASSERT_EQ(sim.model().levels[mid_damping.level].uniform.count(), 1);
+    const UniformRuns& runs = sim.model().levels[mid_damping.level].uniform;
+    int runs_after_splits[2] = {};
     double sink = 0;
     const RealtimeCalls calls = counted_on_marked_thread([&] {
         for (int i = 0; i < 48000; ++i) {
@@ -333,12 +335,19 @@ TEST(RealtimeSafety, StepProbesAndOutputMakeNoForbiddenCall) {
             for (std::size_t p = 0; p < sim.probe_count(); ++p) sink += sim.probe(p);
         }
         sim.write_slot(mu_d, 0.25);
-        // Each splits the string's run of alike MATs; then they are found afresh.
+        // Each splits the string's run of alike MATs, the loop then walks the runs, and they are
+        // found afresh.
         sim.write_slot(mid_damping, 2.0 * sim.read_slot(mid_damping));
+        runs_after_splits[0] = runs.count();
         sim.write_slot(mid_mass, 2.0 * sim.read_slot(mid_mass));
+        runs_after_splits[1] = runs.count();
+        for (int i = 0; i < 480; ++i) sim.step(), sink += sim.output();
         sim.refresh_uniform_runs();
+        for (int i = 0; i < 480; ++i) sim.step(), sink += sim.output();
     });
-    EXPECT_EQ(sim.model().levels[mid_damping.level].uniform.count(), 3);
+    EXPECT_EQ(runs_after_splits[0], 2);
+    EXPECT_EQ(runs_after_splits[1], 3);
+    EXPECT_EQ(runs.count(), 3);
     EXPECT_EQ(calls.total(), 0u) << calls.describe();
     EXPECT_TRUE(std::isfinite(sink));
 }

@@ -165,7 +165,7 @@ void make_alike(CompiledLevel& lv, int first, int last) {
 
 // The loop runs the rounds before a run of alike MATs, those wholly inside it (broadcast), and
 // those after: together exactly the rounds s = 1, 1 + W, … ≤ n of the plain loop, in order,
-// for every width, chain length and run (empty and narrowed ones too), on any CPU.
+// for every width, chain length and run (empty and short ones too), on any CPU.
 TEST(ChainKernel, SharedRoundsAreTheRoundsWhollyInsideTheRun) {
     for (int W : {2, 4, 8})
         for (int n = 0; n <= 40; ++n)
@@ -323,10 +323,12 @@ TEST(ChainKernel, AChangedMatSplitsItsRun) {
     EXPECT_EQ(change(45, 2 * shared.c), (Spans{{11, 29}, {31, 44}}));  // 46…50: too short
     EXPECT_EQ(change(35, 2 * shared.c), (Spans{{11, 29}, {36, 44}}));
     EXPECT_EQ(change(40, 2 * shared.c), (Spans{{11, 29}}));
+    EXPECT_EQ(change(11, 2 * shared.c), (Spans{{12, 29}}));  // a run's first MAT
+    EXPECT_EQ(change(29, 2 * shared.c), (Spans{{12, 28}}));  // and its last
     for (const UniformSpan& run : lv.uniform.all()) EXPECT_TRUE(run.shared == shared);
     // Compiled again (or a state loaded), the runs are found afresh: the same ones.
     find_uniform_runs(lv);
-    EXPECT_EQ(spans(lv), (Spans{{11, 29}}));
+    EXPECT_EQ(spans(lv), (Spans{{12, 28}}));
     make_alike(lv, 1, 59);
     EXPECT_EQ(spans(lv), (Spans{{1, 59}}));
 }
@@ -355,6 +357,12 @@ TEST(ChainKernel, EachStringHasItsOwnRunAndTheLongestAreKept) {
     split_uniform_run(lv, 90);
     EXPECT_EQ(spans(lv)[3], std::pair(91, 120));
     EXPECT_TRUE(lv.uniform[3].shared == shared);
+    // Of as long runs, the first ones are kept.
+    CompiledLevel alike = random_level(120, false, true, random);
+    for (int first = 1; first < 110; first += 11) make_alike(alike, first, first + 9);
+    EXPECT_EQ(
+        spans(alike),
+        (Spans{{1, 10}, {12, 21}, {23, 32}, {34, 43}, {45, 54}, {56, 65}, {67, 76}, {78, 87}}));
 }
 
 // Several runs in one level, with coefficients of their own: every build gives the scheme's
@@ -366,42 +374,45 @@ TEST(ChainKernel, SeveralRunsGiveTheSchemesBits) {
     for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
         if (!chain_build_runs_here(build)) continue;
         for (bool lengths : {false, true})
-            for (bool grounds : {false, true}) {
-                CompiledLevel lv = random_level(120, lengths, grounds, random);
-                for (auto [first, last] : {std::pair{2, 30}, {31, 47}, {50, 58}, {70, 119}})
-                    make_alike(lv, first, last);
-                ASSERT_EQ(lv.uniform.count(), 4);
-                std::vector<double> forces;
-                const std::vector<double> expected = scheme(lv, forces);
-                CompiledLevel read_all = lv;
-                read_all.uniform = UniformRuns{};
-                const double expected_energy = level_stored_energy(read_all, build);
-                CompiledLevel for_energy = lv;
-                const double nan = std::numeric_limits<double>::quiet_NaN();
-                for (const UniformSpan& run : lv.uniform.all()) {
-                    const SharedRounds loop = shared_rounds(run.first, run.last, lanes(build));
-                    for (int s = loop.begin; s < loop.end; ++s)
-                        for (auto* a : {&lv.coeff, &lv.chain_k, &lv.chain_zdt, &lv.chain_length,
-                                        &lv.update_x, &lv.update_xp, &lv.update_rest})
-                            (*a)[s] = nan;
-                    const SharedRounds sum = shared_rounds(run.first, run.last, 8);
-                    for (int s = sum.begin; s < sum.end; ++s)
-                        for (auto* a :
-                             {&for_energy.mass, &for_energy.chain_k, &for_energy.chain_zdt,
-                              &for_energy.chain_length, &for_energy.ground_k,
-                              &for_energy.ground_zdt, &for_energy.ground_rest})
-                            (*a)[s] = nan;
+            for (bool grounds : {false, true})
+                for (const Spans& layout :  // apart, adjacent, from MAT 1, of eight, to the end
+                     {Spans{{2, 30}, {31, 47}, {50, 58}, {70, 119}},
+                      Spans{{1, 8}, {9, 16}, {17, 24}, {25, 119}},
+                      Spans{{3, 11}, {12, 20}, {60, 68}, {100, 119}}}) {
+                    CompiledLevel lv = random_level(120, lengths, grounds, random);
+                    for (auto [first, last] : layout) make_alike(lv, first, last);
+                    ASSERT_EQ(spans(lv), layout);
+                    std::vector<double> forces;
+                    const std::vector<double> expected = scheme(lv, forces);
+                    CompiledLevel read_all = lv;
+                    read_all.uniform = UniformRuns{};
+                    const double expected_energy = level_stored_energy(read_all, build);
+                    CompiledLevel for_energy = lv;
+                    const double nan = std::numeric_limits<double>::quiet_NaN();
+                    for (const UniformSpan& run : lv.uniform.all()) {
+                        const SharedRounds loop = shared_rounds(run.first, run.last, lanes(build));
+                        for (int s = loop.begin; s < loop.end; ++s)
+                            for (auto* a : {&lv.coeff, &lv.chain_k, &lv.chain_zdt, &lv.chain_length,
+                                            &lv.update_x, &lv.update_xp, &lv.update_rest})
+                                (*a)[s] = nan;
+                        const SharedRounds sum = shared_rounds(run.first, run.last, 8);
+                        for (int s = sum.begin; s < sum.end; ++s)
+                            for (auto* a :
+                                 {&for_energy.mass, &for_energy.chain_k, &for_energy.chain_zdt,
+                                  &for_energy.chain_length, &for_energy.ground_k,
+                                  &for_energy.ground_zdt, &for_energy.ground_rest})
+                                (*a)[s] = nan;
+                    }
+                    SCOPED_TRACE(std::string(chain_build_name(build)) +
+                                 (lengths ? " lengths" : "") + (grounds ? " grounds" : ""));
+                    integrate_chain(lv, lv.buffer[1].data(), build);
+                    for (int s = 1; s <= lv.size; ++s)
+                        ASSERT_EQ(std::memcmp(&expected[s], &lv.buffer[1][s], 8), 0) << "MAT " << s;
+                    const double energy = level_stored_energy(for_energy, build);
+                    ASSERT_EQ(std::memcmp(&expected_energy, &energy, 8), 0)
+                        << expected_energy << " vs " << energy;
+                    ++checked;
                 }
-                SCOPED_TRACE(std::string(chain_build_name(build)) + (lengths ? " lengths" : "") +
-                             (grounds ? " grounds" : ""));
-                integrate_chain(lv, lv.buffer[1].data(), build);
-                for (int s = 1; s <= lv.size; ++s)
-                    ASSERT_EQ(std::memcmp(&expected[s], &lv.buffer[1][s], 8), 0) << "MAT " << s;
-                const double energy = level_stored_energy(for_energy, build);
-                ASSERT_EQ(std::memcmp(&expected_energy, &energy, 8), 0)
-                    << expected_energy << " vs " << energy;
-                ++checked;
-            }
     }
     EXPECT_GT(checked, 0);
 }

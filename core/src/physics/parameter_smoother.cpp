@@ -37,7 +37,7 @@ void ParameterSmoother::advance(Simulation& sim) {
         else
             ++i;
     }
-    // The glides narrowed the chain loop's runs of alike MATs; the values they reached may
+    // The glides split the chain loop's runs of alike MATs; the values they reached may
     // leave the MATs alike again (a knob that moves every damper of a string).
     if (count_ == 0) sim.refresh_uniform_runs();
 }

@@ -84,7 +84,10 @@ void find_uniform_runs(CompiledLevel& lv) {
         const bool run_ends =
             s == lv.size || !(chain_coefficients(lv, s + 1) == chain_coefficients(lv, start));
         if (!run_ends) continue;
-        lv.uniform.keep(UniformSpan(start, s, chain_coefficients(lv, start)));
+        // Short runs are not kept: not worth filling their lanes (a model swap does this on the
+        // real-time thread).
+        if (s - start + 1 >= UniformRuns::kShortest)
+            lv.uniform.keep(UniformSpan(start, s, chain_coefficients(lv, start)));
         start = s + 1;
     }
 }

@@ -68,6 +68,12 @@ class UniformRuns {
     /// Shorter runs are not kept: they could not hold a whole round of the widest loop.
     static constexpr int kShortest = 8;
 
+    UniformRuns() = default;
+    // Copied even when moved: a moved-from vector would be empty, and the next split or find
+    // would write past it.
+    UniformRuns(const UniformRuns&) = default;
+    UniformRuns& operator=(const UniformRuns&) = default;
+
     std::span<const UniformSpan> all() const {
         return {run_.data(), static_cast<std::size_t>(count_)};
     }
@@ -97,8 +103,8 @@ void find_uniform_runs(CompiledLevel& level);
 
 /// After MAT s's coefficients (its mass, ground or chain link to s + 1) changed while playing:
 /// if s no longer matches its run, the run is split around it into the two sides, each kept if
-/// long enough (only the longer one when there is no room for both). O(kCapacity), real-time
-/// safe.
+/// long enough (only the longer one when there is no room for both). Constant time (at most
+/// kCapacity runs are moved), real-time safe.
 void split_uniform_run(CompiledLevel& level, int s);
 
 }  // namespace archet
