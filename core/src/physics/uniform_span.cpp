@@ -32,10 +32,7 @@ UniformSpan::UniformSpan(int first, int last, const ChainCoefficients& shared)
 }
 
 UniformSpan UniformSpan::part(int part_first, int part_last) const {
-    UniformSpan run = *this;
-    run.first = part_first, run.last = part_last;
-    for (int i = 0; i < 3; ++i) run.rounds_[i] = shared_rounds(part_first, part_last, 2 << i);
-    return run;
+    return UniformSpan(part_first, part_last, shared);
 }
 
 bool ChainCoefficients::operator==(const ChainCoefficients& o) const {
