@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -56,6 +57,41 @@ void expect_every_deadline_kept(const nlohmann::json& stats, const test::Deadlin
     EXPECT_EQ(xruns, 0u) << figures;
     EXPECT_EQ(late_blocks, 0u) << figures;
     EXPECT_FALSE(slow_block) << figures;
+}
+
+// The witness is only as good as the stalls it sees. A child process stops this one (all its
+// threads, as a host taking the CPUs away does) for longer than half a period, at every phase
+// of the witness's period, and the witness must count each stall: once a period, it saw a third
+// of them.
+TEST(DeadlineWitness, CountsEveryStallLongerThanHalfAPeriod) {
+    constexpr int kStalls = 24;
+    constexpr std::chrono::nanoseconds kStall = kPeriodOf64Frames * 3 / 4;
+    test::DeadlineWitness machine(kPeriodOf64Frames);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the witness is waking
+    const pid_t self = ::getpid();
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        // Only async-signal-safe calls after a fork from threads.
+        for (int i = 0; i < kStalls; ++i) {
+            // Apart by a period and a 24th more each time: every phase of the witness's wake-ups.
+            const timespec apart{0, static_cast<long>(kPeriodOf64Frames.count() * (3 + i / 24.0))};
+            ::nanosleep(&apart, nullptr);
+            ::kill(self, SIGSTOP);
+            const timespec stall{0, static_cast<long>(kStall.count())};
+            ::nanosleep(&stall, nullptr);
+            ::kill(self, SIGCONT);
+        }
+        ::_exit(0);
+    }
+    int status = 0;
+    while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+    }
+    machine.stop();
+    ASSERT_TRUE(WIFEXITED(status));
+    if (!machine.realtime()) GTEST_SKIP() << "no SCHED_FIFO here: " << machine.describe();
+    // Each CPU's witness sees each stall; it may also see the machine's own.
+    EXPECT_GE(machine.missed(), static_cast<std::uint64_t>(kStalls)) << machine.describe();
 }
 
 TEST(Audio, PlaysIntoTheNullSinkInRealTimeWithoutAllocating) {

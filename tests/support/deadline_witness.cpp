@@ -47,10 +47,10 @@ void DeadlineWitness::watch(int cpu) {
     param.sched_priority = sched_get_priority_max(SCHED_FIFO);
     if (pthread_setschedparam(pthread_self(), SCHED_FIFO, &param) != 0) realtime_.store(false);
 
-    const std::int64_t period = period_.count();
+    const std::int64_t period = period_.count(), interval = period / kWakeupsPerPeriod;
     std::int64_t deadline = monotonic_ns();
     while (running_.load(std::memory_order_relaxed)) {
-        deadline += period;
+        deadline += interval;
         const timespec t{static_cast<time_t>(deadline / 1'000'000'000),
                          static_cast<long>(deadline % 1'000'000'000)};
         while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &t, nullptr) == EINTR) {
@@ -63,21 +63,22 @@ void DeadlineWitness::watch(int cpu) {
         }
         // A stall of several periods misses the deadline of each: a device's driver counts
         // every cycle it could not serve (JACK reports an xrun per cycle).
-        if (late > period / 2)
-            missed_.fetch_add(1 + static_cast<std::uint64_t>(late / period),
+        const std::int64_t stall = late + interval / 2;
+        if (stall > period / 2)
+            missed_.fetch_add(1 + static_cast<std::uint64_t>(stall / period),
                               std::memory_order_relaxed);
-        if (late > period) deadline = monotonic_ns();  // start afresh, as a device would
+        if (late > interval) deadline = monotonic_ns();  // start afresh, as a device would
     }
 }
 
 std::string DeadlineWitness::describe() const {
     std::ostringstream s;
     s << "this machine's own " << (realtime() ? "top-priority SCHED_FIFO" : "normal-priority")
-      << " witness threads (one per CPU, waking every "
+      << " witness threads (one per CPU, waking " << kWakeupsPerPeriod << " times a period of "
       << static_cast<double>(period_.count()) / 1000.0 << " us) missed " << missed()
       << " deadlines in " << wakeups_.load()
-      << " wake-ups (one per wake-up more than half a period late, and one more per whole "
-         "period it was late); worst wake-up "
+      << " wake-ups (one per stall longer than half a period, and one more per whole period it "
+         "lasted); worst wake-up "
       << worst_lateness_us() << " us late";
     return s.str();
 }
