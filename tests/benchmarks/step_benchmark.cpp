@@ -47,6 +47,19 @@ void BM_BowedString(benchmark::State& state) {
 }
 BENCHMARK(BM_BowedString)->Arg(110)->Arg(220)->Arg(440)->Arg(880);
 
+// The paper's chaplet of 30 or 60 masses at 220 Hz in modal form (--structure modal): an
+// oscillator per mode, and three modal points (the ends, the bowing point) of a term per mode,
+// whose sums the step makes after each force on the string.
+void BM_ModalString(benchmark::State& state) {
+    archet::BowedStringOptions o;
+    o.pitch = 220;
+    o.paper = true;
+    o.masses = static_cast<int>(state.range(0));
+    o.structure = archet::Structure::Modal;
+    run_steps(state, archet::build_bowed_string(o));
+}
+BENCHMARK(BM_ModalString)->Arg(30)->Arg(60);
+
 // The chain loop alone, in each build: on a 60-mass string (with its losses to rest, as
 // shipped) and on long bare chains (archet bench --chain), to split a step's cost between
 // the loop and the rest.

@@ -223,11 +223,23 @@ TEST(Take, AKilledTakeIsRecoveredByRender) {
     EXPECT_EQ(test::read_file(dir / "twice.wav"), test::read_file(dir / "again.wav"));
 }
 
+// Marks the take in `dir / name` as played under `revision`, and renders it to
+// `name`-`revision`.wav.
+test::CommandResult render_as_of(const std::filesystem::path& dir, const std::string& name,
+                                 int revision) {
+    nlohmann::json description = read_json(dir / name / "take.json");
+    description["scheme"] = revision;
+    std::ofstream(dir / name / "take.json") << description.dump(2);
+    return test::run_archet({"render", "--take", (dir / name).string(), "-o",
+                             (dir / (name + "-" + std::to_string(revision) + ".wav")).string()});
+}
+
 // A take records the scheme revision it was played with. One played before the scheme's
 // arithmetic last changed re-renders to the byte if its model computes the same under both
-// (the golden take, of revision 1: its string's grounds are not in the chain loop), and with a
-// note that it may differ by rounding if not (the shipped string's are); a revision this
-// Archet does not know is refused.
+// (the golden take, of revision 1: its string's grounds are not in the chain loop; the shipped
+// string under revision 2: its modal points have at most eight terms), and with a note that it
+// may differ by rounding if not (the shipped string's grounds since revision 2, a modal
+// string's long points since revision 3); a revision this Archet does not know is refused.
 TEST(Take, ATakeOfAnOlderSchemeSaysWhenItMayDiffer) {
     const auto dir = test::temp_dir("older_scheme");
     std::filesystem::copy(test::test_data("golden/take"), dir / "golden");
@@ -239,12 +251,8 @@ TEST(Take, ATakeOfAnOlderSchemeSaysWhenItMayDiffer) {
     r = test::run_archet({"play", test::resource("models/bowed-string-220.json").string(),
                           "--duration", "0.3", "--take", (dir / "shipped").string()});
     ASSERT_EQ(r.status, 0) << r.err;
-    nlohmann::json description = read_json(dir / "shipped" / "take.json");
-    ASSERT_EQ(description["scheme"], kSchemeRevision);
-    description["scheme"] = 1;
-    std::ofstream(dir / "shipped" / "take.json") << description.dump(2);
-    r = test::run_archet(
-        {"render", "--take", (dir / "shipped").string(), "-o", (dir / "shipped.wav").string()});
+    ASSERT_EQ(read_json(dir / "shipped" / "take.json")["scheme"], kSchemeRevision);
+    r = render_as_of(dir, "shipped", 1);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("was played with scheme revision 1; this Archet computes its model "
                          "with revision " +
@@ -253,13 +261,28 @@ TEST(Take, ATakeOfAnOlderSchemeSaysWhenItMayDiffer) {
         << r.err;
     EXPECT_NE(r.err.find("may differ from take.wav by rounding"), std::string::npos) << r.err;
 
-    description["scheme"] = kSchemeRevision + 1;
-    std::ofstream(dir / "shipped" / "take.json") << description.dump(2);
-    r = test::run_archet(
-        {"render", "--take", (dir / "shipped").string(), "-o", (dir / "newer.wav").string()});
+    r = render_as_of(dir, "shipped", 2);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find("scheme revision"), std::string::npos) << r.err;
+    EXPECT_EQ(test::read_file(dir / "shipped-2.wav"), test::read_file(dir / "shipped" / "take.wav"))
+        << "revision 3 computes the shipped string as revision 2 did";
+
+    static_assert(kSchemeRevision == 3, "say which model computes differently since the newest");
+    r = test::run_archet({"new", "bowed-string", "--structure", "modal", "--masses", "30", "-o",
+                          (dir / "modal.json").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = test::run_archet({"play", (dir / "modal.json").string(), "--duration", "0.3", "--take",
+                          (dir / "modal").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = render_as_of(dir, "modal", 2);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("was played with scheme revision 2"), std::string::npos) << r.err;
+
+    r = render_as_of(dir, "shipped", kSchemeRevision + 1);
     EXPECT_EQ(r.status, 2) << r.err;
     EXPECT_NE(r.err.find("take.json.scheme"), std::string::npos) << r.err;
-    EXPECT_FALSE(std::filesystem::exists(dir / "newer.wav"));
+    EXPECT_FALSE(
+        std::filesystem::exists(dir / ("shipped-" + std::to_string(kSchemeRevision + 1) + ".wav")));
 }
 
 // A take being recorded is not "recovered" under its recorder's feet: render refuses it.

@@ -6,6 +6,7 @@
 #include "archet/common/input_error.hpp"
 #include "archet/model/model_parameters.hpp"
 #include "archet/physics/chain_kernel.hpp"
+#include "archet/physics/modal_point_position.hpp"
 #include "archet/physics/uniform_span.hpp"
 
 namespace archet {
@@ -162,12 +163,13 @@ void compile_modal_points(CompiledModel& c, const Model& model) {
         CompiledModalPoint point;
         point.index = p.index;
         point.weights = m.weights;
-        for (std::size_t k = 0; k < m.modes.size(); ++k) {
-            const int mode = slot_of(c, m.modes[k]).index;
-            point.modes.push_back(mode);
-            lv.x()[p.index] += m.weights[k] * lv.x()[mode];
-            lv.x_prev()[p.index] += m.weights[k] * lv.x_prev()[mode];
-        }
+        for (const auto& mode : m.modes) point.modes.push_back(slot_of(c, mode).index);
+        bool in_order = true;
+        for (std::size_t k = 1; k < point.modes.size(); ++k)
+            in_order = in_order && point.modes[k] == point.modes[0] + static_cast<int>(k);
+        point.first_mode = in_order ? point.modes[0] : -1;
+        lv.x()[p.index] = modal_point_position(point, lv.x(), lv.x()[p.index]);
+        lv.x_prev()[p.index] = modal_point_position(point, lv.x_prev(), lv.x_prev()[p.index]);
         point.coeff = modal_point_response(lv, point);
         lv.modal_point_of[p.index] = static_cast<int>(lv.modal_points.size());
         lv.modal_points.push_back(std::move(point));

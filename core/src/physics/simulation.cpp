@@ -1,6 +1,7 @@
 #include "archet/physics/simulation.hpp"
 
 #include "archet/physics/chain_kernel.hpp"
+#include "archet/physics/modal_point_position.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -244,9 +245,7 @@ void Simulation::integrate(CompiledLevel& lv) {
     if (!lv.modal_points.empty()) {
         for (const auto& p : lv.modal_points) {
             const double force = ext[p.index] + held[p.index];
-            if (force == 0.0) continue;
-            for (std::size_t k = 0; k < p.modes.size(); ++k)
-                xn[p.modes[k]] += c[p.modes[k]] * p.weights[k] * force;
+            if (force != 0.0) add_modal_force(p, c, xn, force);
         }
         update_modal_points(lv);
     }
@@ -263,18 +262,12 @@ void Simulation::integrate(CompiledLevel& lv) {
 
 void Simulation::update_modal_points(CompiledLevel& lv) {
     double* xn = lv.x_next();
-    for (const auto& p : lv.modal_points) {
-        double x = 0;
-        for (std::size_t k = 0; k < p.modes.size(); ++k) x += p.weights[k] * xn[p.modes[k]];
-        xn[p.index] = x;
-    }
+    for (const auto& p : lv.modal_points) xn[p.index] = modal_point_position(p, xn);
 }
 
 void Simulation::apply_modal_force(CompiledLevel& lv, int point, double force) {
     double* xn = lv.x_next();
-    const auto& p = lv.modal_points[point];
-    for (std::size_t k = 0; k < p.modes.size(); ++k)
-        xn[p.modes[k]] += lv.coeff[p.modes[k]] * p.weights[k] * force;
+    add_modal_force(lv.modal_points[point], lv.coeff.data(), xn, force);
     update_modal_points(lv);  // every point of the body moves with its modes
 }
 

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "archet/physics/chain_kernel.hpp"
+#include "archet/physics/modal_point_position.hpp"
 #include "archet/physics/simulation.hpp"
 #include "archet/physics/uniform_span.hpp"
 
@@ -86,12 +87,8 @@ void Simulation::refresh_modal_points() {
     for (auto& lv : model_.levels)
         for (auto& p : lv.modal_points) {
             p.coeff = modal_point_response(lv, p);
-            double now = 0, before = 0;
-            for (std::size_t k = 0; k < p.modes.size(); ++k) {
-                now += p.weights[k] * lv.x()[p.modes[k]];
-                before += p.weights[k] * lv.x_prev()[p.modes[k]];
-            }
-            lv.x()[p.index] = now, lv.x_prev()[p.index] = before;
+            lv.x()[p.index] = modal_point_position(p, lv.x());
+            lv.x_prev()[p.index] = modal_point_position(p, lv.x_prev());
         }
 }
 

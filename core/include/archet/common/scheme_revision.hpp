@@ -7,9 +7,11 @@
 //   1  up to December 2026
 //   2  a level that takes its grounds in the chain loop folds them into the update's
 //      coefficients (docs/physics.md, The scheme)
+//   3  a modal point of more than eight terms sums them in eight interleaved partial sums
+//      (physics/modal_point_position.hpp)
 
 namespace archet {
 
-constexpr int kSchemeRevision = 2;
+constexpr int kSchemeRevision = 3;
 
 }  // namespace archet

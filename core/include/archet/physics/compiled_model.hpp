@@ -79,6 +79,7 @@ struct CompiledGesturePoint {
 struct CompiledModalPoint {  ///< x = Σ weight·x(mode); a force F on it moves each mode by weight·F
     int index = 0;           ///< storage index of the point
     std::vector<int> modes;  ///< storage indices of its modes, same level
+    int first_mode = -1;     ///< modes[k] = first_mode + k when they lie so, else −1
     std::vector<double> weights;
     double coeff = 0;  ///< Σ weight²·T²/m: its displacement per newton over a step
 };

@@ -8,7 +8,8 @@ namespace archet {
 
 /// Whether `model` computes other bits under this Archet's revision than under `revision`
 /// (1 … kSchemeRevision): from revision 2 on, a level whose chain loop takes its grounds folds
-/// them into the update's coefficients.
+/// them into the update's coefficients; from revision 3 on, a modal point of more than eight
+/// terms sums them in interleaved partial sums.
 bool computes_differently_since(const CompiledModel& model, int revision);
 
 }  // namespace archet

@@ -1,0 +1,91 @@
+#pragma once
+// Where a modal point is: the weighted sum of its modes' positions, the one sum the step makes
+// again after every force on a modal body (see Simulation::update_modal_points()).
+//
+// A point of up to eight terms (a bridge on a few body modes, a bow spread over three masses)
+// adds them in order. A longer one (a string in modal form, one term per mode) adds them in
+// eight interleaved partial sums, term k in sum k mod 8, and the sums in a fixed tree: in order,
+// each term waits for the one before, and sixty of them made a modal string five times as
+// costly as the same string as a chain. The tree is revision 3 of the scheme's arithmetic
+// (common/scheme_revision.hpp); every build gives the same bits, since each partial sum keeps
+// its order.
+
+#include <cstddef>
+
+#include "archet/physics/compiled_model.hpp"
+
+namespace archet {
+
+/// Points of more terms than this sum them in as many interleaved partial sums.
+inline constexpr std::size_t kModalSumLanes = 8;
+
+namespace modal_detail {
+
+// The sums and the moves below over a point's modes, wherever they lie in storage (`mode`
+// gives mode k's index): a point whose modes lie in order reads them as one run of storage,
+// which the compiler can load in whole vectors.
+// Two lanes in one SSE2 register, on every build: the compiler, left to vectorise the eight
+// partial sums itself, shuffles and spills them.
+typedef double Pair __attribute__((vector_size(16)));
+
+template <class Mode>
+inline Pair pair_at(const double* x, Mode mode, std::size_t k) {
+    return Pair{x[mode(k)], x[mode(k + 1)]};
+}
+
+template <class Mode>
+inline double sum(const double* weight, std::size_t n, Mode mode, const double* x, double start) {
+    if (n <= kModalSumLanes) {
+        double total = start;
+        for (std::size_t k = 0; k < n; ++k) total += weight[k] * x[mode(k)];
+        return total;
+    }
+    Pair lanes[kModalSumLanes / 2] = {};  // partial sums 0 and 1, 2 and 3, …
+    std::size_t k = 0;
+    for (; k + kModalSumLanes <= n; k += kModalSumLanes)
+        for (std::size_t j = 0; j < kModalSumLanes / 2; ++j)
+            lanes[j] += pair_at(
+                            weight, [](std::size_t i) { return i; }, k + 2 * j) *
+                        pair_at(x, mode, k + 2 * j);
+    for (std::size_t i = 0; k + i < n; ++i) lanes[i / 2][i % 2] += weight[k + i] * x[mode(k + i)];
+    return start + (((lanes[0][0] + lanes[0][1]) + (lanes[1][0] + lanes[1][1])) +
+                    ((lanes[2][0] + lanes[2][1]) + (lanes[3][0] + lanes[3][1])));
+}
+
+template <class Mode>
+inline void move(const double* weight, std::size_t n, Mode mode, const double* coeff, double* xn,
+                 double force) {
+    for (std::size_t k = 0; k < n; ++k) xn[mode(k)] += coeff[mode(k)] * weight[k] * force;
+}
+
+}  // namespace modal_detail
+
+/// `start` + Σ weight·x(mode) over the point's modes, x indexed by storage.
+inline double modal_point_position(const CompiledModalPoint& point, const double* x,
+                                   double start = 0.0) {
+    const std::size_t n = point.modes.size();
+    if (point.first_mode >= 0)
+        return modal_detail::sum(
+            point.weights.data(), n, [](std::size_t k) { return k; }, x + point.first_mode, start);
+    const int* mode = point.modes.data();
+    return modal_detail::sum(
+        point.weights.data(), n, [mode](std::size_t k) { return mode[k]; }, x, start);
+}
+
+/// Moves each of the point's modes by what `force` on the point does to it over a step,
+/// T²/m·weight·force (`coeff` is the level's T²/m).
+inline void add_modal_force(const CompiledModalPoint& point, const double* coeff, double* xn,
+                            double force) {
+    const std::size_t n = point.modes.size();
+    if (point.first_mode >= 0) {
+        modal_detail::move(
+            point.weights.data(), n, [](std::size_t k) { return k; }, coeff + point.first_mode,
+            xn + point.first_mode, force);
+        return;
+    }
+    const int* mode = point.modes.data();
+    modal_detail::move(
+        point.weights.data(), n, [mode](std::size_t k) { return mode[k]; }, coeff, xn, force);
+}
+
+}  // namespace archet

@@ -1,0 +1,188 @@
+// A modal point's position, the sum the step makes after every force on a modal body
+// (physics/modal_point_position.hpp): its terms in order up to eight, in eight interleaved
+// partial sums added in a fixed tree beyond (revision 3 of the scheme), to the same bits
+// wherever its modes lie in storage.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "archet/builders/bowed_string.hpp"
+#include "archet/common/scheme_revision.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "archet/physics/modal_point_position.hpp"
+#include "archet/physics/scheme_changes.hpp"
+#include "archet/physics/simulation.hpp"
+
+namespace archet {
+namespace {
+
+// A point of n terms over storage 1 … n, and positions there: its modes in storage order
+// (read as one run) or shuffled (read one by one), the same term for each k either way.
+struct PointAndStorage {
+    CompiledModalPoint point;
+    std::vector<double> x;
+};
+
+PointAndStorage random_point(std::size_t n, bool in_order, std::mt19937_64& random) {
+    std::uniform_real_distribution<double> value(-1.0, 1.0);
+    PointAndStorage p;
+    p.x.assign(n + 2, 0.0);
+    std::vector<int> where(n);
+    std::iota(where.begin(), where.end(), 1);
+    if (!in_order) std::shuffle(where.begin(), where.end(), random);
+    for (std::size_t k = 0; k < n; ++k) {
+        p.point.modes.push_back(where[k]);
+        p.point.weights.push_back(value(random));
+        p.x[where[k]] = value(random) * std::pow(10.0, static_cast<int>(k % 7) - 3);
+    }
+    p.point.first_mode = in_order ? 1 : -1;
+    return p;
+}
+
+double term(const PointAndStorage& p, std::size_t k) {
+    return p.point.weights[k] * p.x[p.point.modes[k]];
+}
+
+std::uint64_t bits(double v) {
+    return std::bit_cast<std::uint64_t>(v);
+}
+
+TEST(ModalPoint, UpToEightTermsAddInOrder) {
+    std::mt19937_64 random(1);
+    for (std::size_t n = 1; n <= kModalSumLanes; ++n)
+        for (bool in_order : {true, false})
+            for (int trial = 0; trial < 100; ++trial) {
+                const PointAndStorage p = random_point(n, in_order, random);
+                double expected = 0.25;
+                for (std::size_t k = 0; k < n; ++k) expected += term(p, k);
+                EXPECT_EQ(bits(modal_point_position(p.point, p.x.data(), 0.25)), bits(expected))
+                    << n << " terms";
+            }
+}
+
+TEST(ModalPoint, LongerSumsAddEightInterleavedPartialSumsInAFixedTree) {
+    std::mt19937_64 random(2);
+    for (std::size_t n : {9, 15, 16, 17, 23, 60, 61, 200})
+        for (int trial = 0; trial < 100; ++trial) {
+            const PointAndStorage in_order = random_point(n, true, random);
+            double lane[8] = {};
+            long double exact = 0, magnitude = 0;
+            for (std::size_t k = 0; k < n; ++k) {
+                lane[k % 8] += term(in_order, k);
+                exact += static_cast<long double>(in_order.point.weights[k]) *
+                         in_order.x[in_order.point.modes[k]];
+                magnitude += std::abs(term(in_order, k));
+            }
+            const double expected = -0.5 + (((lane[0] + lane[1]) + (lane[2] + lane[3])) +
+                                            ((lane[4] + lane[5]) + (lane[6] + lane[7])));
+            const double sum = modal_point_position(in_order.point, in_order.x.data(), -0.5);
+            ASSERT_EQ(bits(sum), bits(expected)) << n << " terms";
+            // A sum, whatever its order: within rounding of the exact one.
+            EXPECT_LE(std::abs(static_cast<long double>(sum) - (exact - 0.5L)),
+                      static_cast<long double>(n + 2) * 0x1p-52L * (magnitude + 0.5L));
+
+            // The same terms with the modes shuffled in storage: the same bits.
+            PointAndStorage shuffled = in_order;
+            std::vector<int> where(n);
+            std::iota(where.begin(), where.end(), 1);
+            std::shuffle(where.begin(), where.end(), random);
+            std::fill(shuffled.x.begin(), shuffled.x.end(), 0.0);
+            for (std::size_t k = 0; k < n; ++k) {
+                shuffled.point.modes[k] = where[k];
+                shuffled.x[where[k]] = in_order.x[in_order.point.modes[k]];
+            }
+            shuffled.point.first_mode = -1;
+            EXPECT_EQ(bits(modal_point_position(shuffled.point, shuffled.x.data(), -0.5)),
+                      bits(expected));
+        }
+}
+
+TEST(ModalPoint, AForceMovesEachModeByItsShareWhereverTheModesLie) {
+    std::mt19937_64 random(3);
+    for (std::size_t n : {1, 3, 8, 9, 60}) {
+        const PointAndStorage in_order = random_point(n, true, random);
+        PointAndStorage shuffled = random_point(n, false, random);
+        shuffled.point.weights = in_order.point.weights;
+        std::vector<double> coeff(n + 2), coeff_shuffled(n + 2);
+        std::vector<double> moved(n + 2, 0.5), moved_shuffled(n + 2, 0.5);
+        for (std::size_t k = 0; k < n; ++k) {
+            coeff[in_order.point.modes[k]] = 1e-6 * static_cast<double>(k + 1);
+            coeff_shuffled[shuffled.point.modes[k]] = coeff[in_order.point.modes[k]];
+        }
+        add_modal_force(in_order.point, coeff.data(), moved.data(), 0.3);
+        add_modal_force(shuffled.point, coeff_shuffled.data(), moved_shuffled.data(), 0.3);
+        for (std::size_t k = 0; k < n; ++k) {
+            const double expected =
+                0.5 + coeff[in_order.point.modes[k]] * in_order.point.weights[k] * 0.3;
+            EXPECT_EQ(bits(moved[in_order.point.modes[k]]), bits(expected));
+            EXPECT_EQ(bits(moved_shuffled[shuffled.point.modes[k]]), bits(expected));
+        }
+        EXPECT_EQ(moved[0], 0.5) << "nothing else moves";
+        EXPECT_EQ(moved[n + 1], 0.5);
+    }
+}
+
+BowedStringOptions modal_string() {
+    BowedStringOptions o;
+    o.pitch = 220;
+    o.paper = true;
+    o.masses = 60;
+    o.structure = Structure::Modal;
+    return o;
+}
+
+// The compiler reads a point's modes as one run when they lie in order (a modal string's do),
+// and a whole bowed stroke plays to the same bits as reading them one by one.
+TEST(ModalPoint, AModalStringReadsItsModesAsOneRunToTheSameBits) {
+    const CompiledModel compiled = compile(build_bowed_string(modal_string()));
+    CompiledModel one_by_one = compiled;
+    int long_points = 0;
+    for (auto& lv : one_by_one.levels)
+        for (auto& p : lv.modal_points) {
+            ASSERT_GE(p.first_mode, 0) << "a modal string's modes lie in order";
+            for (std::size_t k = 0; k < p.modes.size(); ++k)
+                ASSERT_EQ(p.modes[k], p.first_mode + static_cast<int>(k));
+            long_points += p.modes.size() > kModalSumLanes;
+            p.first_mode = -1;
+        }
+    EXPECT_EQ(long_points, 3) << "both ends and the bowed point, one term per mode";
+    Simulation as_run(compiled), as_indexed(std::move(one_by_one));
+    double loudest = 0;
+    for (int i = 0; i < 24000; ++i) {
+        as_run.step(), as_indexed.step();
+        ASSERT_EQ(bits(as_run.output()), bits(as_indexed.output())) << "sample " << i;
+        loudest = std::max(loudest, std::abs(as_run.output()));
+    }
+    EXPECT_GT(loudest, 1e-3) << "it was bowed";
+}
+
+// A take of an older revision re-renders to the byte unless its model computes differently
+// now: the modal string's long points do since revision 3; the shipped string's (a bridge on
+// six body modes, a bow over three masses) do not.
+TEST(ModalPoint, OnlyPointsOfMoreThanEightTermsComputeDifferentlySinceRevision3) {
+    static_assert(kSchemeRevision == 3);
+    const CompiledModel modal = compile(build_bowed_string(modal_string()));
+    EXPECT_TRUE(computes_differently_since(modal, 2));
+    EXPECT_FALSE(computes_differently_since(modal, 3));
+    BowedStringOptions shipped;
+    shipped.pitch = 220;
+    const CompiledModel string = compile(build_bowed_string(shipped));
+    int points = 0;
+    for (const auto& lv : string.levels)
+        for (const auto& p : lv.modal_points) {
+            EXPECT_LE(p.modes.size(), kModalSumLanes);
+            ++points;
+        }
+    EXPECT_EQ(points, 2);
+    EXPECT_FALSE(computes_differently_since(string, 2));
+    EXPECT_TRUE(computes_differently_since(string, 1)) << "its grounds, since revision 2";
+}
+
+}  // namespace
+}  // namespace archet
