@@ -155,7 +155,7 @@ std::vector<ParameterChange> TakeRecorder::named(const std::vector<Change>& chan
     std::vector<ParameterChange> list;
     const std::lock_guard lock(names_mutex_);
     for (const auto& c : changes) {
-        list.push_back({c.tick, names_.at(c.name), c.value, c.glide_samples});
+        list.push_back({c.tick, names_.at(c.name), c.value, c.glide_samples, std::nullopt, 0});
         if (c.under_way) list.back().from = c.from, list.back().done = c.done;
     }
     return list;

@@ -106,7 +106,9 @@ TEST_F(EngineMidi, ThousandsOfControllerMessagesCostTheRealTimeThreadNoAllocatio
     for (int i = 0; i < 5000; ++i) {
         // Faster than any controller (200 messages a millisecond), not faster than the
         // engine's queue can hold between two rounds.
-        if (i % 400 == 0) ASSERT_TRUE(play(0.002));
+        if (i % 400 == 0) {
+            ASSERT_TRUE(play(0.002));
+        }
         ASSERT_TRUE(keyboard_->control(2, 20 + i % 60));  // bow force
         if (i % 10 == 0) keyboard_->send({0xE0, 0, static_cast<std::uint8_t>(64 + i % 8)});
         if (i % 100 == 0) keyboard_->control(1, i % 128);  // vibrato depth

@@ -33,6 +33,7 @@
 #include "archet/engine/realtime_engine.hpp"
 #include "archet/link/engine_link.hpp"
 #include "archet/physics/compiled_model.hpp"
+#include "archet/physics/modal_point_position.hpp"
 #include "archet/physics/simulation.hpp"
 #include "archet/realtime_allocations.hpp"
 #include "realtime_interposer.hpp"
@@ -350,6 +351,30 @@ TEST(RealtimeSafety, StepProbesAndOutputMakeNoForbiddenCall) {
     EXPECT_EQ(runs.count(), 3);
     EXPECT_EQ(calls.total(), 0u) << calls.describe();
     EXPECT_TRUE(std::isfinite(sink));
+}
+
+// A string in modal form: its points of a term per mode sum their modes (modal_kernel.cpp) and
+// take the bow's and the bridges' forces at every step, on a marked thread.
+TEST(RealtimeSafety, AModalStringStepsWithoutAForbiddenCall) {
+    BowedStringOptions o;
+    o.structure = Structure::Modal;
+    o.masses = 40;
+    Simulation sim(compile(build_bowed_string(o)));
+    std::size_t longest_point = 0;
+    for (const auto& lv : sim.model().levels)
+        for (const auto& p : lv.modal_points)
+            longest_point = std::max(longest_point, p.modes.size());
+    ASSERT_GT(longest_point, kModalSumLanes) << "its points are summed by the run kernels";
+    double sink = 0, loudest = 0;
+    const RealtimeCalls calls = counted_on_marked_thread([&] {
+        for (int i = 0; i < 24000; ++i) {
+            sim.step();
+            sink += sim.output(), loudest = std::max(loudest, std::abs(sim.output()));
+        }
+    });
+    EXPECT_EQ(calls.total(), 0u) << calls.describe();
+    EXPECT_TRUE(std::isfinite(sink));
+    EXPECT_GT(loudest, 1e-3) << "it was bowed";
 }
 
 // The engine's real-time thread, run in this process through its real code path: run_engine on

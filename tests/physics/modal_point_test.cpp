@@ -53,6 +53,8 @@ std::uint64_t bits(double v) {
     return std::bit_cast<std::uint64_t>(v);
 }
 
+constexpr ChainBuild kBuilds[] = {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512};
+
 TEST(ModalPoint, UpToEightTermsAddInOrder) {
     std::mt19937_64 random(1);
     for (std::size_t n = 1; n <= kModalSumLanes; ++n)
@@ -83,6 +85,14 @@ TEST(ModalPoint, LongerSumsAddEightInterleavedPartialSumsInAFixedTree) {
                                             ((lane[4] + lane[5]) + (lane[6] + lane[7])));
             const double sum = modal_point_position(in_order.point, in_order.x.data(), -0.5);
             ASSERT_EQ(bits(sum), bits(expected)) << n << " terms";
+            // Each build of the run's sum (modal_kernel.cpp) that this CPU runs: the same bits.
+            for (ChainBuild build : kBuilds) {
+                if (!chain_build_runs_here(build)) continue;
+                EXPECT_EQ(bits(-0.5 + modal_run_sum(in_order.point.weights.data(), n,
+                                                    in_order.x.data() + 1, build)),
+                          bits(expected))
+                    << chain_build_name(build) << ", " << n << " terms";
+            }
             // A sum, whatever its order: within rounding of the exact one.
             EXPECT_LE(std::abs(static_cast<long double>(sum) - (exact - 0.5L)),
                       static_cast<long double>(n + 2) * 0x1p-52L * (magnitude + 0.5L));
@@ -110,7 +120,8 @@ TEST(ModalPoint, AForceMovesEachModeByItsShareWhereverTheModesLie) {
         PointAndStorage shuffled = random_point(n, false, random);
         shuffled.point.weights = in_order.point.weights;
         std::vector<double> coeff(n + 2), coeff_shuffled(n + 2);
-        std::vector<double> moved(n + 2, 0.5), moved_shuffled(n + 2, 0.5);
+        // Positions as small as the moves, so that every bit of a move shows in the sum.
+        std::vector<double> moved(n + 2, 1e-7), moved_shuffled(n + 2, 1e-7);
         for (std::size_t k = 0; k < n; ++k) {
             coeff[in_order.point.modes[k]] = 1e-6 * static_cast<double>(k + 1);
             coeff_shuffled[shuffled.point.modes[k]] = coeff[in_order.point.modes[k]];
@@ -119,12 +130,21 @@ TEST(ModalPoint, AForceMovesEachModeByItsShareWhereverTheModesLie) {
         add_modal_force(shuffled.point, coeff_shuffled.data(), moved_shuffled.data(), 0.3);
         for (std::size_t k = 0; k < n; ++k) {
             const double expected =
-                0.5 + coeff[in_order.point.modes[k]] * in_order.point.weights[k] * 0.3;
+                1e-7 + coeff[in_order.point.modes[k]] * in_order.point.weights[k] * 0.3;
             EXPECT_EQ(bits(moved[in_order.point.modes[k]]), bits(expected));
             EXPECT_EQ(bits(moved_shuffled[shuffled.point.modes[k]]), bits(expected));
         }
-        EXPECT_EQ(moved[0], 0.5) << "nothing else moves";
-        EXPECT_EQ(moved[n + 1], 0.5);
+        EXPECT_EQ(moved[0], 1e-7) << "nothing else moves";
+        EXPECT_EQ(moved[n + 1], 1e-7);
+        // Each build of the run's move (modal_kernel.cpp) that this CPU runs: the same bits.
+        for (ChainBuild build : kBuilds) {
+            if (!chain_build_runs_here(build)) continue;
+            std::vector<double> by_build(n + 2, 1e-7);
+            modal_run_move(in_order.point.weights.data(), n, coeff.data() + 1, by_build.data() + 1,
+                           0.3, build);
+            for (std::size_t s = 0; s < n + 2; ++s)
+                EXPECT_EQ(bits(by_build[s]), bits(moved[s])) << chain_build_name(build);
+        }
     }
 }
 

@@ -13,6 +13,8 @@
 
 #include "archet/physics/chain_kernel.hpp"
 
+#include "double_vectors.hpp"
+
 #include <bit>
 #include <cstdint>
 #include <cstring>
@@ -23,9 +25,7 @@ namespace archet {
 
 namespace {
 
-typedef double Doubles8 __attribute__((vector_size(64)));
-typedef double Doubles4 __attribute__((vector_size(32)));
-typedef double Doubles2 __attribute__((vector_size(16)));
+using namespace double_vectors;
 
 // {a[W−1], b[0], …, b[W−2]}: the lanes of b moved up one, a's last lane entering.
 [[gnu::always_inline]] inline Doubles8 shift_in(Doubles8 a, Doubles8 b) {
@@ -49,26 +49,6 @@ typedef double Doubles2 __attribute__((vector_size(16)));
     return __builtin_shufflevector(a, b, 1, 2);
 }
 
-template <int W>
-using Doubles =
-    std::conditional_t<W == 8, Doubles8, std::conditional_t<W == 4, Doubles4, Doubles2>>;
-
-template <class V>
-[[gnu::always_inline]] inline V load(const double* p) {
-    if constexpr (std::is_same_v<V, double>) {
-        return *p;
-    } else {
-        V v;
-        std::memcpy(&v, p, sizeof v);
-        return v;
-    }
-}
-
-template <class V>
-[[gnu::always_inline]] inline void store(double* p, V v) {
-    std::memcpy(p, &v, sizeof v);
-}
-
 struct ChainArrays {
     const double *x, *xp;          ///< x[n], x[n−1]
     double* xn;                    ///< x[n+1]
@@ -85,13 +65,6 @@ template <bool kWithGrounds, class T>
         return grounded_update(x, xp, a, b, e, c, left, right);
     else
         return chain_update(x, xp, c, left, right);
-}
-
-template <class V>
-[[gnu::always_inline]] inline V broadcast(double value) {
-    V v;
-    for (int lane = 0; lane < static_cast<int>(sizeof v / sizeof value); ++lane) v[lane] = value;
-    return v;
 }
 
 // The rounds of the chain loop, W MATs each, carrying from one round to the next the force of
@@ -324,13 +297,6 @@ template <bool kLength>
     return ((sums[0] + sums[1]) + (sums[2] + sums[3])) +
            ((sums[4] + sums[5]) + (sums[6] + sums[7]));
 }
-
-// Whole 512-bit vectors: GCC and clang otherwise split them into halves on AVX-512.
-#if defined(__clang__)
-#define ARCHET_TARGET_AVX512 __attribute__((target("avx512f"), min_vector_width(512)))
-#else
-#define ARCHET_TARGET_AVX512 __attribute__((target("avx512f,prefer-vector-width=512")))
-#endif
 
 using ChainLoop = void (*)(const ChainArrays&, int, bool, bool);
 using EnergySum = double (*)(const CompiledLevel&);

@@ -12,6 +12,7 @@
 
 #include <cstddef>
 
+#include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 
 namespace archet {
@@ -19,13 +20,25 @@ namespace archet {
 /// Points of more terms than this sum them in as many interleaved partial sums.
 inline constexpr std::size_t kModalSumLanes = 8;
 
+/// Σ weight[k]·x[k] for k < n, n > kModalSumLanes: the modes of a point that lie in one run of
+/// storage from x, added as modal_point_position() adds them, in the widest build this CPU runs
+/// (or in `build`, for tests: it must run here). modal_kernel.cpp.
+double modal_run_sum(const double* weight, std::size_t n, const double* x);
+double modal_run_sum(const double* weight, std::size_t n, const double* x, ChainBuild build);
+/// xn[k] += coeff[k]·weight[k]·force for k < n, over such a run.
+void modal_run_move(const double* weight, std::size_t n, const double* coeff, double* xn,
+                    double force);
+void modal_run_move(const double* weight, std::size_t n, const double* coeff, double* xn,
+                    double force, ChainBuild build);
+
 namespace modal_detail {
 
-// The sums and the moves below over a point's modes, wherever they lie in storage (`mode`
-// gives mode k's index): a point whose modes lie in order reads them as one run of storage,
-// which the compiler can load in whole vectors.
-// Two lanes in one SSE2 register, on every build: the compiler, left to vectorise the eight
-// partial sums itself, shuffles and spills them.
+// The sums and the moves of the points of up to eight terms, or whose modes lie apart (`mode`
+// gives mode k's storage index), inline: the first take a few operations, the second read
+// their modes one by one.
+
+// Two lanes in one SSE2 register: the compiler, left to vectorise the eight partial sums of a
+// point whose modes lie apart, shuffles and spills them.
 typedef double Pair __attribute__((vector_size(16)));
 
 template <class Mode>
@@ -64,12 +77,16 @@ inline void move(const double* weight, std::size_t n, Mode mode, const double* c
 inline double modal_point_position(const CompiledModalPoint& point, const double* x,
                                    double start = 0.0) {
     const std::size_t n = point.modes.size();
-    if (point.first_mode >= 0)
+    const double* weight = point.weights.data();
+    if (point.first_mode >= 0) {
+        const double* run = x + point.first_mode;
+        if (n > kModalSumLanes) return start + modal_run_sum(weight, n, run);
         return modal_detail::sum(
-            point.weights.data(), n, [](std::size_t k) { return k; }, x + point.first_mode, start);
+            weight, n, [](std::size_t k) { return k; }, run, start);
+    }
     const int* mode = point.modes.data();
     return modal_detail::sum(
-        point.weights.data(), n, [mode](std::size_t k) { return mode[k]; }, x, start);
+        weight, n, [mode](std::size_t k) { return mode[k]; }, x, start);
 }
 
 /// Moves each of the point's modes by what `force` on the point does to it over a step,
@@ -77,15 +94,19 @@ inline double modal_point_position(const CompiledModalPoint& point, const double
 inline void add_modal_force(const CompiledModalPoint& point, const double* coeff, double* xn,
                             double force) {
     const std::size_t n = point.modes.size();
+    const double* weight = point.weights.data();
     if (point.first_mode >= 0) {
-        modal_detail::move(
-            point.weights.data(), n, [](std::size_t k) { return k; }, coeff + point.first_mode,
-            xn + point.first_mode, force);
+        const std::size_t first = static_cast<std::size_t>(point.first_mode);
+        if (n > kModalSumLanes)
+            modal_run_move(weight, n, coeff + first, xn + first, force);
+        else
+            modal_detail::move(
+                weight, n, [](std::size_t k) { return k; }, coeff + first, xn + first, force);
         return;
     }
     const int* mode = point.modes.data();
     modal_detail::move(
-        point.weights.data(), n, [mode](std::size_t k) { return mode[k]; }, coeff, xn, force);
+        weight, n, [mode](std::size_t k) { return mode[k]; }, coeff, xn, force);
 }
 
 }  // namespace archet
