@@ -354,12 +354,17 @@ TEST(RealtimeSafety, StepProbesAndOutputMakeNoForbiddenCall) {
 }
 
 // A string in modal form: its points of a term per mode sum their modes (modal_kernel.cpp) and
-// take the bow's and the bridges' forces at every step, on a marked thread.
+// take the bow's and the bridges' forces at every step, a mode's mass set while it plays moves
+// its points' responses, and the engine's swap to a recompiled model (continue_from) reads the
+// points afresh from their modes, on a marked thread.
 TEST(RealtimeSafety, AModalStringStepsWithoutAForbiddenCall) {
     BowedStringOptions o;
     o.structure = Structure::Modal;
     o.masses = 40;
-    Simulation sim(compile(build_bowed_string(o)));
+    const CompiledModel compiled = compile(build_bowed_string(o));
+    Simulation sim(compiled), swapped_in(compiled);
+    std::vector<double> scratch(sim.state_size());
+    const auto mode_mass = sim.model().resolve_parameter({"mode3", "mass"});
     std::size_t longest_point = 0;
     for (const auto& lv : sim.model().levels)
         for (const auto& p : lv.modal_points)
@@ -371,6 +376,10 @@ TEST(RealtimeSafety, AModalStringStepsWithoutAForbiddenCall) {
             sim.step();
             sink += sim.output(), loudest = std::max(loudest, std::abs(sim.output()));
         }
+        sim.write_slot(mode_mass, 1.01 * sim.read_slot(mode_mass));
+        for (int i = 0; i < 480; ++i) sim.step(), sink += sim.output();
+        swapped_in.continue_from(sim, scratch);
+        for (int i = 0; i < 480; ++i) swapped_in.step(), sink += swapped_in.output();
     });
     EXPECT_EQ(calls.total(), 0u) << calls.describe();
     EXPECT_TRUE(std::isfinite(sink));

@@ -61,9 +61,9 @@ TEST(ModalPoint, UpToEightTermsAddInOrder) {
         for (bool in_order : {true, false})
             for (int trial = 0; trial < 100; ++trial) {
                 const PointAndStorage p = random_point(n, in_order, random);
-                double expected = 0.25;
+                double expected = 0;
                 for (std::size_t k = 0; k < n; ++k) expected += term(p, k);
-                EXPECT_EQ(bits(modal_point_position(p.point, p.x.data(), 0.25)), bits(expected))
+                EXPECT_EQ(bits(modal_point_position(p.point, p.x.data())), bits(expected))
                     << n << " terms";
             }
 }
@@ -81,21 +81,21 @@ TEST(ModalPoint, LongerSumsAddEightInterleavedPartialSumsInAFixedTree) {
                          in_order.x[in_order.point.modes[k]];
                 magnitude += std::abs(term(in_order, k));
             }
-            const double expected = -0.5 + (((lane[0] + lane[1]) + (lane[2] + lane[3])) +
-                                            ((lane[4] + lane[5]) + (lane[6] + lane[7])));
-            const double sum = modal_point_position(in_order.point, in_order.x.data(), -0.5);
+            const double expected = ((lane[0] + lane[1]) + (lane[2] + lane[3])) +
+                                    ((lane[4] + lane[5]) + (lane[6] + lane[7]));
+            const double sum = modal_point_position(in_order.point, in_order.x.data());
             ASSERT_EQ(bits(sum), bits(expected)) << n << " terms";
             // Each build of the run's sum (modal_kernel.cpp) that this CPU runs: the same bits.
             for (ChainBuild build : kBuilds) {
                 if (!chain_build_runs_here(build)) continue;
-                EXPECT_EQ(bits(-0.5 + modal_run_sum(in_order.point.weights.data(), n,
-                                                    in_order.x.data() + 1, build)),
+                EXPECT_EQ(bits(modal_run_sum(in_order.point.weights.data(), n,
+                                             in_order.x.data() + 1, build)),
                           bits(expected))
                     << chain_build_name(build) << ", " << n << " terms";
             }
             // A sum, whatever its order: within rounding of the exact one.
-            EXPECT_LE(std::abs(static_cast<long double>(sum) - (exact - 0.5L)),
-                      static_cast<long double>(n + 2) * 0x1p-52L * (magnitude + 0.5L));
+            EXPECT_LE(std::abs(static_cast<long double>(sum) - exact),
+                      static_cast<long double>(n) * 0x1p-52L * magnitude);
 
             // The same terms with the modes shuffled in storage: the same bits.
             PointAndStorage shuffled = in_order;
@@ -108,14 +108,15 @@ TEST(ModalPoint, LongerSumsAddEightInterleavedPartialSumsInAFixedTree) {
                 shuffled.x[where[k]] = in_order.x[in_order.point.modes[k]];
             }
             shuffled.point.first_mode = -1;
-            EXPECT_EQ(bits(modal_point_position(shuffled.point, shuffled.x.data(), -0.5)),
+            EXPECT_EQ(bits(modal_point_position(shuffled.point, shuffled.x.data())),
                       bits(expected));
         }
 }
 
 TEST(ModalPoint, AForceMovesEachModeByItsShareWhereverTheModesLie) {
     std::mt19937_64 random(3);
-    for (std::size_t n : {1, 3, 8, 9, 60}) {
+    // Tails of every length the builds leave after their whole vectors.
+    for (std::size_t n : {1, 3, 8, 9, 10, 11, 13, 15, 60}) {
         const PointAndStorage in_order = random_point(n, true, random);
         PointAndStorage shuffled = random_point(n, false, random);
         shuffled.point.weights = in_order.point.weights;
@@ -180,6 +181,20 @@ TEST(ModalPoint, AModalStringReadsItsModesAsOneRunToTheSameBits) {
         loudest = std::max(loudest, std::abs(as_run.output()));
     }
     EXPECT_GT(loudest, 1e-3) << "it was bowed";
+}
+
+// A simulation continued from another's state (the engine's swap to a recompiled model) puts
+// its modal points where their modes put them, to the bit: it then plays on as the other does.
+TEST(ModalPoint, AContinuedModalStringPlaysOnToTheSameBits) {
+    const CompiledModel compiled = compile(build_bowed_string(modal_string()));
+    Simulation played(compiled), continued(compiled);
+    for (int i = 0; i < 9600; ++i) played.step();
+    std::vector<double> scratch(played.state_size());
+    ASSERT_TRUE(continued.continue_from(played, scratch));
+    for (int i = 0; i < 9600; ++i) {
+        played.step(), continued.step();
+        ASSERT_EQ(bits(played.output()), bits(continued.output())) << "sample " << i;
+    }
 }
 
 // A take of an older revision re-renders to the byte unless its model computes differently

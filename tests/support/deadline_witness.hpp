@@ -36,6 +36,8 @@ class DeadlineWitness {
     std::uint64_t missed() const { return missed_.load(); }
     double worst_lateness_us() const { return static_cast<double>(worst_ns_.load()) / 1000.0; }
     bool realtime() const { return realtime_.load(); }
+    /// The CPUs watched, a thread each.
+    std::size_t cpus() const { return threads_.size(); }
     /// One sentence for a test's message.
     std::string describe() const;
 

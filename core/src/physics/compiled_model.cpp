@@ -164,12 +164,13 @@ void compile_modal_points(CompiledModel& c, const Model& model) {
         point.index = p.index;
         point.weights = m.weights;
         for (const auto& mode : m.modes) point.modes.push_back(slot_of(c, mode).index);
-        bool in_order = true;
+        bool in_order = !point.modes.empty();
         for (std::size_t k = 1; k < point.modes.size(); ++k)
             in_order = in_order && point.modes[k] == point.modes[0] + static_cast<int>(k);
         point.first_mode = in_order ? point.modes[0] : -1;
-        lv.x()[p.index] = modal_point_position(point, lv.x(), lv.x()[p.index]);
-        lv.x_prev()[p.index] = modal_point_position(point, lv.x_prev(), lv.x_prev()[p.index]);
+        // A modal point has no position of its own: it is where its modes put it.
+        lv.x()[p.index] = modal_point_position(point, lv.x());
+        lv.x_prev()[p.index] = modal_point_position(point, lv.x_prev());
         point.coeff = modal_point_response(lv, point);
         lv.modal_point_of[p.index] = static_cast<int>(lv.modal_points.size());
         lv.modal_points.push_back(std::move(point));

@@ -1,7 +1,7 @@
 // The sums and the moves over a modal point whose modes lie in one run of storage
 // (modal_point_position.hpp), built like the chain loop for AVX-512, AVX2 and plain x86-64:
-// partial sum i keeps lane i of the vectors, so every build adds each term where the scalar
-// order does and gives the same bits.
+// partial sum i is lane i mod W of vector i / W, so every build adds each term where the
+// scalar order does and gives the same bits.
 
 #include <cstddef>
 #include <stdexcept>
@@ -18,6 +18,7 @@ using namespace double_vectors;
 
 template <int W>
 [[gnu::always_inline]] inline double run_sum(const double* weight, std::size_t n, const double* x) {
+    static_assert(kModalSumLanes == 8, "the tree below adds eight partial sums");
     using V = Doubles<W>;
     constexpr std::size_t kVectors = kModalSumLanes / W;
     V partial[kVectors] = {};

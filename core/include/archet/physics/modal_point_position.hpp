@@ -42,14 +42,10 @@ namespace modal_detail {
 typedef double Pair __attribute__((vector_size(16)));
 
 template <class Mode>
-inline Pair pair_at(const double* x, Mode mode, std::size_t k) {
-    return Pair{x[mode(k)], x[mode(k + 1)]};
-}
-
-template <class Mode>
-inline double sum(const double* weight, std::size_t n, Mode mode, const double* x, double start) {
+inline double sum(const double* weight, std::size_t n, Mode mode, const double* x) {
+    static_assert(kModalSumLanes == 8, "the partial sums and their tree below are written for 8");
     if (n <= kModalSumLanes) {
-        double total = start;
+        double total = 0;
         for (std::size_t k = 0; k < n; ++k) total += weight[k] * x[mode(k)];
         return total;
     }
@@ -57,12 +53,11 @@ inline double sum(const double* weight, std::size_t n, Mode mode, const double* 
     std::size_t k = 0;
     for (; k + kModalSumLanes <= n; k += kModalSumLanes)
         for (std::size_t j = 0; j < kModalSumLanes / 2; ++j)
-            lanes[j] += pair_at(
-                            weight, [](std::size_t i) { return i; }, k + 2 * j) *
-                        pair_at(x, mode, k + 2 * j);
+            lanes[j] += Pair{weight[k + 2 * j], weight[k + 2 * j + 1]} *
+                        Pair{x[mode(k + 2 * j)], x[mode(k + 2 * j + 1)]};
     for (std::size_t i = 0; k + i < n; ++i) lanes[i / 2][i % 2] += weight[k + i] * x[mode(k + i)];
-    return start + (((lanes[0][0] + lanes[0][1]) + (lanes[1][0] + lanes[1][1])) +
-                    ((lanes[2][0] + lanes[2][1]) + (lanes[3][0] + lanes[3][1])));
+    return ((lanes[0][0] + lanes[0][1]) + (lanes[1][0] + lanes[1][1])) +
+           ((lanes[2][0] + lanes[2][1]) + (lanes[3][0] + lanes[3][1]));
 }
 
 template <class Mode>
@@ -73,20 +68,19 @@ inline void move(const double* weight, std::size_t n, Mode mode, const double* c
 
 }  // namespace modal_detail
 
-/// `start` + Σ weight·x(mode) over the point's modes, x indexed by storage.
-inline double modal_point_position(const CompiledModalPoint& point, const double* x,
-                                   double start = 0.0) {
+/// Σ weight·x(mode) over the point's modes, x indexed by storage.
+inline double modal_point_position(const CompiledModalPoint& point, const double* x) {
     const std::size_t n = point.modes.size();
     const double* weight = point.weights.data();
     if (point.first_mode >= 0) {
         const double* run = x + point.first_mode;
-        if (n > kModalSumLanes) return start + modal_run_sum(weight, n, run);
+        if (n > kModalSumLanes) return modal_run_sum(weight, n, run);
         return modal_detail::sum(
-            weight, n, [](std::size_t k) { return k; }, run, start);
+            weight, n, [](std::size_t k) { return k; }, run);
     }
     const int* mode = point.modes.data();
     return modal_detail::sum(
-        weight, n, [mode](std::size_t k) { return mode[k]; }, x, start);
+        weight, n, [mode](std::size_t k) { return mode[k]; }, x);
 }
 
 /// Moves each of the point's modes by what `force` on the point does to it over a step,
