@@ -18,7 +18,6 @@ using namespace double_vectors;
 
 template <int W>
 [[gnu::always_inline]] inline double run_sum(const double* weight, std::size_t n, const double* x) {
-    static_assert(kModalSumLanes == 8, "the tree below adds eight partial sums");
     using V = Doubles<W>;
     constexpr std::size_t kVectors = kModalSumLanes / W;
     V partial[kVectors] = {};
@@ -29,8 +28,7 @@ template <int W>
     double lane[kModalSumLanes];
     for (std::size_t i = 0; i < kModalSumLanes; ++i) lane[i] = partial[i / W][i % W];
     for (std::size_t i = 0; k + i < n; ++i) lane[i] += weight[k + i] * x[k + i];
-    return ((lane[0] + lane[1]) + (lane[2] + lane[3])) +
-           ((lane[4] + lane[5]) + (lane[6] + lane[7]));
+    return add_partial_sums(lane);
 }
 
 template <int W>

@@ -20,6 +20,13 @@ namespace archet {
 /// Points of more terms than this sum them in as many interleaved partial sums.
 inline constexpr std::size_t kModalSumLanes = 8;
 
+/// The eight partial sums of a long point added in the fixed tree revision 3 defines.
+inline double add_partial_sums(const double (&partial)[kModalSumLanes]) {
+    static_assert(kModalSumLanes == 8, "the tree below adds eight partial sums");
+    return ((partial[0] + partial[1]) + (partial[2] + partial[3])) +
+           ((partial[4] + partial[5]) + (partial[6] + partial[7]));
+}
+
 /// Σ weight[k]·x[k] for k < n, n > kModalSumLanes: the modes of a point that lie in one run of
 /// storage from x, added as modal_point_position() adds them, in the widest build this CPU runs
 /// (or in `build`, for tests: it must run here). modal_kernel.cpp.
@@ -43,7 +50,7 @@ typedef double Pair __attribute__((vector_size(16)));
 
 template <class Mode>
 inline double sum(const double* weight, std::size_t n, Mode mode, const double* x) {
-    static_assert(kModalSumLanes == 8, "the partial sums and their tree below are written for 8");
+    static_assert(kModalSumLanes == 8, "the partial sums below are paired for 8");
     if (n <= kModalSumLanes) {
         double total = 0;
         for (std::size_t k = 0; k < n; ++k) total += weight[k] * x[mode(k)];
@@ -55,9 +62,10 @@ inline double sum(const double* weight, std::size_t n, Mode mode, const double* 
         for (std::size_t j = 0; j < kModalSumLanes / 2; ++j)
             lanes[j] += Pair{weight[k + 2 * j], weight[k + 2 * j + 1]} *
                         Pair{x[mode(k + 2 * j)], x[mode(k + 2 * j + 1)]};
-    for (std::size_t i = 0; k + i < n; ++i) lanes[i / 2][i % 2] += weight[k + i] * x[mode(k + i)];
-    return ((lanes[0][0] + lanes[0][1]) + (lanes[1][0] + lanes[1][1])) +
-           ((lanes[2][0] + lanes[2][1]) + (lanes[3][0] + lanes[3][1]));
+    double partial[kModalSumLanes];
+    for (std::size_t i = 0; i < kModalSumLanes; ++i) partial[i] = lanes[i / 2][i % 2];
+    for (std::size_t i = 0; k + i < n; ++i) partial[i] += weight[k + i] * x[mode(k + i)];
+    return add_partial_sums(partial);
 }
 
 template <class Mode>
