@@ -144,7 +144,7 @@ void BM_ModelSwap(benchmark::State& state) {
         benchmark::DoNotOptimize(running.get());
     }
 }
-BENCHMARK(BM_ModelSwap)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ModelSwap)->Arg(5000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 // The part of the swap after validation: compile, and the Simulation built from a copy.
 void BM_CompileAndPrepare(benchmark::State& state) {
@@ -155,14 +155,14 @@ void BM_CompileAndPrepare(benchmark::State& state) {
         benchmark::DoNotOptimize(running.get());
     }
 }
-BENCHMARK(BM_CompileAndPrepare)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CompileAndPrepare)->Arg(5000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 void BM_ParseModel(benchmark::State& state) {
     const std::string text =
         archet::format_model(archet::build_bowed_chain(static_cast<int>(state.range(0))));
     for (auto _ : state) benchmark::DoNotOptimize(archet::parse_model(text));
 }
-BENCHMARK(BM_ParseModel)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ParseModel)->Arg(5000)->Arg(10000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

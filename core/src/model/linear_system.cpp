@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <queue>
+#include <string_view>
 #include <unordered_map>
 
 #include "archet/model/finger_contact.hpp"
@@ -25,9 +26,12 @@ LinearSystem assemble_linear_system(const Model& model, const std::string& rate_
     sys.rate = level->id;
     sys.dt = level->divider / model.sample_rate;
 
-    std::unordered_map<std::string, const Mat*> mats;
+    // Keyed by views of the model's own ids, which outlive the maps: no id is copied.
+    std::unordered_map<std::string_view, const Mat*> mats;
+    mats.reserve(model.mats.size());
     for (const auto& m : model.mats) mats.emplace(m.id, &m);
-    std::unordered_map<std::string, int> index;
+    std::unordered_map<std::string_view, int> index;
+    index.reserve(model.mats.size());
     auto dof_of = [&](const std::string& id) -> int {
         const auto found = mats.find(id);
         if (found == mats.end() || !has_inertia(*found->second)) return -1;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <string_view>
 #include <unordered_map>
 
 #include "archet/common/input_error.hpp"
@@ -22,9 +23,17 @@ std::string quoted(const std::string& kind, const std::string& id) {
     return kind + " " + quoted_text(id);
 }
 
+// The element a problem is about, named in words only when there is a problem: a large model
+// that passes builds none of its elements' names.
+struct ElementName {
+    const char* kind;
+    const std::string& id;
+};
+
 class Checker {
   public:
     explicit Checker(const Model& m) : model_(m) {
+        mats_.reserve(m.mats.size());
         for (const auto& mat : m.mats) mats_.emplace(mat.id, &mat);  // the first of duplicates
     }
 
@@ -46,6 +55,9 @@ class Checker {
   private:
     void add(std::string where, std::string message) {
         problems_.push_back({std::move(where), std::move(message)});
+    }
+    void add(const ElementName& where, std::string message) {
+        add(quoted(where.kind, where.id), std::move(message));
     }
     void problems_from(const std::optional<InputError>& error) {
         if (error) add(error->where(), error->message());
@@ -89,8 +101,9 @@ class Checker {
     }
 
     void check_ids() {
-        std::map<std::string, std::string> seen;
-        auto claim = [&](const std::string& kind, const std::string& id) {
+        std::unordered_map<std::string_view, const char*> seen;  // id → the kind that has it
+        seen.reserve(model_.mats.size() + model_.lias.size() + model_.controls.size());
+        auto claim = [&](const char* kind, const std::string& id) {
             if (id.empty()) {
                 add(kind, "needs a non-empty id");
                 return;
@@ -103,7 +116,7 @@ class Checker {
             }
             auto [it, added] = seen.emplace(id, kind);
             if (!added)
-                add(quoted(kind, id), "duplicate id (also used by a " + it->second +
+                add(quoted(kind, id), std::string("duplicate id (also used by a ") + it->second +
                                           "); every element needs its own id");
         };
         for (const auto& m : model_.mats) claim("mass", m.id);
@@ -111,7 +124,7 @@ class Checker {
         for (const auto& c : model_.controls) claim("control", c.id);
     }
 
-    void check_rate(const std::string& where, const std::string& rate) {
+    void check_rate(const ElementName& where, const std::string& rate) {
         if (!model_.find_rate(rate))
             add(where, "rate level \"" + rate +
                            "\" does not exist; declare it in \"rates\" or use one that does");
@@ -119,7 +132,7 @@ class Checker {
 
     // Every parameter within its physical range (the table, element_kinds.cpp), so that no state
     // or energy of a model that passes can overflow.
-    bool in_ranges(const std::string& where, const std::vector<ParameterValue>& values) {
+    bool in_ranges(const ElementName& where, const std::vector<ParameterValue>& values) {
         for (const auto& [info, value] : values) {
             std::string problem = range_problem(info, value);
             if (!problem.empty()) return add(where, std::move(problem)), false;
@@ -128,7 +141,7 @@ class Checker {
     }
 
     void check_mat(const Mat& m) {
-        const std::string where = quoted("mass", m.id);
+        const ElementName where{"mass", m.id};
         check_rate(where, m.rate);
         for (double v : {m.mass, m.position, m.velocity, m.stiffness, m.damping, m.position_scale,
                          m.force_scale})
@@ -143,7 +156,7 @@ class Checker {
     }
 
     // A modal point reads modal oscillators (masses with inertia) of its own rate level.
-    void check_modal_point(const std::string& where, const Mat& m) {
+    void check_modal_point(const ElementName& where, const Mat& m) {
         if (m.modes.empty()) add(where, "a modal point needs at least one mode in \"modes\"");
         if (m.modes.size() != m.weights.size())
             add(where, "has " + count_of(m.modes.size(), "mode", "modes") + " but " +
@@ -164,7 +177,7 @@ class Checker {
         }
     }
 
-    const Mat* mat_ref(const std::string& where, const std::string& role, const std::string& id) {
+    const Mat* mat_ref(const ElementName& where, const std::string& role, const std::string& id) {
         const auto found = mats_.find(id);
         const Mat* m = found == mats_.end() ? nullptr : found->second;
         if (!m)
@@ -174,7 +187,7 @@ class Checker {
     }
 
     void check_lia(const Lia& l) {
-        const std::string where = quoted("link", l.id);
+        const ElementName where{"link", l.id};
         check_rate(where, l.rate);
         for (double v : {l.stiffness, l.damping, l.length, l.mu_static, l.mu_dynamic, l.v0,
                          l.finger_position, l.pressure})
@@ -228,7 +241,7 @@ class Checker {
 
     // A finger's string: two MATs or more, each once, at the finger's rate, with inertia,
     // fixed, or a modal point (a body's bridge); a gesture point has no place along a string.
-    void check_finger(const std::string& where, const Lia& l) {
+    void check_finger(const ElementName& where, const Lia& l) {
         if (l.along.size() < 2)
             add(where, "\"along\" lists " + count_of(l.along.size(), "mass", "masses") +
                            "; list the string's masses in order, from the bridge to the "
@@ -276,7 +289,7 @@ class Checker {
     // spring unless enough damping takes it out: Z >= K·T/2 (Colgate's passivity bound).
     // Except when the only slower ends are gesture points: the hand's steps are then booked
     // exactly as the hand's work, and the link is as passive as at one rate.
-    void check_rate_crossing(const std::string& where, const Lia& l, const Mat& a, const Mat& b) {
+    void check_rate_crossing(const ElementName& where, const Lia& l, const Mat& a, const Mat& b) {
         const RateLevel* rl = model_.find_rate(l.rate);
         const RateLevel* ra = model_.find_rate(a.rate);
         const RateLevel* rb = model_.find_rate(b.rate);
@@ -314,7 +327,7 @@ class Checker {
     }
 
     void check_control(const Control& c) {
-        const std::string where = quoted("control", c.id);
+        const ElementName where{"control", c.id};
         check_rate(where, c.rate);
         const ParameterName& target = c.target;
         if (!model_.find_mat(target.element) && !model_.find_lia(target.element)) {
@@ -420,7 +433,7 @@ class Checker {
     }
 
     const Model& model_;
-    std::unordered_map<std::string, const Mat*> mats_;  // lookups by id, for large models
+    std::unordered_map<std::string_view, const Mat*> mats_;  // lookups by id, for large models
     std::vector<ModelProblem> problems_;
 };
 
