@@ -30,11 +30,18 @@ nlohmann::json last_json_line(const std::string& out) {
 
 constexpr std::chrono::nanoseconds kPeriodOf64Frames{1'000'000'000LL * 64 / 48000};
 
+// How many xruns one late cycle may be reported as. The null sink counts a late block once.
+// JACK tells its clients of one late cycle up to twice: its dummy driver reports the cycle it
+// started late (JackTimedDriver::ProcessWait), and the engine each client that had not finished
+// by then (JackEngine::CheckXRun); RtAudio counts both when a block falls between them.
+constexpr int kNullSinkReportsPerLateCycle = 1;
+constexpr int kJackReportsPerLateCycle = 2;
+
 // Xruns, late blocks and a block that took longer than it lasts are archet's only when the
 // machine itself kept the same deadlines. When it did not, each of archet's missed deadlines
 // needs one of the machine's: more than that is still archet's. Called last: it may skip.
 void expect_every_deadline_kept(const nlohmann::json& stats, const test::DeadlineWitness& machine,
-                                int haptic_ticks_per_block) {
+                                int haptic_ticks_per_block, int reports_per_late_cycle) {
     const auto xruns = stats["xruns"].get<std::uint64_t>();
     const auto late_blocks = stats["haptic_late_ticks"].get<std::uint64_t>() /
                              static_cast<std::uint64_t>(haptic_ticks_per_block);
@@ -44,8 +51,8 @@ void expect_every_deadline_kept(const nlohmann::json& stats, const test::Deadlin
     ::testing::Test::RecordProperty("machine_missed_deadlines", static_cast<int>(machine.missed()));
     const std::string figures = stats.dump() + "; " + machine.describe();
     if (machine.missed() > 0) {
-        EXPECT_LE(xruns, machine.missed())
-            << "more xruns than the machine's own stalls: " << figures;
+        EXPECT_LE(xruns, machine.missed() * static_cast<std::uint64_t>(reports_per_late_cycle))
+            << "more xruns than the machine's own stalls can explain: " << figures;
         EXPECT_LE(late_blocks, machine.missed())
             << "more late blocks than the machine's own stalls: " << figures;
         if (xruns > 0 || late_blocks > 0 || slow_block)
@@ -114,7 +121,7 @@ TEST(Audio, PlaysIntoTheNullSinkInRealTimeWithoutAllocating) {
     for (const char* key : {"callbacks", "xruns", "worst_callback_us", "callback_budget_us",
                             "haptic_ticks", "haptic_late_ticks"})
         ASSERT_TRUE(s.contains(key)) << key;
-    expect_every_deadline_kept(s, machine, 64 * 3000 / 48000);
+    expect_every_deadline_kept(s, machine, 64 * 3000 / 48000, kNullSinkReportsPerLateCycle);
 }
 
 TEST(Audio, AnUnknownApiIsRefusedAndAMissingDeviceFallsBackToTheNullSink) {
@@ -181,7 +188,7 @@ TEST_F(JackServer, TheFullBandwidth110HzStringAt64FramesForAMinuteWithoutXruns) 
     EXPECT_NEAR(s["callbacks"].get<double>(), 60.0 * 48000 / 64,
                 750 + 4 * s["xruns"].get<double>());
     EXPECT_EQ(s["realtime_allocations"].get<int>(), 0);
-    expect_every_deadline_kept(s, machine, 64 * 3000 / 48000);
+    expect_every_deadline_kept(s, machine, 64 * 3000 / 48000, kJackReportsPerLateCycle);
 }
 
 }  // namespace
