@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <set>
+#include <string_view>
+#include <unordered_map>
 
 #include "archet/common/input_error.hpp"
 #include "archet/model/model_parameters.hpp"
@@ -21,18 +23,21 @@ bool chainable(LiaKind k) {
     return k == LiaKind::Spring || k == LiaKind::Damper || k == LiaKind::SpringDamper;
 }
 
+// A MAT's index in the model by its id: views of the model's own ids, which outlive it.
+using MatIndex = std::unordered_map<std::string_view, int>;
+
 // Orders the MATs of one level so that chains of links become consecutive storage, which
 // lets the step handle them in one vectorisable loop. Returns model MAT indices in order and
 // marks, for each link, whether it became a chain link. `level` holds the ids of the rate
 // levels that run at this level's divider.
 std::vector<int> order_level(const Model& model, const std::set<std::string>& level,
-                             const std::map<std::string, int>& mat_index,
-                             std::vector<bool>& is_chain_link, std::vector<int>& chain_link_after) {
+                             const MatIndex& mat_index, std::vector<bool>& is_chain_link,
+                             std::vector<int>& chain_link_after) {
     std::vector<int> mats;
     for (int i = 0; i < static_cast<int>(model.mats.size()); ++i)
         if (level.count(model.mats[i].rate)) mats.push_back(i);
     // Adjacency over chainable same-level links, in model order for determinism.
-    std::map<int, std::vector<std::pair<int, int>>> adjacent;  // mat → (neighbour, link)
+    std::vector<std::vector<std::pair<int, int>>> adjacent(model.mats.size());  // (neighbour, link)
     for (int li = 0; li < static_cast<int>(model.lias.size()); ++li) {
         const Lia& l = model.lias[li];
         if (!level.count(l.rate) || !chainable(l.kind)) continue;
@@ -45,16 +50,16 @@ std::vector<int> order_level(const Model& model, const std::set<std::string>& le
         adjacent[b].push_back({a, li});
     }
     std::vector<int> order;
-    std::set<int> placed;
+    std::vector<bool> placed(model.mats.size(), false);
     auto walk = [&](int start) {
         int current = start;
         order.push_back(current);
         chain_link_after.push_back(-1);
-        placed.insert(current);
+        placed[current] = true;
         for (;;) {
             int next = -1, via = -1;
             for (auto [neighbour, link] : adjacent[current])
-                if (!placed.count(neighbour) && !is_chain_link[link]) {
+                if (!placed[neighbour] && !is_chain_link[link]) {
                     next = neighbour, via = link;
                     break;
                 }
@@ -63,15 +68,15 @@ std::vector<int> order_level(const Model& model, const std::set<std::string>& le
             chain_link_after.back() = via;
             order.push_back(next);
             chain_link_after.push_back(-1);
-            placed.insert(next);
+            placed[next] = true;
             current = next;
         }
     };
     // Start paths at chain ends (degree ≤ 1) first, then whatever is left (cycles).
     for (int m : mats)
-        if (!placed.count(m) && adjacent[m].size() <= 1) walk(m);
+        if (!placed[m] && adjacent[m].size() <= 1) walk(m);
     for (int m : mats)
-        if (!placed.count(m)) walk(m);
+        if (!placed[m]) walk(m);
     return order;
 }
 
@@ -136,8 +141,10 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
 // between them are ordinary links rather than rate crossings. Fastest first.
 void compile_levels(CompiledModel& c, const Model& model, std::map<std::string, int>& level_index,
                     std::vector<bool>& is_chain_link) {
-    std::map<std::string, int> mat_index;
+    MatIndex mat_index;
+    mat_index.reserve(model.mats.size());
     for (int i = 0; i < static_cast<int>(model.mats.size()); ++i) mat_index[model.mats[i].id] = i;
+    c.mat_slots.reserve(model.mats.size());
     std::map<int, std::set<std::string>> by_divider;
     for (const auto& r : model.rates) by_divider[r.divider].insert(r.id);
     for (const auto& [divider, ids] : by_divider) {

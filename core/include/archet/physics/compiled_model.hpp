@@ -7,6 +7,7 @@
 
 #include <map>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "archet/model/model.hpp"
@@ -234,7 +235,7 @@ struct CompiledModel {
     std::vector<CompiledProbe> probes;
     std::vector<CompiledOutput> outputs;
     double output_gain = 1;
-    std::map<std::string, MatSlot> mat_slots;
+    std::unordered_map<std::string, MatSlot> mat_slots;  ///< looked up by id, never walked
     Model source;  ///< the graph it was compiled from (names, parameters)
 
     /// Resolves ELEMENT.PARAMETER to an array slot; throws InputError when it cannot be
