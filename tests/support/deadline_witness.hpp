@@ -34,20 +34,28 @@ class DeadlineWitness {
     /// for each whole period it lasted. A wake-up L late ends a stall of L to L + a quarter
     /// period (it began at most a quarter period before the wake-up was due); the middle counts.
     std::uint64_t missed() const { return missed_.load(); }
+    /// The same with the stalls merged across CPUs where they overlap: a stall of the whole
+    /// machine, which every CPU's thread sees, counts once, as a stall of one CPU does. Call
+    /// after stop().
+    std::uint64_t missed_by_the_machine() const;
     double worst_lateness_us() const { return static_cast<double>(worst_ns_.load()) / 1000.0; }
     bool realtime() const { return realtime_.load(); }
     /// The CPUs watched, a thread each.
     std::size_t cpus() const { return threads_.size(); }
-    /// One sentence for a test's message.
+    /// One sentence for a test's message; after stop().
     std::string describe() const;
 
   private:
-    void watch(int cpu);
+    struct Stall {
+        std::int64_t begin, end;  ///< ns, CLOCK_MONOTONIC: the middle estimate, as counted
+    };
+    void watch(int cpu, std::vector<Stall>& stalls);
 
     static constexpr int kWakeupsPerPeriod = 4;
     std::chrono::nanoseconds period_;
     std::atomic<bool> running_{true}, realtime_{true};
     std::atomic<std::uint64_t> missed_{0}, worst_ns_{0}, wakeups_{0};
+    std::vector<std::vector<Stall>> stalls_;  ///< one list per thread, read after stop()
     std::vector<std::thread> threads_;
 };
 

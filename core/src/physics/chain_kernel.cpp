@@ -106,10 +106,11 @@ class ChainRounds {
   private:
     // x[s + 1 … s + W]. On AVX-512, shifted in from the vector after: one shuffle, where a
     // 64-byte load one MAT off would straddle two cache lines every time. On the narrower
-    // builds, loaded again: AVX2's shift takes two shuffles (its lanes are two halves), and
-    // there the shuffles, not the loads, are what the loop waits for (a quarter faster on
-    // AMD Zen 3); SSE2's one shuffle costs no less than the load. The loop never writes x or
-    // x⁻, so the load waits for no store.
+    // builds, loaded again, every other load straddling two lines on AVX2: its shift takes two
+    // shuffles (its lanes are two halves), and on AMD Zen 3, where this was measured, the loop
+    // waited for them rather than for loads (loading took a fifth to a quarter off); for SSE2's
+    // one shuffle a micro-benchmark there found the load no slower. The loop never writes x
+    // or x⁻, so the load waits for no store.
     [[gnu::always_inline]] V next_along(const double* __restrict array, int s, V here,
                                         V after) const {
         if constexpr (W == 8)

@@ -1,8 +1,9 @@
 #pragma once
 // Storage for the per-MAT arrays the chain loop runs over (positions, T²/m, chain links,
 // grounds). Storage index 0 is padding and the loop's rounds start at MAT 1, so the arrays are
-// placed with MAT 1 at the start of a 64-byte cache line: every whole-vector load and store of
-// the loop is then aligned, and none straddles two lines (a straddling AVX-512 load costs two).
+// placed with MAT 1 at the start of a 64-byte cache line: every whole-vector store of the loop
+// is then aligned, and so is every load but those of x[s + 1] on the AVX2 and plain builds
+// (chain_kernel.cpp's next_along(); a straddling AVX-512 load costs two).
 
 #include <cstddef>
 #include <new>
