@@ -35,14 +35,14 @@ constexpr std::chrono::nanoseconds kPeriodOf64Frames{1'000'000'000LL * 64 / 4800
 // it started late (JackTimedDriver::ProcessWait), and the engine each client that had not
 // finished by then (JackEngine::CheckXRun); RtAudio counts both when a block falls between
 // them. The stalls are counted once however many CPUs saw them (missed_by_the_machine()).
-constexpr int kNullSinkReportsPerLateCycle = 1;
-constexpr int kJackReportsPerLateCycle = 2;
+constexpr int kNullSinkXrunsPerStall = 1;
+constexpr int kJackXrunsPerStall = 2;
 
 // Xruns, late blocks and a block that took longer than it lasts are archet's only when the
 // machine itself kept the same deadlines. When it did not, each of archet's missed deadlines
 // needs one of the machine's: more than that is still archet's. Called last: it may skip.
 void expect_every_deadline_kept(const nlohmann::json& stats, const test::DeadlineWitness& machine,
-                                int haptic_ticks_per_block, int reports_per_late_cycle) {
+                                int haptic_ticks_per_block, int xruns_per_stall) {
     const auto xruns = stats["xruns"].get<std::uint64_t>();
     const auto late_blocks = stats["haptic_late_ticks"].get<std::uint64_t>() /
                              static_cast<std::uint64_t>(haptic_ticks_per_block);
@@ -52,8 +52,8 @@ void expect_every_deadline_kept(const nlohmann::json& stats, const test::Deadlin
     ::testing::Test::RecordProperty("machine_missed_deadlines", static_cast<int>(machine.missed()));
     const std::string figures = stats.dump() + "; " + machine.describe();
     if (machine.missed() > 0) {
-        EXPECT_LE(xruns, machine.missed_by_the_machine() *
-                             static_cast<std::uint64_t>(reports_per_late_cycle))
+        EXPECT_LE(xruns,
+                  machine.missed_by_the_machine() * static_cast<std::uint64_t>(xruns_per_stall))
             << "more xruns than the machine's own stalls can explain: " << figures;
         EXPECT_LE(late_blocks, machine.missed())
             << "more late blocks than the machine's own stalls: " << figures;
@@ -128,7 +128,7 @@ TEST(Audio, PlaysIntoTheNullSinkInRealTimeWithoutAllocating) {
     for (const char* key : {"callbacks", "xruns", "worst_callback_us", "callback_budget_us",
                             "haptic_ticks", "haptic_late_ticks"})
         ASSERT_TRUE(s.contains(key)) << key;
-    expect_every_deadline_kept(s, machine, 64 * 3000 / 48000, kNullSinkReportsPerLateCycle);
+    expect_every_deadline_kept(s, machine, 64 * 3000 / 48000, kNullSinkXrunsPerStall);
 }
 
 TEST(Audio, AnUnknownApiIsRefusedAndAMissingDeviceFallsBackToTheNullSink) {
@@ -195,7 +195,7 @@ TEST_F(JackServer, TheFullBandwidth110HzStringAt64FramesForAMinuteWithoutXruns) 
     EXPECT_NEAR(s["callbacks"].get<double>(), 60.0 * 48000 / 64,
                 750 + 4 * s["xruns"].get<double>());
     EXPECT_EQ(s["realtime_allocations"].get<int>(), 0);
-    expect_every_deadline_kept(s, machine, 64 * 3000 / 48000, kJackReportsPerLateCycle);
+    expect_every_deadline_kept(s, machine, 64 * 3000 / 48000, kJackXrunsPerStall);
 }
 
 }  // namespace
