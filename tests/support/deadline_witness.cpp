@@ -17,6 +17,11 @@ std::int64_t monotonic_ns() {
     return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
 }
 
+// The deadlines a stall of `stall` ns costs: one, and one more for each whole period it lasted.
+std::uint64_t deadlines_missed_by(std::int64_t stall, std::int64_t period) {
+    return 1 + static_cast<std::uint64_t>(stall / period);
+}
+
 }  // namespace
 
 DeadlineWitness::DeadlineWitness(std::chrono::nanoseconds period) : period_(period) {
@@ -72,8 +77,7 @@ void DeadlineWitness::watch(int cpu, std::vector<Stall>& stalls) {
         // every cycle it could not serve (JACK reports an xrun per cycle).
         const std::int64_t stall = late + interval / 2;
         if (stall > period / 2) {
-            missed_.fetch_add(1 + static_cast<std::uint64_t>(stall / period),
-                              std::memory_order_relaxed);
+            missed_.fetch_add(deadlines_missed_by(stall, period), std::memory_order_relaxed);
             const std::int64_t woke = deadline + late;
             stalls.push_back({woke - stall, woke});
         }
@@ -92,7 +96,7 @@ std::uint64_t DeadlineWitness::missed_by_the_machine() const {
         Stall merged = all[i++];
         while (i < all.size() && all[i].begin <= merged.end)
             merged.end = std::max(merged.end, all[i++].end);
-        missed += 1 + static_cast<std::uint64_t>((merged.end - merged.begin) / period);
+        missed += deadlines_missed_by(merged.end - merged.begin, period);
     }
     return missed;
 }
