@@ -11,9 +11,11 @@
 #include "archet/analysis/modal_analysis.hpp"
 #include "archet/builders/bowed_string.hpp"
 #include "archet/builders/harmonic_chain.hpp"
+#include "archet/builders/string_chain.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_validation.hpp"
+#include "archet/model/stability.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "test_support.hpp"
 
@@ -44,6 +46,33 @@ TEST(HarmonicChain, InverseProblemRecoversTheSpectrum) {
     for (int i = 0; i < n; ++i) EXPECT_NEAR(solver.eigenvalues()[i] / lambda[i], 1.0, 1e-10);
     // Mirror symmetric, as the spectral weights assume.
     for (int i = 0; i < n; ++i) EXPECT_NEAR(c.masses[i] / c.masses[n - 1 - i], 1.0, 1e-8);
+}
+
+// The full-bandwidth search steps down on the string tuned on its undamped modes, for a
+// fraction of the full tuning's time: it must use the stability limit as the fully tuned string
+// does, to well within the step from one mass count to the next.
+TEST(HarmonicChain, TheUndampedTuningUsesTheStabilityLimitAsTheFullTuningDoes) {
+    BowedStringOptions o;
+    o.pitch = 220;
+    o.tuning = Tuning::Harmonic;
+    ASSERT_TRUE(tuning_ends_on_damped_modes(o));
+    const auto use = [](const Model& m) {
+        double worst = 0;
+        for (const auto& r : analyse_stability(m))
+            worst = std::max(worst, r.largest_eigenvalue / StabilityReport::kLimit);
+        return worst;
+    };
+    const double full_96 = use(tuned_string(o, 96)), full_97 = use(tuned_string(o, 97));
+    const double undamped_96 = use(undamped_tuned_string(o, 96));
+    const double undamped_97 = use(undamped_tuned_string(o, 97));
+    ASSERT_GT(full_97 - full_96, 0.002);
+    EXPECT_LT(std::abs(undamped_96 - full_96), 0.25 * (full_97 - full_96));
+    EXPECT_LT(std::abs(undamped_97 - full_97), 0.25 * (full_97 - full_96));
+    EXPECT_NE(undamped_96, full_96);  // the damped steps did run in the full tuning
+    // Without damped steps to leave out, it is the full tuning itself.
+    o.tuning = Tuning::Homogeneous;
+    EXPECT_FALSE(tuning_ends_on_damped_modes(o));
+    EXPECT_EQ(use(undamped_tuned_string(o, 96)), use(tuned_string(o, 96)));
 }
 
 class HarmonicString : public ::testing::TestWithParam<int> {};

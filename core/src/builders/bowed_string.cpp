@@ -2,9 +2,12 @@
 
 #include <cctype>
 #include <cmath>
+#include <map>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
+#include "archet/builders/count_search.hpp"
 #include "archet/builders/string_body.hpp"
 #include "archet/builders/string_chain.hpp"
 #include "archet/builders/stroke_in_band.hpp"
@@ -149,8 +152,9 @@ void describe(Model& model, const BowedStringOptions& o, int n, const StringLoss
     model.description = description;
 }
 
-Model assemble(const BowedStringOptions& o, int n) {
-    Model model = tuned_string(o, n);  // with its body
+// `tuned` is tuned_string(o, n), when the caller has it already.
+Model assemble(const BowedStringOptions& o, int n, std::optional<Model> tuned = std::nullopt) {
+    Model model = tuned ? std::move(*tuned) : tuned_string(o, n);  // with its body
     const StringLosses losses = string_losses(o, model, n);
     if (!o.paper && o.tuning == Tuning::Harmonic && o.string_damping < 0)
         model = tuned_string(o, n, &losses);
@@ -340,17 +344,42 @@ Model build_bowed_string(const BowedStringOptions& o, const std::atomic<bool>* c
         throw InputError("--pitch", "no chaplet of " + std::to_string(low) +
                                         " masses or more is stable at " + fmt(o.pitch) +
                                         " Hz: " + size_limit_text(o, limit));
-    // The largest count that keeps a reserve; the smallest stable one otherwise.
-    for (int n = high; n >= low; --n) {
+    // The largest count that keeps a reserve; the smallest stable one otherwise. The full
+    // string's losses and tuning cost seconds; its tuned chain with the bow tells first whether
+    // a count keeps the reserve (the light losses hardly move it), and the chain's use of the
+    // stability limit grows with the count. Where the tuning ends on the damped modes, the chain
+    // tuned on its undamped modes alone costs a fraction of it and uses the limit within a
+    // fraction of the step from one count to the next (0.07 % against 0.2 % at 110 Hz): it
+    // tells where the search can start.
+    std::map<int, Model> tuned;  // each count's tuned_string(), computed once
+    const auto keeps_reserve = [&](int n, bool undamped) {
+        try {
+            if (undamped)
+                return stability_use(with_bow(undamped_tuned_string(o, n), o, n)) <= 1.0 - margin;
+            auto string = tuned.find(n);
+            if (string == tuned.end()) string = tuned.emplace(n, tuned_string(o, n)).first;
+            return stability_use(with_bow(string->second, o, n)) <= 1.0 - margin;
+        } catch (const InputError& e) {
+            if (e.where() != "--tuning") throw;
+            return false;  // a harmonic chain this long cannot be tuned at this rate
+        }
+    };
+    const int start = !o.paper && tuning_ends_on_damped_modes(o)
+                          ? count_search_start(
+                                low, high, [&](int n) { return keeps_reserve(n, true); },
+                                [&](int n) { return keeps_reserve(n, false); },
+                                [&] {
+                                    if (was_cancelled(cancel))
+                                        throw InputError("--pitch", "cancelled");
+                                })
+                          : high;
+    for (int n = start; n >= low; --n) {
         if (was_cancelled(cancel)) throw InputError("--pitch", "cancelled");
         Model m;
         try {
-            // The full string's losses and tuning cost seconds; its tuned chain with the bow
-            // tells first whether this count keeps the reserve (the light losses hardly move it).
-            if (!o.paper && n > low &&
-                stability_use(with_bow(tuned_string(o, n), o, n)) > 1.0 - margin)
-                continue;
-            m = assemble(o, n);
+            if (!o.paper && n > low && !keeps_reserve(n, false)) continue;
+            const auto string = tuned.find(n);
+            m = string == tuned.end() ? assemble(o, n) : assemble(o, n, std::move(string->second));
         } catch (const InputError& e) {
             if (n == low || e.where() != "--tuning") throw;
             continue;  // a harmonic chain this long cannot be tuned at this rate; try a shorter one

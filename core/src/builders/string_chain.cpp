@@ -115,7 +115,8 @@ std::vector<double> partials(const Model& model, int n, bool damped) {
 // Harmonic chaplet: masses and links from the inverse eigenvalue problem so that its first
 // n partials fall on k·f0. The targets are corrected for what the fixed-end solution leaves
 // out (heavy but movable bridges, damping) until the simulated partials are harmonic.
-Model harmonic_string(const BowedStringOptions& o, int n, const StringLosses* losses) {
+Model harmonic_string(const BowedStringOptions& o, int n, const StringLosses* losses,
+                      bool damped_steps_allowed = true) {
     const double string_mass = o.linear_density * string_length(o);
     std::vector<double> targets;
     for (int k = 1; k <= n; ++k) targets.push_back(k * o.pitch);
@@ -148,7 +149,10 @@ Model harmonic_string(const BowedStringOptions& o, int n, const StringLosses* lo
         if (k < n)
             throw InputError("--tuning", "the harmonic chaplet lost partials; try fewer masses");
         if (damped && (worst < 1e-3 || damped_steps >= 4)) break;
-        if (worst < 1e-4) damped = true;
+        if (worst < 1e-4) {
+            if (!damped_steps_allowed) break;
+            damped = true;
+        }
         if (targets.back() >= o.sample_rate / 2) break;  // the stability check says why
     }
     return model;
@@ -196,6 +200,17 @@ void retune_with_body(Model& model, const BowedStringOptions& o, int n) {
 Model tuned_string(const BowedStringOptions& o, int n, const StringLosses* losses) {
     Model model =
         o.tuning == Tuning::Harmonic ? harmonic_string(o, n, losses) : homogeneous_string(o, n);
+    if (!o.paper && o.body != "none") retune_with_body(model, o, n);
+    return model;
+}
+
+bool tuning_ends_on_damped_modes(const BowedStringOptions& o) {
+    return o.tuning == Tuning::Harmonic && !damped_while_tuning(o);
+}
+
+Model undamped_tuned_string(const BowedStringOptions& o, int n) {
+    if (!tuning_ends_on_damped_modes(o)) return tuned_string(o, n);
+    Model model = harmonic_string(o, n, nullptr, false);
     if (!o.paper && o.body != "none") retune_with_body(model, o, n);
     return model;
 }
