@@ -58,6 +58,21 @@ TEST(CountSearch, AnEstimateThatKeepsTheTopStartsThereWithoutTheExactTest) {
     EXPECT_FALSE(asked);
 }
 
+TEST(CountSearch, ACancelStopsTheExactTests) {
+    int exact = 0;
+    EXPECT_THROW(count_search_start(
+                     kLow, kHigh, [](int n) { return n <= kLow + 1; },
+                     [&](int) {
+                         ++exact;
+                         return true;
+                     },
+                     [&] {
+                         if (exact == 2) throw std::runtime_error("cancelled");
+                     }),
+                 std::runtime_error);
+    EXPECT_EQ(exact, 2);
+}
+
 TEST(CountSearch, OneCountIsItsOwnStart) {
     EXPECT_EQ(count_search_start(
                   kLow, kLow, [](int) { return false; }, [](int) { return false; }),

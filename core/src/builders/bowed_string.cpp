@@ -346,40 +346,46 @@ Model build_bowed_string(const BowedStringOptions& o, const std::atomic<bool>* c
                                         " Hz: " + size_limit_text(o, limit));
     // The largest count that keeps a reserve; the smallest stable one otherwise. The full
     // string's losses and tuning cost seconds; its tuned chain with the bow tells first whether
-    // a count keeps the reserve (the light losses hardly move it), and the chain's use of the
-    // stability limit grows with the count. Where the tuning ends on the damped modes, the chain
-    // tuned on its undamped modes alone costs a fraction of it and uses the limit within a
-    // fraction of the step from one count to the next (0.07 % against 0.22–0.26 % at 110 Hz): it
-    // tells where the search can start.
+    // a count keeps the reserve (the light losses hardly move it). Assumed: a count keeps it only
+    // if every smaller one does (the chain's use of the stability limit grows with the count).
+    // Where the tuning ends on the damped modes, the chain tuned on its undamped modes alone
+    // costs a fraction of it and, with the bow, uses the limit within a fraction of the step from
+    // one count to the next (0.07 % against 0.22–0.26 % at 110 Hz): it tells where the search
+    // can start.
     std::map<int, Model> tuned;  // each count's tuned_string(), computed once
-    const auto keeps_reserve = [&](int n, bool undamped) {
+    std::map<int, bool> kept;    // and whether it keeps the reserve
+    const auto keeps = [&](int n) {
+        if (const auto verdict = kept.find(n); verdict != kept.end()) return verdict->second;
+        bool keeps = false;
         try {
-            if (undamped)
-                return stability_use(with_bow(undamped_tuned_string(o, n), o, n)) <= 1.0 - margin;
-            auto string = tuned.find(n);
-            if (string == tuned.end()) string = tuned.emplace(n, tuned_string(o, n)).first;
-            return stability_use(with_bow(string->second, o, n)) <= 1.0 - margin;
+            const Model& string = tuned.emplace(n, tuned_string(o, n)).first->second;
+            keeps = stability_use(with_bow(string, o, n)) <= 1.0 - margin;
         } catch (const InputError& e) {
-            if (e.where() != "--tuning") throw;
-            return false;  // a harmonic chain this long cannot be tuned at this rate
+            if (e.where() != "--tuning") throw;  // else a harmonic chain this long cannot be tuned
+        }
+        kept.emplace(n, keeps);
+        return keeps;
+    };
+    const auto roughly_keeps = [&](int n) {
+        try {
+            return stability_use(with_bow(undamped_tuned_string(o, n), o, n)) <= 1.0 - margin;
+        } catch (const InputError&) {
+            return false;  // an estimate: a wrong one only costs time
         }
     };
+    const auto check_cancel = [&] {
+        if (was_cancelled(cancel)) throw InputError("--pitch", "cancelled");
+    };
     const int start = !o.paper && tuning_ends_on_damped_modes(o)
-                          ? count_search_start(
-                                low, high, [&](int n) { return keeps_reserve(n, true); },
-                                [&](int n) { return keeps_reserve(n, false); },
-                                [&] {
-                                    if (was_cancelled(cancel))
-                                        throw InputError("--pitch", "cancelled");
-                                })
+                          ? count_search_start(low, high, roughly_keeps, keeps, check_cancel)
                           : high;
     for (int n = start; n >= low; --n) {
-        if (was_cancelled(cancel)) throw InputError("--pitch", "cancelled");
+        check_cancel();
         Model m;
         try {
-            if (!o.paper && n > low && !keeps_reserve(n, false)) continue;
-            const auto string = tuned.find(n);
-            m = string == tuned.end() ? assemble(o, n) : assemble(o, n, std::move(string->second));
+            if (!o.paper && n > low && !keeps(n)) continue;
+            auto string = tuned.extract(n);
+            m = assemble(o, n, string ? std::optional(std::move(string.mapped())) : std::nullopt);
         } catch (const InputError& e) {
             if (n == low || e.where() != "--tuning") throw;
             continue;  // a harmonic chain this long cannot be tuned at this rate; try a shorter one

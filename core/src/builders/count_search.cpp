@@ -15,7 +15,11 @@ int count_search_start(int low, int high, const std::function<bool(int)>& roughl
         --start;
     }
     start = std::min(high, start + 1);
-    while (start < high && keeps(start)) ++start;
+    while (start < high) {
+        cancelled();
+        if (!keeps(start)) break;
+        ++start;
+    }
     return start;
 }
 

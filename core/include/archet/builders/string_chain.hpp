@@ -19,12 +19,12 @@ double link_damping_ratio(const BowedStringOptions& o, const ChainProfile& profi
 Model tuned_string(const BowedStringOptions& o, int n, const StringLosses* losses = nullptr);
 
 /// Whether tuned_string() ends with corrections on the damped modes, each a dense
-/// eigenproblem of twice the string's size: a harmonic chaplet whose losses are solved later.
+/// eigenproblem of twice the string's size: a harmonic chaplet not damped while it is tuned.
 bool tuning_ends_on_damped_modes(const BowedStringOptions& o);
 
-/// tuned_string() without those corrections for its bridges' dampers (the same string when
-/// there are none), for a fraction of its time: at 110 Hz its use of the stability limit is
-/// within 0.07 % of the full tuning's.
+/// tuned_string() without those corrections for its bridges' dampers, for a fraction of its
+/// time (tuned_string() itself when its tuning has no such corrections). At 110 Hz, with the
+/// bow, its use of the stability limit is within 0.07 % of the fully tuned string's.
 Model undamped_tuned_string(const BowedStringOptions& o, int n);
 
 /// Puts the damped first mode, as the scheme runs it, exactly on the pitch: the chain is tuned
