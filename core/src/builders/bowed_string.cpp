@@ -355,16 +355,16 @@ Model build_bowed_string(const BowedStringOptions& o, const std::atomic<bool>* c
     std::map<int, Model> tuned;  // each count's tuned_string(), computed once
     std::map<int, bool> kept;    // and whether it keeps the reserve
     const auto keeps = [&](int n) {
-        if (const auto verdict = kept.find(n); verdict != kept.end()) return verdict->second;
-        bool keeps = false;
+        if (const auto known = kept.find(n); known != kept.end()) return known->second;
+        bool verdict = false;
         try {
             const Model& string = tuned.emplace(n, tuned_string(o, n)).first->second;
-            keeps = stability_use(with_bow(string, o, n)) <= 1.0 - margin;
+            verdict = stability_use(with_bow(string, o, n)) <= 1.0 - margin;
         } catch (const InputError& e) {
             if (e.where() != "--tuning") throw;  // else a harmonic chain this long cannot be tuned
         }
-        kept.emplace(n, keeps);
-        return keeps;
+        kept.emplace(n, verdict);
+        return verdict;
     };
     const auto roughly_keeps = [&](int n) {
         try {
