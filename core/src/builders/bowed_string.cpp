@@ -314,26 +314,33 @@ int full_bandwidth_masses(double pitch, double sample_rate, Tuning tuning, doubl
     return best;
 }
 
+namespace {
+
+// The string of the count --masses asks for, refused where the scheme cannot run it.
+Model string_of_given_count(const BowedStringOptions& o, int limit,
+                            const std::atomic<bool>* cancel) {
+    if (o.masses > limit)
+        throw InputError("--masses", std::to_string(o.masses) + " masses at " + fmt(o.pitch) +
+                                         (o.tuning == Tuning::Harmonic ? " Hz reach fs/2: "
+                                                                       : " Hz are unstable: ") +
+                                         size_limit_text(o, limit));
+    Model m = assemble(o, o.masses);
+    if (stability_use(m) >= 1.0)
+        throw InputError("--masses", std::to_string(o.masses) + " masses at " + fmt(o.pitch) +
+                                         " Hz are unstable once damped (largest normalised "
+                                         "eigenvalue " +
+                                         fmt(4 * stability_use(m)) +
+                                         " of 4); use fewer masses or less damping");
+    return finished(m, o, o.masses, cancel);
+}
+
+}  // namespace
+
 Model build_bowed_string(const BowedStringOptions& o, const std::atomic<bool>* cancel) {
     check_options(o);
-    const bool harmonic = o.tuning == Tuning::Harmonic;
-    const int limit = harmonic ? max_harmonic_masses(o.pitch, o.sample_rate)
-                               : max_stable_masses(o.pitch, o.sample_rate);
-    if (o.masses > 0) {
-        if (o.masses > limit)
-            throw InputError("--masses",
-                             std::to_string(o.masses) + " masses at " + fmt(o.pitch) +
-                                 (harmonic ? " Hz reach fs/2: " : " Hz are unstable: ") +
-                                 size_limit_text(o, limit));
-        Model m = assemble(o, o.masses);
-        if (stability_use(m) >= 1.0)
-            throw InputError("--masses",
-                             std::to_string(o.masses) + " masses at " + fmt(o.pitch) +
-                                 " Hz are unstable once damped (largest normalised eigenvalue " +
-                                 fmt(4 * stability_use(m)) +
-                                 " of 4); use fewer masses or less damping");
-        return finished(m, o, o.masses, cancel);
-    }
+    const int limit = o.tuning == Tuning::Harmonic ? max_harmonic_masses(o.pitch, o.sample_rate)
+                                                   : max_stable_masses(o.pitch, o.sample_rate);
+    if (o.masses > 0) return string_of_given_count(o, limit, cancel);
     const int low = o.paper ? kPaperMinMasses : kMinMasses;
     const int high =
         o.paper
