@@ -116,7 +116,7 @@ std::vector<double> partials(const Model& model, int n, bool damped) {
 // n partials fall on k·f0. The targets are corrected for what the fixed-end solution leaves
 // out (heavy but movable bridges, damping) until the simulated partials are harmonic.
 Model harmonic_string(const BowedStringOptions& o, int n, const StringLosses* losses,
-                      bool damped_steps_allowed = true) {
+                      bool damped_steps_allowed) {
     const double string_mass = o.linear_density * string_length(o);
     std::vector<double> targets;
     for (int k = 1; k <= n; ++k) targets.push_back(k * o.pitch);
@@ -195,13 +195,20 @@ void retune_with_body(Model& model, const BowedStringOptions& o, int n) {
     scale_links_to_pitch(model, o, n, false, 1e-12, 10);
 }
 
+// A harmonic chaplet damped from the start of its tuning never reaches the switch to the damped
+// steps, so `damped_steps_allowed` only matters where the tuning ends on the damped modes.
+Model string_tuned(const BowedStringOptions& o, int n, const StringLosses* losses,
+                   bool damped_steps_allowed) {
+    Model model = o.tuning == Tuning::Harmonic ? harmonic_string(o, n, losses, damped_steps_allowed)
+                                               : homogeneous_string(o, n);
+    if (!o.paper && o.body != "none") retune_with_body(model, o, n);
+    return model;
+}
+
 }  // namespace
 
 Model tuned_string(const BowedStringOptions& o, int n, const StringLosses* losses) {
-    Model model =
-        o.tuning == Tuning::Harmonic ? harmonic_string(o, n, losses) : homogeneous_string(o, n);
-    if (!o.paper && o.body != "none") retune_with_body(model, o, n);
-    return model;
+    return string_tuned(o, n, losses, true);
 }
 
 bool tuning_ends_on_damped_modes(const BowedStringOptions& o) {
@@ -209,10 +216,7 @@ bool tuning_ends_on_damped_modes(const BowedStringOptions& o) {
 }
 
 Model undamped_tuned_string(const BowedStringOptions& o, int n) {
-    if (!tuning_ends_on_damped_modes(o)) return tuned_string(o, n);
-    Model model = harmonic_string(o, n, nullptr, false);
-    if (!o.paper && o.body != "none") retune_with_body(model, o, n);
-    return model;
+    return string_tuned(o, n, nullptr, false);
 }
 
 void retune_damped(Model& model, const BowedStringOptions& o, int n) {
