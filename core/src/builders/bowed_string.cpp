@@ -152,19 +152,34 @@ void describe(Model& model, const BowedStringOptions& o, int n, const StringLoss
     model.description = description;
 }
 
+// The tuned string with its losses and bridges (and body), before a bow touches it: all that
+// does not depend on where it is bowed, built once for every bow position tried.
+struct UnbowedString {
+    Model model;
+    StringLosses losses;
+    std::string decays;  ///< the decays it has, for its description
+};
+
 // `tuned` is tuned_string(o, n), when the caller has it already.
-Model assemble(const BowedStringOptions& o, int n, std::optional<Model> tuned = std::nullopt) {
+UnbowedString unbowed_string(const BowedStringOptions& o, int n,
+                             std::optional<Model> tuned = std::nullopt) {
     Model model = tuned ? std::move(*tuned) : tuned_string(o, n);  // with its body
     const StringLosses losses = string_losses(o, model, n);
     if (!o.paper && o.tuning == Tuning::Harmonic && o.string_damping < 0)
         model = tuned_string(o, n, &losses);
     if (!o.paper) retune_damped(model, o, n);
-    const std::string decays = o.paper ? "" : decays_text(model, o, n);  // before the bow
+    std::string decays = o.paper ? "" : decays_text(model, o, n);
+    return {std::move(model), losses, std::move(decays)};
+}
+
+// The string bowed where `o` says.
+Model bowed_at(const UnbowedString& string, const BowedStringOptions& o, int n) {
+    Model model = string.model;
     if (o.structure == Structure::Modal)
-        make_modal(model, n, bowed_mass(o, n), losses, wide_bow(o));
+        make_modal(model, n, bowed_mass(o, n), string.losses, wide_bow(o));
     add_bow(model, o, n);
     if (o.finger) add_finger(model, o, n);
-    describe(model, o, n, losses, decays);
+    describe(model, o, n, string.losses, string.decays);
     return model;
 }
 
@@ -235,8 +250,10 @@ std::string size_limit_text(const BowedStringOptions& o, int limit) {
 }
 
 // The string with its stroke. A short string has few masses to bow: where the default bow
-// position finds no Helmholtz band, the next mass or two may.
-Model finished(Model model, const BowedStringOptions& o, int n, const std::atomic<bool>* cancel) {
+// position finds no Helmholtz band, the next mass or two may. `model` is `string` bowed where
+// `o` says.
+Model finished(Model model, const UnbowedString& string, const BowedStringOptions& o, int n,
+               const std::atomic<bool>* cancel) {
     validate_model(model);
     if (!o.with_gesture) return model;
     const int bowed = bowed_mass(o, n);
@@ -246,7 +263,7 @@ Model finished(Model model, const BowedStringOptions& o, int n, const std::atomi
         BowedStringOptions moved = o;
         moved.bow_position = static_cast<double>(bowed + moves[k]) / (n + 1);
         if (bowed_mass(moved, n) != bowed + moves[k]) continue;  // off the string's bowable half
-        Model m = moves[k] == 0 ? model : assemble(moved, n);
+        Model m = moves[k] == 0 ? model : bowed_at(string, moved, n);
         try {
             const HelmholtzBand band = helmholtz_band(m, o.stroke_speed, 17, cancel);
             m.gesture = stroke_in_band(m, band, o.stroke_speed);
@@ -324,14 +341,15 @@ Model string_of_given_count(const BowedStringOptions& o, int limit,
                                          (o.tuning == Tuning::Harmonic ? " Hz reach fs/2: "
                                                                        : " Hz are unstable: ") +
                                          size_limit_text(o, limit));
-    Model m = assemble(o, o.masses);
+    const UnbowedString string = unbowed_string(o, o.masses);
+    Model m = bowed_at(string, o, o.masses);
     if (stability_use(m) >= 1.0)
         throw InputError("--masses", std::to_string(o.masses) + " masses at " + fmt(o.pitch) +
                                          " Hz are unstable once damped (largest normalised "
                                          "eigenvalue " +
                                          fmt(4 * stability_use(m)) +
                                          " of 4); use fewer masses or less damping");
-    return finished(m, o, o.masses, cancel);
+    return finished(std::move(m), string, o, o.masses, cancel);
 }
 
 }  // namespace
@@ -388,18 +406,21 @@ Model build_bowed_string(const BowedStringOptions& o, const std::atomic<bool>* c
                           : high;
     for (int n = start; n >= low; --n) {
         check_cancel();
+        std::optional<UnbowedString> string;
         Model m;
         try {
             if (!o.paper && n > low && !keeps(n)) continue;
-            auto string = tuned.extract(n);
-            m = assemble(o, n, string ? std::optional(std::move(string.mapped())) : std::nullopt);
+            auto known = tuned.extract(n);
+            string = unbowed_string(
+                o, n, known ? std::optional(std::move(known.mapped())) : std::nullopt);
+            m = bowed_at(*string, o, n);
         } catch (const InputError& e) {
             if (n == low || e.where() != "--tuning") throw;
             continue;  // a harmonic chain this long cannot be tuned at this rate; try a shorter one
         }
         if (stability_use(m) <= 1.0 - margin || n == low) {
             if (stability_use(m) >= 1.0) break;
-            return finished(m, o, n, cancel);
+            return finished(std::move(m), *string, o, n, cancel);
         }
     }
     throw InputError("--pitch",
