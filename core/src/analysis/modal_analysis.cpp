@@ -69,6 +69,8 @@ std::set<std::string> behind_fingers(const Model& model) {
     return behind;
 }
 
+}  // namespace
+
 // Supports are the string behind a finger, and oscillators standing on their own (bridges) or
 // read by a body's bridge point;
 // the string's modes are those its bowed point reads (any modal point's when nothing bows).
@@ -93,13 +95,7 @@ std::vector<bool> support_dofs(const LinearSystem& sys, const Model& model) {
     return support;
 }
 
-}  // namespace
-
-ModalAnalysis analyse_modes(const Model& model) {
-    return analyse_modes(sounding_part(model), model);
-}
-
-ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
+void check_analysable(const LinearSystem& sys) {
     const int n = sys.size();
     if (n == 0)
         throw InputError("model",
@@ -114,6 +110,15 @@ ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
             throw InputError("mass \"" + sys.dofs[i] + "\"",
                              "the mass matrix is singular here (mass " +
                                  format_number(sys.mass[i]) + " kg); give it a positive mass");
+}
+
+ModalAnalysis analyse_modes(const Model& model) {
+    return analyse_modes(sounding_part(model), model);
+}
+
+ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
+    check_analysable(sys);
+    const int n = sys.size();
     const double dt = sys.dt;
     Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), true);
 

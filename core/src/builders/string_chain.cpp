@@ -6,6 +6,7 @@
 
 #include "archet/analysis/discrete_modes.hpp"
 #include "archet/analysis/modal_analysis.hpp"
+#include "archet/analysis/string_partials.hpp"
 #include "archet/builders/string_body.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/model/linear_system.hpp"
@@ -106,10 +107,7 @@ Model homogeneous_string(const BowedStringOptions& o, int n) {
 // on the symmetric problem's string modes (exact without damping, and much faster).
 std::vector<double> partials(const Model& model, int n, bool damped) {
     if (!damped) return string_mode_frequencies(model, string_elements(n));
-    std::vector<double> f;
-    for (const auto& mode : analyse_modes(assemble_linear_system(model, "audio"), model).modes)
-        if (!mode.support) f.push_back(mode.frequency);
-    return f;
+    return string_partial_frequencies(assemble_linear_system(model, "audio"), model);
 }
 
 // Harmonic chaplet: masses and links from the inverse eigenvalue problem so that its first

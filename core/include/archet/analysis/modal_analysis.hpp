@@ -43,4 +43,12 @@ inline constexpr int kMaxModalDofs = 1500;
 ModalAnalysis analyse_modes(const Model& model);
 ModalAnalysis analyse_modes(const LinearSystem& system, const Model& model);
 
+/// Throws the InputError analyse_modes() throws for a system it cannot analyse: none, more
+/// than kMaxModalDofs, or a mass that is not positive.
+void check_analysable(const LinearSystem& system);
+
+/// Which DOFs are supports (bridges, a body's bridge point, the string behind a finger): a
+/// mode with most of its kinetic energy in them is a support mode.
+std::vector<bool> support_dofs(const LinearSystem& system, const Model& model);
+
 }  // namespace archet

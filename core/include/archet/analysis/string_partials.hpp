@@ -1,0 +1,30 @@
+#pragma once
+// The frequencies of a string's partials as analyse_modes() finds them, bit for bit, at a
+// fraction of its cost on a chain: the roots come from the same eigenvalue solve without its
+// eigenvectors, and each mode's shape, which tells a partial from a mode of the supports, from
+// a tridiagonal solve of its own (what a harmonic string's tuning asks for several times).
+
+#include <complex>
+#include <vector>
+
+#include "archet/model/linear_system.hpp"
+#include "archet/model/model.hpp"
+
+namespace archet {
+
+/// The frequencies of the modes analyse_modes(system, model) does not call supports, ascending,
+/// with the same bits; it throws what analyse_modes() throws. Where the system is not a chain
+/// (its matrices not tridiagonal in the order of its DOFs) or has a finger, it is
+/// analyse_modes() itself.
+std::vector<double> string_partial_frequencies(const LinearSystem& system, const Model& model);
+
+/// Whether every link of the system joins neighbours in the order of its DOFs.
+bool is_tridiagonal(const LinearSystem& system);
+
+/// The shape of the scheme's mode with root z on a tridiagonal system without fingers: a
+/// vector in the null space of (z − 1)²·M + z·T²·K + (z − 1)·T·Z, by inverse iteration with
+/// a pivoting tridiagonal solve (scaled to unit length).
+std::vector<std::complex<double>> chain_mode_shape(const LinearSystem& system,
+                                                   std::complex<double> z);
+
+}  // namespace archet
