@@ -266,6 +266,11 @@ double bow_position(const Model& model) {
 }
 
 SchellengLines schelleng_lines(const Model& model) {
+    bow_module(model);  // a model without a bow is told so before its modes are analysed
+    return schelleng_lines(model, analyse_modes(model));
+}
+
+SchellengLines schelleng_lines(const Model& model, const ModalAnalysis& modes) {
     const Lia& bow = bow_module(model);
     const std::string centre = bowed_centre(model, bow);
     const Mat* bowed = model.find_mat(centre);
@@ -274,7 +279,6 @@ SchellengLines schelleng_lines(const Model& model) {
         const Lia* l = model.find_lia(id);
         if (l->from == centre || l->to == centre) k = std::max(k, l->stiffness);
     }
-    const ModalAnalysis modes = analyse_modes(model);
     double t60 = 0;
     for (const auto& m : modes.modes)
         if (m.partial == 1) t60 = m.t60;

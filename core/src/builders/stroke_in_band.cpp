@@ -54,8 +54,9 @@ bool plays_helmholtz(const Model& model, double pitch, double speed, double forc
 HelmholtzBand helmholtz_band(const Model& model, double speed, int steps,
                              const std::atomic<bool>* cancel) {
     const double beta = bow_position(model);
-    const SchellengBounds lines = schelleng_bounds(model, beta, speed);
-    const double pitch = analyse_modes(model).fundamental;
+    const ModalAnalysis modes = analyse_modes(model);  // once: it is most of the cost here
+    const SchellengBounds lines = schelleng_lines(model, modes).at(beta, speed);
+    const double pitch = modes.fundamental;
     // Without Schelleng's lines (a modal string has no links to read its impedance from), the
     // range a violinist's bow covers.
     const bool lined = lines.minimum > 0 && lines.maximum > lines.minimum;

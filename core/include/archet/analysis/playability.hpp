@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "archet/analysis/modal_analysis.hpp"
 #include "archet/model/model.hpp"
 
 namespace archet {
@@ -96,6 +97,8 @@ struct SchellengLines {
     SchellengBounds at(double position, double speed) const;
 };
 SchellengLines schelleng_lines(const Model& model);
+/// The same from the model's modal analysis, when the caller has it (analyse_modes(model)).
+SchellengLines schelleng_lines(const Model& model, const ModalAnalysis& modes);
 /// schelleng_lines(model).at(position, speed).
 SchellengBounds schelleng_bounds(const Model& model, double position, double speed);
 
