@@ -106,5 +106,27 @@ TEST(ChainModeShape, IsTheStandingWaveOfAUniformChain) {
     }
 }
 
+// The string mode nearest a frequency, from the eigenvalues and the nearest modes' shapes,
+// against the whole eigenbasis: with a body, whose own modes lie among the string's and are
+// passed over, and without.
+TEST(StringModeFrequency, IsTheBitsTheWholeEigenbasisGives) {
+    struct Case {
+        double pitch;
+        int masses;
+        const char* body;
+    };
+    for (const Case& c : {Case{110, 100, "violin"}, Case{220, 96, "violin"}, Case{440, 40, "none"},
+                          Case{65.4, 60, "violin"}}) {
+        BowedStringOptions o;
+        o.pitch = c.pitch, o.body = c.body;
+        const Model model = tuned_string(o, c.masses);
+        const StringElements string = string_elements(c.masses);
+        for (double f : {c.pitch, 2.0 * c.pitch, 280.0, 470.0, 2000.0, 9000.0})
+            EXPECT_EQ(string_mode_frequency(model, string, f),
+                      string_mode_decay(model, string, f).frequency)
+                << c.pitch << " Hz string, body " << c.body << ", near " << f << " Hz";
+    }
+}
+
 }  // namespace
 }  // namespace archet

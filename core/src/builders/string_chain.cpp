@@ -75,7 +75,7 @@ Model string_model(const BowedStringOptions& o, const ChainProfile& profile, dou
 // undamped ones (losses solved later) on the string's modes of the symmetric problem, which
 // is exact for them.
 double first_mode(const Model& model, int n, double pitch, bool damped) {
-    if (!damped) return string_mode_decay(model, string_elements(n), pitch).frequency;
+    if (!damped) return string_mode_frequency(model, string_elements(n), pitch);
     double f = 0;
     for (const auto& mode : discrete_modes(assemble_linear_system(model, "audio")))
         if (std::abs(mode.frequency - pitch) < std::abs(f - pitch)) f = mode.frequency;

@@ -1,6 +1,7 @@
 #include "archet/builders/string_losses.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -206,9 +207,48 @@ std::vector<double> string_mode_frequencies(const Model& model, const StringElem
     return f;  // the solver sorts λ ascending
 }
 
+double string_mode_frequency(const Model& model, const StringElements& string, double frequency) {
+    const LinearSystem system = assemble_linear_system(model, "audio");
+    const int n = system.size();
+    const Eigen::VectorXd scale = system.mass.cwiseSqrt().cwiseInverse();
+    const Eigen::MatrixXd a = scale.asDiagonal() * dense(system.stiffness, n) * scale.asDiagonal();
+    // Without eigenvectors Eigen runs the same reduction and QR steps: undamped_modes()' λ, bit
+    // for bit. A mode's shape is then the null vector of A − λ·I, by inverse iteration.
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(a, Eigen::EigenvaluesOnly);
+    const UndampedModes u{system, solver.eigenvalues(), {}, {}};
+    std::vector<bool> in_string(n, false);
+    for (int d = 0; d < n; ++d)
+        for (const auto& id : string.masses)
+            if (system.dofs[d] == id) in_string[d] = true;
+    // The modes by distance from `frequency`, the lower first among equals (as
+    // mode_coefficients() picks): the first that lives in the string is the one it picks.
+    std::vector<int> nearest(n);
+    for (int mode = 0; mode < n; ++mode) nearest[mode] = mode;
+    std::stable_sort(nearest.begin(), nearest.end(), [&](int x, int y) {
+        return std::abs(u.frequency(x) - frequency) < std::abs(u.frequency(y) - frequency);
+    });
+    const double largest = std::max(1.0, u.lambda.cwiseAbs().maxCoeff());
+    for (int mode : nearest) {
+        // Shifted off λ by far less than any gap between modes, so that the solve stays finite;
+        // two solves from an even start leave the mode's shape (a close pair's mix, should two be
+        // that close: both a bridge's, or both the string's).
+        const double shift = u.lambda[mode] + 1e-12 * largest;
+        const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a - shift * Eigen::MatrixXd::Identity(n, n));
+        Eigen::VectorXd y = Eigen::VectorXd::Ones(n);
+        for (int pass = 0; pass < 2; ++pass) y = lu.solve(y).normalized();
+        // Its share of inertia in the string: Σ m·φ² with φ = M^(−1/2)·y and |y| = 1.
+        double share = 0;
+        for (int d = 0; d < n; ++d)
+            if (in_string[d]) share += y[d] * y[d];
+        if (!std::isfinite(share)) return string_mode_decay(model, string, frequency).frequency;
+        if (share >= 0.5) return u.frequency(mode);
+    }
+    return 0.0;
+}
+
 ModeDecay exact_string_mode_decay(const Model& model, const StringElements& string,
                                   double frequency) {
-    const double f = mode_coefficients(model, string, frequency).frequency;
+    const double f = string_mode_frequency(model, string, frequency);
     return {f, exact_rate(model, f)};
 }
 

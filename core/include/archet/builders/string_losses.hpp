@@ -60,6 +60,11 @@ void apply_string_losses(Model& model, const StringElements& string, const Strin
 /// inertia is mostly in the string's masses (a bridge's or body's own modes are left out).
 std::vector<double> string_mode_frequencies(const Model& model, const StringElements& string);
 
+/// The discrete frequency (Hz) of the undamped model's string mode nearest `frequency` (0 when it
+/// has none): string_mode_decay()'s, to the bit, from the eigenvalues alone and the shapes of the
+/// modes nearest it, without the whole eigenbasis (what tuning a string to its pitch asks for).
+double string_mode_frequency(const Model& model, const StringElements& string, double frequency);
+
 /// The decay of the string mode nearest `frequency` as the scheme runs it, every damper included
 /// exactly (the eigenvalues of its one-step update; a dense problem of twice the model's size).
 ModeDecay exact_string_mode_decay(const Model& model, const StringElements& string,
