@@ -191,6 +191,26 @@ TEST(FullString, RefusesDecaysTheLossesCannotGive) {
     }
 }
 
+// The default material (a violin A string's) at 30 Hz is a string 4.7 m long: no stroke plays
+// it, and the refusal says which options make it a string an instrument has.
+TEST(FullString, RefusesAStringNoInstrumentHasAndSaysWhichMaterialToGive) {
+    BowedStringOptions o;
+    o.pitch = 30, o.masses = 20, o.body = "none";
+    try {
+        build_bowed_string(o);
+        FAIL() << "a 4.7 m violin A string was bowed";
+    } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("4.69 m long"), std::string::npos) << message;
+        EXPECT_NE(message.find("--tension 57.1 N and --density 0.00072 kg/m, a violin A string's"),
+                  std::string::npos)
+            << message;
+    }
+    o.tension = 300, o.linear_density = 0.06;  // 1.18 m: near a five-string bass's low B
+    const Model played = build_bowed_string(o);
+    EXPECT_TRUE(played.gesture.has_value());
+}
+
 TEST(FullString, TheBowRubsAHairWideContactPoint) {
     BowedStringOptions o;
     o.pitch = 220, o.with_gesture = false;

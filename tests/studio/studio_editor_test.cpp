@@ -428,6 +428,25 @@ TEST(NewStringDialogTest, ItsDefaultsBuildTheShippedString) {
         << "the dialog's defaults are the builder's (and the shipped 220 Hz string's)";
 }
 
+// A cello's C string: its material in the dialog, and the length it gives at the pitch.
+TEST(NewStringDialogTest, TakesTheStringsMaterialAndShowsItsLength) {
+    NewStringDialog dialog;
+    auto* length = dialog.findChild<QLabel*>("string_length");
+    ASSERT_NE(length, nullptr);
+    EXPECT_EQ(length->text(), "0.64 m");  // a violin A string tuned down to 220 Hz
+    dialog.findChild<QDoubleSpinBox*>("pitch")->setValue(65.4);
+    EXPECT_EQ(length->text(), "2.15 m") << "the violin A string's material at a cello's C";
+    dialog.findChild<QDoubleSpinBox*>("tension")->setValue(130);
+    dialog.findChild<QDoubleSpinBox*>("density")->setValue(0.0148);
+    EXPECT_EQ(length->text(), "0.72 m");
+    const BowedStringOptions o = dialog.options();
+    EXPECT_EQ(o.tension, 130.0);
+    EXPECT_EQ(o.linear_density, 0.0148);
+    EXPECT_EQ(o.pitch, 65.4);
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    EXPECT_TRUE(dialog.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("new-string-dialog.png")));
+}
+
 TEST(PlayabilityPanelTest, ComputesInTheBackgroundMarksTheGestureAndPlaysAClickedPoint) {
     const Model model = load_model_file(test::resource("models/bowed-string-220.json"));
     PlayabilityPanel panel(model, [] { return std::make_pair(0.115, 0.15); });

@@ -5,9 +5,11 @@
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
+#include <QLabel>
 #include <QSpinBox>
 
 #include "archet/builders/string_body.hpp"
+#include "archet/builders/string_chain.hpp"
 
 namespace archet::ui {
 
@@ -15,6 +17,7 @@ NewStringDialog::NewStringDialog(QWidget* parent) : QDialog(parent) {
     setWindowTitle(tr("New bowed string"));
     const BowedStringOptions defaults;
     pitch_ = new QDoubleSpinBox;
+    pitch_->setObjectName("pitch");
     pitch_->setRange(20, 4000);
     pitch_->setDecimals(2);
     pitch_->setSuffix(tr(" Hz"));
@@ -54,13 +57,52 @@ NewStringDialog::NewStringDialog(QWidget* parent) : QDialog(parent) {
         finger_->setEnabled(structure_->currentData().toInt() ==
                             static_cast<int>(Structure::Chain));
     });
+    make_material_fields();
     make_loss_fields();
     lay_out();
+}
+
+// The string's material: a violin A string's unless changed; the length they give at the pitch
+// shows whether that is a string an instrument has.
+void NewStringDialog::make_material_fields() {
+    const BowedStringOptions defaults;
+    tension_ = new QDoubleSpinBox;
+    tension_->setObjectName("tension");
+    tension_->setRange(1, 2000);
+    tension_->setDecimals(1);
+    tension_->setSuffix(tr(" N"));
+    tension_->setValue(defaults.tension);
+    density_ = new QDoubleSpinBox;
+    density_->setObjectName("density");
+    density_->setRange(0.00001, 0.5);
+    density_->setDecimals(5);
+    density_->setSingleStep(0.0001);
+    density_->setSuffix(tr(" kg/m"));
+    density_->setValue(defaults.linear_density);
+    const QString material =
+        tr("A violin A string's by default (57.1 N, 0.00072 kg/m); a cello's C is about 130 N "
+           "and 0.0148 kg/m (--tension and --density on the command line)");
+    tension_->setToolTip(material);
+    density_->setToolTip(material);
+    length_ = new QLabel;
+    length_->setObjectName("string_length");
+    auto show_length = [this] {
+        BowedStringOptions o;
+        o.pitch = pitch_->value(), o.tension = tension_->value();
+        o.linear_density = density_->value();
+        length_->setText(tr("%1 m").arg(string_length(o), 0, 'f', 2));
+    };
+    for (QDoubleSpinBox* box : {pitch_, tension_, density_})
+        connect(box, &QDoubleSpinBox::valueChanged, this, show_length);
+    show_length();
 }
 
 void NewStringDialog::lay_out() {
     auto* form = new QFormLayout(this);
     form->addRow(tr("Pitch (first mode)"), pitch_);
+    form->addRow(tr("Tension"), tension_);
+    form->addRow(tr("Linear density"), density_);
+    form->addRow(tr("String length"), length_);
     form->addRow(tr("Tuning"), tuning_);
     form->addRow(tr("Structure"), structure_);
     form->addRow(QString(), paper_);
@@ -121,6 +163,8 @@ void NewStringDialog::make_loss_fields() {
 BowedStringOptions NewStringDialog::options() const {
     BowedStringOptions o;
     o.pitch = pitch_->value();
+    o.tension = tension_->value();
+    o.linear_density = density_->value();
     o.tuning = static_cast<Tuning>(tuning_->currentData().toInt());
     o.structure = static_cast<Structure>(structure_->currentData().toInt());
     o.paper = paper_->isChecked();

@@ -249,6 +249,22 @@ std::string size_limit_text(const BowedStringOptions& o, int limit) {
            " masses. Lower the pitch or raise --sample-rate.";
 }
 
+// What to add to a refusal to bow a string that no instrument has: the default material (a violin
+// A string's) at a cello's pitch is two metres long, and hardly a stroke plays it.
+std::string material_hint(const BowedStringOptions& o) {
+    constexpr double kLongestBowedString = 1.2;  // m: a double bass's is about 1.05
+    const double length = string_length(o);
+    if (length <= kLongestBowedString) return "";
+    const BowedStringOptions defaults;
+    const bool violin_a =
+        o.tension == defaults.tension && o.linear_density == defaults.linear_density;
+    return ". At --tension " + fmt(o.tension) + " N and --density " + fmt(o.linear_density) +
+           " kg/m" + (violin_a ? ", a violin A string's," : "") + " this string is " +
+           fmt(std::round(length * 100) / 100) +
+           " m long, longer than any bowed string: give the tension and density of the string you "
+           "mean (a cello's C: about 130 N and 0.0148 kg/m)";
+}
+
 // The string with its stroke. A short string has few masses to bow: where the default bow
 // position finds no Helmholtz band, the next mass or two may. `model` is `string` bowed where
 // `o` says.
@@ -271,12 +287,14 @@ Model finished(Model model, const UnbowedString& string, const BowedStringOption
                 m.output_gain *= kStrokePeak / band.peak;  // the stroke it carries at −6 dBFS
             validate_model(m);
             return m;
-        } catch (const InputError&) {
-            if (k + 1 == moves.size() || was_cancelled(cancel)) throw;
+        } catch (const InputError& e) {
+            if (was_cancelled(cancel)) throw;
+            if (k + 1 == moves.size()) throw InputError(e.where(), e.message() + material_hint(o));
         }
     }
     throw InputError("--bow-position", "no bow position near " + fmt(o.bow_position) +
-                                           " finds a Helmholtz band; try another");
+                                           " finds a Helmholtz band; try another" +
+                                           material_hint(o));
 }
 
 }  // namespace

@@ -24,10 +24,6 @@ std::string mass_id(int i) {
     return "s" + std::to_string(i);
 }
 
-double string_length(const BowedStringOptions& o) {
-    return std::sqrt(o.tension / o.linear_density) / (2.0 * o.pitch);
-}
-
 // The string alone: bridges and the chain of `profile`, each link damped in proportion to its
 // stiffness (z = ratio·k) so that damping stays proportional and the modes keep their shapes.
 Model string_model(const BowedStringOptions& o, const ChainProfile& profile, double damping_ratio) {
@@ -226,6 +222,10 @@ StringElements string_elements(int n) {
     for (int i = 1; i <= n; ++i) s.masses.push_back(mass_id(i));
     for (int i = 0; i <= n; ++i) s.links.push_back("k" + std::to_string(i));
     return s;
+}
+
+double string_length(const BowedStringOptions& o) {
+    return std::sqrt(o.tension / o.linear_density) / (2.0 * o.pitch);
 }
 
 int bowed_mass(const BowedStringOptions& o, int n) {

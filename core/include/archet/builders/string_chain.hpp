@@ -44,4 +44,8 @@ void make_modal(Model& model, int n, int bowed, const StringLosses& losses, bool
 /// The string mass the bow sits on for bow position β (with a neighbour on each side).
 int bowed_mass(const BowedStringOptions& o, int n);
 
+/// The length (m) of the string `o` describes: its tension and density make waves travel at
+/// √(T/ρ), and its first mode at the pitch takes two lengths per period.
+double string_length(const BowedStringOptions& o);
+
 }  // namespace archet

@@ -1,7 +1,7 @@
 #pragma once
-// "New bowed string": a bowed string from a few choices (pitch, tuning, structure, masses or
-// the paper's chaplet, body, bow position, decays), built and tuned by the same builder as
-// `archet new bowed-string`.
+// "New bowed string": a bowed string from a few choices (pitch, the string's material, tuning,
+// structure, masses or the paper's chaplet, body, bow position, decays), built and tuned by the
+// same builder as `archet new bowed-string`.
 
 #include <QDialog>
 
@@ -10,6 +10,7 @@
 class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
+class QLabel;
 class QSpinBox;
 
 namespace archet::ui {
@@ -22,9 +23,13 @@ class NewStringDialog : public QDialog {
     BowedStringOptions options() const;
 
   private:
+    void make_material_fields();
     void make_loss_fields();
     void lay_out();
     QDoubleSpinBox* pitch_;
+    QDoubleSpinBox* tension_;
+    QDoubleSpinBox* density_;
+    QLabel* length_;
     QComboBox* tuning_;
     QComboBox* structure_;
     QCheckBox* paper_;
