@@ -92,13 +92,20 @@ std::vector<Complex> chain_mode_shape(const LinearSystem& sys, Complex z) {
     return shape;
 }
 
-std::vector<double> string_partial_frequencies(const LinearSystem& sys, const Model& model) {
+namespace {
+
+std::vector<double> partials_of_the_whole_analysis(const LinearSystem& sys, const Model& model) {
     std::vector<double> partials;
-    if (!sys.fingers.empty() || !is_tridiagonal(sys)) {
-        for (const ModeInfo& mode : analyse_modes(sys, model).modes)
-            if (!mode.support) partials.push_back(mode.frequency);
-        return partials;
-    }
+    for (const ModeInfo& mode : analyse_modes(sys, model).modes)
+        if (!mode.support) partials.push_back(mode.frequency);
+    return partials;
+}
+
+}  // namespace
+
+std::vector<double> string_partial_frequencies(const LinearSystem& sys, const Model& model) {
+    if (!sys.fingers.empty() || !is_tridiagonal(sys))
+        return partials_of_the_whole_analysis(sys, model);
     check_analysable(sys);
     const int n = sys.size();
     const double dt = sys.dt;
@@ -116,11 +123,13 @@ std::vector<double> string_partial_frequencies(const LinearSystem& sys, const Mo
             kinetic += e;
             if (is_support[i]) in_supports += e;
         }
+        if (!std::isfinite(kinetic)) return partials_of_the_whole_analysis(sys, model);
         modes.emplace_back(std::arg(root) / (2.0 * std::numbers::pi * dt),
                            in_supports > 0.5 * kinetic);
     }
     std::sort(modes.begin(), modes.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<double> partials;
     for (const auto& [frequency, support] : modes)
         if (!support) partials.push_back(frequency);
     return partials;

@@ -210,6 +210,7 @@ std::vector<double> string_mode_frequencies(const Model& model, const StringElem
 double string_mode_frequency(const Model& model, const StringElements& string, double frequency) {
     const LinearSystem system = assemble_linear_system(model, "audio");
     const int n = system.size();
+    if (n == 0) return 0.0;  // no mode at all
     const Eigen::VectorXd scale = system.mass.cwiseSqrt().cwiseInverse();
     const Eigen::MatrixXd a = scale.asDiagonal() * dense(system.stiffness, n) * scale.asDiagonal();
     // Without eigenvectors Eigen runs the same reduction and QR steps: undamped_modes()' λ, bit
