@@ -211,6 +211,24 @@ TEST(FullString, RefusesAStringNoInstrumentHasAndSaysWhichMaterialToGive) {
     EXPECT_TRUE(played.gesture.has_value());
 }
 
+TEST(FullString, RefusesAMaterialWithoutTensionOrMassBeforeBuilding) {
+    auto refused_on = [](double tension, double density) {
+        BowedStringOptions o;
+        o.tension = tension, o.linear_density = density;
+        try {
+            build_bowed_string(o);
+        } catch (const InputError& e) {
+            return e.where();
+        }
+        return std::string("nothing");
+    };
+    EXPECT_EQ(refused_on(0, 0.00072), "--tension");
+    EXPECT_EQ(refused_on(2e4, 0.00072), "--tension");
+    EXPECT_EQ(refused_on(57.1, -1), "--density");
+    EXPECT_EQ(refused_on(57.1, std::nan("")), "--density");
+    EXPECT_EQ(refused_on(57.1, 2), "--density");
+}
+
 TEST(FullString, TheBowRubsAHairWideContactPoint) {
     BowedStringOptions o;
     o.pitch = 220, o.with_gesture = false;

@@ -75,7 +75,7 @@ void NewStringDialog::make_material_fields() {
     density_ = new QDoubleSpinBox;
     density_->setObjectName("density");
     density_->setRange(0.00001, 0.5);
-    density_->setDecimals(5);
+    density_->setDecimals(6);
     density_->setSingleStep(0.0001);
     density_->setSuffix(tr(" kg/m"));
     density_->setValue(defaults.linear_density);

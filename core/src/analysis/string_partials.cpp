@@ -51,7 +51,11 @@ std::vector<Complex> solve_tridiagonal(std::vector<Complex> sub, std::vector<Com
     return x;
 }
 
+// To unit length, scaled by the largest entry first: the solve's result can be near overflow.
 void normalise(std::vector<Complex>& v) {
+    double largest = 0;
+    for (const Complex& c : v) largest = std::max(largest, std::abs(c));
+    for (Complex& c : v) c /= largest;
     double norm = 0;
     for (const Complex& c : v) norm += std::norm(c);
     norm = std::sqrt(norm);
@@ -70,6 +74,7 @@ bool is_tridiagonal(const LinearSystem& sys) {
 
 std::vector<Complex> chain_mode_shape(const LinearSystem& sys, Complex z) {
     const int n = sys.size();
+    if (n == 0) return {};
     const double t = sys.dt;
     // Row i of (z − 1)²·M + z·T²·K + (z − 1)·T·Z.
     auto q = [&](int i, int j) {
@@ -110,7 +115,9 @@ std::vector<double> string_partial_frequencies(const LinearSystem& sys, const Mo
     const int n = sys.size();
     const double dt = sys.dt;
     // Without eigenvectors Eigen runs the same reduction and QR steps on the Schur form and
-    // only leaves out accumulating their basis: the roots are analyse_modes()' to the bit.
+    // only leaves out accumulating their basis: the roots are analyse_modes()' to the bit. The
+    // shapes come from another solve, so a mode whose energy is split within rounding of half
+    // and half could be classed otherwise; no string has one.
     const Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), false);
     const std::vector<bool> is_support = support_dofs(sys, model);
     std::vector<std::pair<double, bool>> modes;  // frequency, support
@@ -123,7 +130,8 @@ std::vector<double> string_partial_frequencies(const LinearSystem& sys, const Mo
             kinetic += e;
             if (is_support[i]) in_supports += e;
         }
-        if (!std::isfinite(kinetic)) return partials_of_the_whole_analysis(sys, model);
+        if (!(kinetic > 0) || !std::isfinite(kinetic))  // a shape lost to overflow
+            return partials_of_the_whole_analysis(sys, model);
         modes.emplace_back(std::arg(root) / (2.0 * std::numbers::pi * dt),
                            in_supports > 0.5 * kinetic);
     }

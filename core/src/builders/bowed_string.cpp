@@ -225,6 +225,10 @@ void check_options(const BowedStringOptions& o) {
     require(o.string_t60_high_hz == 0 || o.string_t60_high_hz > o.pitch, "--string-t60-high-hz",
             "must be above the pitch (" + fmt(o.pitch) + " Hz)");
     if (!o.paper && o.body != "none") find_body_preset(o.body);  // names the presets if unknown
+    require(std::isfinite(o.tension) && o.tension > 0 && o.tension <= 10000, "--tension",
+            "must be above 0 and at most 10000 N (a violin A string: 57.1 N)");
+    require(std::isfinite(o.linear_density) && o.linear_density > 0 && o.linear_density <= 1,
+            "--density", "must be above 0 and at most 1 kg/m (a violin A string: 0.00072 kg/m)");
     require(o.haptic_divider >= 1, "--haptic-divider", "must be at least 1");
     require(o.mu_s > 0 && o.mu_d >= 0 && o.mu_d <= o.mu_s, "--mu-s/--mu-d",
             "need 0 <= mu_d <= mu_s and mu_s > 0");
@@ -289,7 +293,10 @@ Model finished(Model model, const UnbowedString& string, const BowedStringOption
             return m;
         } catch (const InputError& e) {
             if (was_cancelled(cancel)) throw;
-            if (k + 1 == moves.size()) throw InputError(e.where(), e.message() + material_hint(o));
+            if (k + 1 < moves.size()) continue;
+            if (e.where() != "--bow-position") throw;
+            // No position finds a Helmholtz band: the material may be why.
+            throw InputError(e.where(), e.message() + material_hint(o));
         }
     }
     throw InputError("--bow-position", "no bow position near " + fmt(o.bow_position) +

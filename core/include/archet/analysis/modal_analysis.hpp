@@ -47,8 +47,9 @@ ModalAnalysis analyse_modes(const LinearSystem& system, const Model& model);
 /// than kMaxModalDofs, or a mass that is not positive.
 void check_analysable(const LinearSystem& system);
 
-/// Which DOFs are supports (bridges, a body's bridge point, the string behind a finger): a
-/// mode with most of its kinetic energy in them is a support mode.
+/// Which DOFs are supports (oscillators standing on their own such as the bridges, the modes a
+/// body's bridge point reads, the string behind a finger): a mode with most of its kinetic energy
+/// in them is a support mode.
 std::vector<bool> support_dofs(const LinearSystem& system, const Model& model);
 
 }  // namespace archet

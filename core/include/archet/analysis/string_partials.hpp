@@ -13,9 +13,10 @@
 namespace archet {
 
 /// The frequencies of the modes analyse_modes(system, model) does not call supports, ascending,
-/// with the same bits; it throws what analyse_modes() throws. Where the system is not a chain
-/// (its matrices not tridiagonal in the order of its DOFs) or has a finger, it is
-/// analyse_modes() itself.
+/// with the same bits (the same roots, and the same classes unless a mode's energy is split
+/// within rounding of half in the supports); it throws what analyse_modes() throws. Where the
+/// system is not a chain (its matrices not tridiagonal in the order of its DOFs) or has a finger,
+/// it is analyse_modes() itself.
 std::vector<double> string_partial_frequencies(const LinearSystem& system, const Model& model);
 
 /// Whether every link of the system joins neighbours in the order of its DOFs.

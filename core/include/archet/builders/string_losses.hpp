@@ -63,6 +63,8 @@ std::vector<double> string_mode_frequencies(const Model& model, const StringElem
 /// The discrete frequency (Hz) of the undamped model's string mode nearest `frequency` (0 when it
 /// has none): string_mode_decay()'s, to the bit, from the eigenvalues alone and the shapes of the
 /// modes nearest it, without the whole eigenbasis (what tuning a string to its pitch asks for).
+/// The shapes come from another solve: a mode with half its inertia in the string to rounding,
+/// or a string and a support mode within 1e-12 of the largest λ, could be told apart otherwise.
 double string_mode_frequency(const Model& model, const StringElements& string, double frequency);
 
 /// The decay of the string mode nearest `frequency` as the scheme runs it, every damper included
