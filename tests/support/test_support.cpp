@@ -4,6 +4,7 @@
 #include <unistd.h>
 #include <thread>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -61,8 +62,11 @@ MadeFolders& made_folders() {
 }  // namespace
 
 std::filesystem::path temp_dir(const std::string& name) {
+    // A parameterised test's name has a slash ("Name/0"): one folder, not one inside another.
+    std::string flat = name;
+    std::replace(flat.begin(), flat.end(), '/', '-');
     auto dir = std::filesystem::temp_directory_path() /
-               ("archet-test-" + name + "-" + std::to_string(::getpid()));
+               ("archet-test-" + flat + "-" + std::to_string(::getpid()));
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
     made_folders().add(dir);
