@@ -104,14 +104,16 @@ StringLosses string_losses(const BowedStringOptions& o, Model& model, int n) {
     return losses;
 }
 
-// The decays the built string has, every loss included, at the two frequencies.
-std::string decays_text(const Model& model, const BowedStringOptions& o, int n) {
+// The decays the built string has, every loss included, at the two frequencies; `modes` are
+// its scheme's modes (discrete_modes()).
+std::string decays_text(const Model& model, const BowedStringOptions& o, int n,
+                        const std::vector<DiscreteMode>& modes) {
     const StringDecays d = string_decays(o);
     std::ostringstream text;
     text.precision(3);
     const char* between = "T60 ";
     for (double f : {d.low_hz, d.high_hz}) {
-        const ModeDecay m = exact_string_mode_decay(model, string_elements(n), f);
+        const ModeDecay m = exact_string_mode_decay(model, string_elements(n), f, modes);
         text << between << std::log(1000.0) / m.rate << " s at " << std::lround(m.frequency)
              << " Hz";
         between = ", ";
@@ -167,8 +169,11 @@ UnbowedString unbowed_string(const BowedStringOptions& o, int n,
     const StringLosses losses = string_losses(o, model, n);
     if (!o.paper && o.tuning == Tuning::Harmonic && o.string_damping < 0)
         model = tuned_string(o, n, &losses);
-    if (!o.paper) retune_damped(model, o, n);
-    std::string decays = o.paper ? "" : decays_text(model, o, n);
+    std::string decays;
+    if (!o.paper) {
+        const std::vector<DiscreteMode> modes = retune_damped(model, o, n);
+        decays = decays_text(model, o, n, modes);
+    }
     return {std::move(model), losses, std::move(decays)};
 }
 

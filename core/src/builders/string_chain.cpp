@@ -66,16 +66,21 @@ Model string_model(const BowedStringOptions& o, const ChainProfile& profile, dou
     return model;
 }
 
+// The frequency among `modes` nearest the pitch.
+double nearest_frequency(const std::vector<DiscreteMode>& modes, double pitch) {
+    double f = 0;
+    for (const auto& mode : modes)
+        if (std::abs(mode.frequency - pitch) < std::abs(f - pitch)) f = mode.frequency;
+    return f;
+}
+
 // The frequency of the string's first mode: the one nearest the pitch (the bridges add their
 // own far below). The paper's damped strings are tuned on the damped scheme's exact modes;
 // undamped ones (losses solved later) on the string's modes of the symmetric problem, which
 // is exact for them.
 double first_mode(const Model& model, int n, double pitch, bool damped) {
     if (!damped) return string_mode_frequency(model, string_elements(n), pitch);
-    double f = 0;
-    for (const auto& mode : discrete_modes(assemble_linear_system(model, "audio")))
-        if (std::abs(mode.frequency - pitch) < std::abs(f - pitch)) f = mode.frequency;
-    return f;
+    return nearest_frequency(discrete_modes(assemble_linear_system(model, "audio")), pitch);
 }
 
 // Homogeneous chaplet: equal masses and links, link stiffness refined until the string's
@@ -167,26 +172,25 @@ double link_damping_ratio(const BowedStringOptions& o, const ChainProfile& profi
 namespace {
 
 // Scaling every link's stiffness and damping together moves all partials by one ratio (and
-// keeps σ1): it puts the first mode (undamped or as the damped scheme runs it) on the pitch and
-// leaves a harmonic string's other partials where the tuning put them.
-void scale_links_to_pitch(Model& model, const BowedStringOptions& o, int n, bool damped,
-                          double tolerance, int iterations) {
-    const StringElements string = string_elements(n);
-    for (int iteration = 0; iteration < iterations; ++iteration) {
-        const double f = first_mode(model, n, o.pitch, damped);
-        if (!(f > 0) || std::abs(f / o.pitch - 1.0) < tolerance) break;
-        const double scale = (o.pitch / f) * (o.pitch / f);
-        for (const auto& id : string.links) {
-            Lia* l = model.find_lia(id);
-            l->stiffness *= scale, l->damping *= scale;
-        }
+// keeps σ1): it puts the first mode on the pitch and leaves a harmonic string's other partials
+// where the tuning put them.
+void scale_links(Model& model, const StringElements& string, double scale) {
+    for (const auto& id : string.links) {
+        Lia* l = model.find_lia(id);
+        l->stiffness *= scale, l->damping *= scale;
     }
 }
 
-// A body pulls the string's modes near its own and lowers the first a little.
+// A body pulls the string's modes near its own and lowers the first a little: the undamped
+// first mode goes back on the pitch.
 void retune_with_body(Model& model, const BowedStringOptions& o, int n) {
     attach_body(model, find_body_preset(o.body));
-    scale_links_to_pitch(model, o, n, false, 1e-12, 10);
+    const StringElements string = string_elements(n);
+    for (int iteration = 0; iteration < 10; ++iteration) {
+        const double f = first_mode(model, n, o.pitch, false);
+        if (!(f > 0) || std::abs(f / o.pitch - 1.0) < 1e-12) break;
+        scale_links(model, string, (o.pitch / f) * (o.pitch / f));
+    }
 }
 
 // A harmonic chaplet damped from the start of its tuning never reaches the switch to the damped
@@ -213,8 +217,14 @@ Model undamped_tuned_string(const BowedStringOptions& o, int n) {
     return string_tuned(o, n, nullptr, false);
 }
 
-void retune_damped(Model& model, const BowedStringOptions& o, int n) {
-    scale_links_to_pitch(model, o, n, true, 1e-10, 4);
+std::vector<DiscreteMode> retune_damped(Model& model, const BowedStringOptions& o, int n) {
+    const StringElements string = string_elements(n);
+    for (int iteration = 0;; ++iteration) {  // at most four scalings; each look is a solve
+        std::vector<DiscreteMode> modes = discrete_modes(assemble_linear_system(model, "audio"));
+        const double f = nearest_frequency(modes, o.pitch);
+        if (iteration == 4 || !(f > 0) || std::abs(f / o.pitch - 1.0) < 1e-10) return modes;
+        scale_links(model, string, (o.pitch / f) * (o.pitch / f));
+    }
 }
 
 StringElements string_elements(int n) {

@@ -101,12 +101,15 @@ double sigma_for_rate(double rate, double dt) {
 
 // The decay rate (1/s) of the mode nearest `frequency` as the scheme runs it: from the
 // eigenvalues of its one-step update, every damper included exactly.
-double exact_rate(const Model& model, double frequency) {
+double exact_rate(const std::vector<DiscreteMode>& modes, double frequency) {
     double best = 0, rate = 0;
-    for (const auto& mode : discrete_modes(assemble_linear_system(model, "audio")))
+    for (const auto& mode : modes)
         if (best == 0 || std::abs(mode.frequency - frequency) < std::abs(best - frequency))
             best = mode.frequency, rate = kLn1000 / mode.t60;
     return rate;
+}
+double exact_rate(const Model& model, double frequency) {
+    return exact_rate(discrete_modes(assemble_linear_system(model, "audio")), frequency);
 }
 
 // First order is exact for modes that live in the string; next to a heavily damped body mode
@@ -251,6 +254,12 @@ ModeDecay exact_string_mode_decay(const Model& model, const StringElements& stri
                                   double frequency) {
     const double f = string_mode_frequency(model, string, frequency);
     return {f, exact_rate(model, f)};
+}
+
+ModeDecay exact_string_mode_decay(const Model& model, const StringElements& string,
+                                  double frequency, const std::vector<DiscreteMode>& modes) {
+    const double f = string_mode_frequency(model, string, frequency);
+    return {f, exact_rate(modes, f)};
 }
 
 ModeDecay string_mode_decay(const Model& model, const StringElements& string, double frequency) {

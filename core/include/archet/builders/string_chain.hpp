@@ -3,6 +3,7 @@
 // between the bridge and the nut, tuned homogeneous or harmonic, and its exact modal
 // equivalent.
 
+#include "archet/analysis/discrete_modes.hpp"
 #include "archet/builders/bowed_string.hpp"
 #include "archet/builders/harmonic_chain.hpp"
 #include "archet/builders/string_losses.hpp"
@@ -29,8 +30,9 @@ Model undamped_tuned_string(const BowedStringOptions& o, int n);
 
 /// Puts the damped first mode, as the scheme runs it, exactly on the pitch: the chain is tuned
 /// undamped, and the losses (and a body) then move it by a fraction of a cent. Scaling each
-/// link's stiffness and damping together keeps σ1.
-void retune_damped(Model& model, const BowedStringOptions& o, int n);
+/// link's stiffness and damping together keeps σ1. Returns the scheme's modes of the model as
+/// it leaves it (discrete_modes()), which the last check has already solved when it converged.
+std::vector<DiscreteMode> retune_damped(Model& model, const BowedStringOptions& o, int n);
 
 /// The ids of the string's masses and links in a chain of `n` masses.
 StringElements string_elements(int n);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "archet/analysis/discrete_modes.hpp"
 #include "archet/model/model.hpp"
 
 namespace archet {
@@ -71,6 +72,9 @@ double string_mode_frequency(const Model& model, const StringElements& string, d
 /// exactly (the eigenvalues of its one-step update; a dense problem of twice the model's size).
 ModeDecay exact_string_mode_decay(const Model& model, const StringElements& string,
                                   double frequency);
+/// The same, reading the rate from `modes`: discrete_modes() of the model, already solved.
+ModeDecay exact_string_mode_decay(const Model& model, const StringElements& string,
+                                  double frequency, const std::vector<DiscreteMode>& modes);
 
 /// The decay of the string mode nearest `frequency` in `model` (as solve_string_losses sees it).
 ModeDecay string_mode_decay(const Model& model, const StringElements& string, double frequency);
