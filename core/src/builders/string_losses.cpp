@@ -99,17 +99,14 @@ double sigma_for_rate(double rate, double dt) {
     return (1.0 - std::exp(-2.0 * rate * dt)) / (2.0 * dt);
 }
 
-// The decay rate (1/s) of the mode nearest `frequency` as the scheme runs it: from the
-// eigenvalues of its one-step update, every damper included exactly.
+// The decay rate (1/s) of the mode nearest `frequency` as the scheme runs it: from `modes`, the
+// eigenvalues of its one-step update (discrete_modes()), every damper included exactly.
 double exact_rate(const std::vector<DiscreteMode>& modes, double frequency) {
     double best = 0, rate = 0;
     for (const auto& mode : modes)
         if (best == 0 || std::abs(mode.frequency - frequency) < std::abs(best - frequency))
             best = mode.frequency, rate = kLn1000 / mode.t60;
     return rate;
-}
-double exact_rate(const Model& model, double frequency) {
-    return exact_rate(discrete_modes(assemble_linear_system(model, "audio")), frequency);
 }
 
 // First order is exact for modes that live in the string; next to a heavily damped body mode
@@ -122,8 +119,9 @@ StringLosses refined(const Model& model, const StringElements& string,
     for (int step = 0; step < 4; ++step) {
         Model trial = model;
         apply_string_losses(trial, string, losses);
-        const double e0 = rates[0] - exact_rate(trial, m[0].frequency);
-        const double e1 = rates[1] - exact_rate(trial, m[1].frequency);
+        const auto modes = discrete_modes(assemble_linear_system(trial, "audio"));
+        const double e0 = rates[0] - exact_rate(modes, m[0].frequency);
+        const double e1 = rates[1] - exact_rate(modes, m[1].frequency);
         if (std::abs(e0) < 0.005 * rates[0] && std::abs(e1) < 0.005 * rates[1]) break;
         losses.sigma0 = std::max(0.0, losses.sigma0 + (e0 * m[1].c - e1 * m[0].c) / det);
         losses.sigma1 = std::max(0.0, losses.sigma1 + (m[0].a * e1 - m[1].a * e0) / det);
@@ -248,12 +246,6 @@ double string_mode_frequency(const Model& model, const StringElements& string, d
         if (share >= 0.5) return u.frequency(mode);
     }
     return 0.0;
-}
-
-ModeDecay exact_string_mode_decay(const Model& model, const StringElements& string,
-                                  double frequency) {
-    const double f = string_mode_frequency(model, string, frequency);
-    return {f, exact_rate(model, f)};
 }
 
 ModeDecay exact_string_mode_decay(const Model& model, const StringElements& string,

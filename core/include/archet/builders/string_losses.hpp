@@ -69,10 +69,8 @@ std::vector<double> string_mode_frequencies(const Model& model, const StringElem
 double string_mode_frequency(const Model& model, const StringElements& string, double frequency);
 
 /// The decay of the string mode nearest `frequency` as the scheme runs it, every damper included
-/// exactly (the eigenvalues of its one-step update; a dense problem of twice the model's size).
-ModeDecay exact_string_mode_decay(const Model& model, const StringElements& string,
-                                  double frequency);
-/// The same, reading the rate from `modes`: discrete_modes() of the model, already solved.
+/// exactly: read from `modes`, the eigenvalues of its one-step update (discrete_modes() of the
+/// model, a dense problem of twice its size that the caller has already solved).
 ModeDecay exact_string_mode_decay(const Model& model, const StringElements& string,
                                   double frequency, const std::vector<DiscreteMode>& modes);
 
