@@ -14,6 +14,7 @@
 #include <random>
 
 #include "archet/files/model_file.hpp"
+#include "archet/model/model_validation.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/simulation.hpp"
 #include "archet/physics/uniform_span.hpp"
@@ -477,6 +478,33 @@ TEST(ChainKernel, TheArraysItRunsOverStartMat1OnACacheLine) {
     Simulation sim{CompiledModel(compiled)};
     Simulation moved = std::move(sim);
     expect_mat1_on_a_line(moved.model(), "moved into a simulation");
+}
+
+// A fixed MAT at the end of the storage (a bow's surface, a nut) is left out of the chain
+// loop: it must hold its position in the buffer the loop would have written, from the first
+// step on, and the masses beside it move as they would with the loop passing it. Seven masses
+// between two fixed ends put the last end at storage 9, where a round of every build starts.
+TEST(ChainKernel, LeavesTheFixedMatsAtTheEndOfTheStorageWhereTheyAre) {
+    Model model = test::chain(7, 1e-3, 1e3, 0.01);
+    model.mats.back().position = 0.002;  // end_b, off its rest so that a zero would show
+    model.mats[1].position = 0.001;      // m1, plucked
+    validate_model(model);
+    Simulation sim(compile(model));
+    const CompiledLevel& level = sim.model().levels[0];
+    const MatSlot end = sim.model().mat_slots.at("end_b"), m7 = sim.model().mat_slots.at("m7");
+    ASSERT_EQ(end.index, 9) << "the fixed end is stored last";
+    ASSERT_EQ(level.fixed_after, 1);
+    // The same chain with the loop passing the fixed end, as before it was left out.
+    CompiledModel passed = compile(model);
+    passed.levels[0].fixed_after = 0;
+    Simulation reference(std::move(passed));
+    for (int i = 0; i < 480; ++i) {
+        sim.step();
+        reference.step();
+        ASSERT_EQ(sim.position(end), 0.002) << "step " << i;
+        ASSERT_EQ(sim.position(m7), reference.position(m7)) << "step " << i;
+    }
+    EXPECT_NE(sim.position(m7), 0.0) << "the pluck reached the last mass";
 }
 
 }  // namespace

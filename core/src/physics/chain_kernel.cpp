@@ -383,7 +383,7 @@ void run_chain(ChainLoop loop, CompiledLevel& lv, double* xn) {
                              lv.update_xp.data(),
                              lv.update_rest.data(),
                              &lv.uniform};
-    loop(arrays, lv.size, lv.has_chain_lengths, grounds_in_chain_loop(lv));
+    loop(arrays, lv.size - lv.fixed_after, lv.has_chain_lengths, grounds_in_chain_loop(lv));
 }
 
 }  // namespace

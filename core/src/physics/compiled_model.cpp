@@ -107,9 +107,12 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
         const bool movable = m.kind == MatKind::Mass || m.kind == MatKind::Oscillator;
         lv.mass[s] = movable ? m.mass : 0.0;
         lv.coeff[s] = movable ? lv.dt * lv.dt / m.mass : 0.0;
-        // Initial state: x[0] = position, x[−1] = position − velocity·T.
+        // Initial state: x[0] = position, x[−1] = position − velocity·T. A fixed MAT holds its
+        // position in all three buffers, as the chain loop need not pass it (fixed_after).
         lv.x()[s] = m.position;
         lv.x_prev()[s] = movable ? m.position - m.velocity * lv.dt : m.position;
+        if (m.kind == MatKind::Fixed) lv.x_next()[s] = m.position;
+        lv.fixed_after = m.kind == MatKind::Fixed ? lv.fixed_after + 1 : 0;
         if (m.kind == MatKind::Oscillator) {
             lv.grounds.push_back({s, order[k]});
             lv.ground_k[s] = m.stiffness, lv.ground_zdt[s] = m.damping / lv.dt;

@@ -115,6 +115,9 @@ struct CompiledLevel {
     double inverse_divider = 1;
     double dt = 0;
     int size = 0;  ///< MATs at this level
+    /// How many MATs at the end of the storage are fixed: the chain loop stops before them,
+    /// since they hold their position in all three buffers (it would write it back unchanged).
+    int fixed_after = 0;
     /// Zeros after the storage of the arrays the chain loop uses (positions, chain links,
     /// T²/m, the folded grounds): it updates whole vectors of up to 8 MATs, the last one running
     /// past the last MAT into these zeros (which it leaves zero), and reads the vector after each
