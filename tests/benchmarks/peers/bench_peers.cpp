@@ -9,15 +9,22 @@
 //   mi.lib paper,   the first two in Faust's mi.lib, written by mi_string_writer and compiled
 //   mi.lib bare     by faust, with mi.lib's own bow (a friction curve, no normal force)
 //   stk Bowed       STK's bowed-string waveguide (Smith), the classic cheap bowed string
+//   floor           the paper string's step written out by hand for that one model, its string
+//                   in AVX-512 registers (floor_string.hpp): the same bytes as archet paper
+//                   (checked first), so what this scheme costs here whatever the engine
+//   floor revised   the same with fused multiply-adds and reciprocals in the friction solve, a
+//                   change of the scheme's arithmetic: its largest difference is printed
 // A peer that is not installed is skipped with a message (Debian: faust, libstk-dev).
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +33,7 @@
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
+#include "floor_string.hpp"
 #include "peer_string.hpp"
 
 #if ARCHET_PEER_FAUST
@@ -80,6 +88,75 @@ class ArchetString {
     archet::Simulation sim_;
 };
 
+// The floor of the paper string (floor_string.hpp), bowed as ArchetString bows it.
+template <bool kRevised>
+class FloorContender {
+  public:
+    FloorContender()
+        : stroke_(archet::steady_bow_gesture(archet::peers::kBowSpeed, 0.0015, 1e4)),
+          sim_(paper_string()) {
+        sim_.set_gesture_track(&stroke_);
+        error_ = archet::peers::layout_error(sim_);
+        if (error_.empty()) floor_.emplace(sim_, &stroke_);
+    }
+    const std::string& error() const { return error_; }
+    void render(double* out, int count) { floor_->render(out, count); }
+    /// The floor's sound against the scheme's over the first `samples`: the largest difference
+    /// (0 when every byte is the same) and the scheme's largest magnitude.
+    std::pair<double, double> difference(int samples) {
+        FloorContender fresh;
+        std::vector<double> floor(samples);
+        for (int done = 0; done < samples; done += kBlock)
+            fresh.render(floor.data() + done, std::min(kBlock, samples - done));
+        double largest_difference = 0, largest = 0;
+        for (int i = 0; i < samples; ++i) {
+            fresh.sim_.step();
+            const double scheme = fresh.sim_.output();
+            if (std::memcmp(&scheme, &floor[i], sizeof scheme) != 0)
+                largest_difference =
+                    std::max(largest_difference,
+                             std::isnan(floor[i]) ? HUGE_VAL : std::abs(floor[i] - scheme));
+            largest = std::max(largest, std::abs(scheme));
+        }
+        return {largest_difference, largest};
+    }
+
+  private:
+    static archet::Simulation paper_string() {
+        return archet::Simulation(archet::compile(
+            archet::build_bowed_string(archet::peers::string_options(PeerString::Paper)),
+            kSampleRate));
+    }
+    archet::Gesture stroke_;
+    archet::Simulation sim_;
+    std::string error_;
+    std::optional<archet::peers::FloorString<kRevised>> floor_;
+};
+
+// Adds the floor if it stands for the paper string here and plays its sound; says why not.
+template <bool kRevised>
+void add_floor(const std::string& name,
+               const std::function<void(std::string, std::function<void(double*, int)>)>& add) {
+    auto floor = std::make_shared<FloorContender<kRevised>>();
+    if (!floor->error().empty()) {
+        std::printf("%s: skipped (%s)\n", name.c_str(), floor->error().c_str());
+        return;
+    }
+    const int samples = static_cast<int>(kSampleRate);  // a second: the bow lands and plays
+    const auto [difference, largest] = floor->difference(samples);
+    if (!kRevised && difference != 0.0) {
+        std::printf("%s: skipped (its sound is not the scheme's: off by %.3g of %.3g)\n",
+                    name.c_str(), difference, largest);
+        return;
+    }
+    if (kRevised)
+        std::printf("%s: its sound differs from the scheme's by at most %.3g of %.3g (%.2g)\n",
+                    name.c_str(), difference, largest, difference / largest);
+    else
+        std::printf("%s: the same bytes as the scheme over %d samples\n", name.c_str(), samples);
+    add(name, [floor](double* out, int count) { floor->render(out, count); });
+}
+
 #if ARCHET_PEER_FAUST
 // A mi.lib string reads the bow's position as its input: a stroke at constant speed.
 template <class Dsp>
@@ -133,6 +210,8 @@ int main() {
     add("archet paper", renderer(std::make_shared<ArchetString>(PeerString::Paper)));
     add("archet bare", renderer(std::make_shared<ArchetString>(PeerString::Bare)));
     add("archet + body", renderer(std::make_shared<ArchetString>(PeerString::Body)));
+    add_floor<false>("floor", add);
+    add_floor<true>("floor revised", add);
 #if ARCHET_PEER_FAUST
     add("mi.lib paper", renderer(std::make_shared<MiLibString<MiPaperString>>()));
     add("mi.lib bare", renderer(std::make_shared<MiLibString<MiBareString>>()));
@@ -183,6 +262,11 @@ int main() {
     ratio("archet paper", "mi.lib paper");
     ratio("archet bare", "mi.lib bare");
     ratio("archet paper", "stk Bowed");
+    ratio("floor", "mi.lib paper");
+    ratio("floor revised", "mi.lib paper");
+    ratio("floor", "stk Bowed");
+    ratio("floor revised", "stk Bowed");
+    ratio("archet paper", "floor");
     ratio("archet bare", "stk Bowed");
     return 0;
 }
