@@ -9,6 +9,7 @@
 
 #include "archet/builders/bowed_string.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/common/printable_text.hpp"
 #include "archet/physics/blow_up.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/renderer.hpp"
@@ -81,6 +82,20 @@ TEST(NonFinite, TheBlownUpElementIsNamedByItsId) {
     ASSERT_TRUE(element);
     EXPECT_EQ(*element, "mass \"s7\" (position inf)");
     EXPECT_FALSE(simulation_is_finite(sim));
+}
+
+TEST(NonFinite, TheMassStoredLastIsCheckedToo) {
+    // The bow's surface, stored after the string: it feeds neither the output nor a probe, so
+    // only this check can find it.
+    Model model = build_bowed_string(test::paper_string_options());
+    const CompiledModel compiled = compile(model);
+    const CompiledLevel& audio = compiled.levels[0];
+    const std::string last = model.mats[audio.element_of[audio.size]].id;
+    model.find_mat(last)->position = std::numeric_limits<double>::infinity();
+    Simulation sim(compile(model));
+    const auto element = find_blown_up_element(sim);
+    ASSERT_TRUE(element) << last << " was not checked";
+    EXPECT_EQ(*element, "mass " + quoted_text(last) + " (position inf)");
 }
 
 }  // namespace

@@ -12,7 +12,7 @@ std::optional<std::string> find_blown_up_element(const Simulation& sim) {
     const CompiledModel& model = sim.model();
     for (const CompiledLevel& level : model.levels) {
         const double* x = level.x();
-        for (int i = 0; i < level.size; ++i) {
+        for (int i = 1; i <= level.size; ++i) {  // MATs 1 … size (0 is padding)
             if (std::isfinite(x[i])) continue;
             const int element =
                 i < static_cast<int>(level.element_of.size()) ? level.element_of[i] : -1;
