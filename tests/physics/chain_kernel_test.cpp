@@ -480,31 +480,75 @@ TEST(ChainKernel, TheArraysItRunsOverStartMat1OnACacheLine) {
     expect_mat1_on_a_line(moved.model(), "moved into a simulation");
 }
 
+// A chain of `masses` between two fixed ends, plucked, with `anchors` more fixed MATs linked
+// on after the last end: the fixed MATs stored last, off their rest so that a zero would show.
+Model chain_with_fixed_tail(int masses, int anchors) {
+    Model model = test::chain(masses, 1e-3, 1e3, 0.01);
+    model.find_mat("end_b")->position = 0.002;
+    model.find_mat("m1")->position = 0.001;
+    std::string last = "end_b";
+    for (int a = 1; a <= anchors; ++a) {
+        const std::string anchor = "anchor" + std::to_string(a);
+        model.mats.push_back(test::fixed(anchor, 0.002 + 0.001 * a));
+        model.lias.push_back(test::spring_damper("to_" + anchor, last, anchor, 1e3, 0.01));
+        last = anchor;
+    }
+    validate_model(model);
+    return model;
+}
+
+// Steps a level's chain loop alone with `build`, as step() runs it.
+void step_chain(CompiledLevel& level, ChainBuild build) {
+    integrate_chain(level, level.x_next(), build);
+    level.current = CompiledLevel::after(level.current);
+}
+
 // A fixed MAT at the end of the storage (a bow's surface, a nut) is left out of the chain
 // loop: it must hold its position in the buffer the loop would have written, from the first
-// step on, and the masses beside it move as they would with the loop passing it. Seven masses
-// between two fixed ends put the last end at storage 9, where a round of every build starts.
+// step on, and the masses beside it move as they would with the loop passing it, in every
+// build (rounds of 8, 4 and 2 MATs from storage 1). Seven masses between two fixed ends put
+// the last end at storage 9, where a round of every build starts; six masses and three fixed
+// MATs after them end mid-round.
 TEST(ChainKernel, LeavesTheFixedMatsAtTheEndOfTheStorageWhereTheyAre) {
-    Model model = test::chain(7, 1e-3, 1e3, 0.01);
-    model.mats.back().position = 0.002;  // end_b, off its rest so that a zero would show
-    model.mats[1].position = 0.001;      // m1, plucked
-    validate_model(model);
-    Simulation sim(compile(model));
-    const CompiledLevel& level = sim.model().levels[0];
-    const MatSlot end = sim.model().mat_slots.at("end_b"), m7 = sim.model().mat_slots.at("m7");
-    ASSERT_EQ(end.index, 9) << "the fixed end is stored last";
-    ASSERT_EQ(level.fixed_after, 1);
-    // The same chain with the loop passing the fixed end, as before it was left out.
-    CompiledModel passed = compile(model);
-    passed.levels[0].fixed_after = 0;
-    Simulation reference(std::move(passed));
-    for (int i = 0; i < 480; ++i) {
-        sim.step();
-        reference.step();
-        ASSERT_EQ(sim.position(end), 0.002) << "step " << i;
-        ASSERT_EQ(sim.position(m7), reference.position(m7)) << "step " << i;
+    for (const auto& [masses, anchors] : {std::pair{7, 0}, std::pair{6, 2}, std::pair{13, 1}}) {
+        const CompiledModel compiled = compile(chain_with_fixed_tail(masses, anchors));
+        const CompiledLevel& level = compiled.levels[0];
+        ASSERT_EQ(level.fixed_after, 1 + anchors);
+        ASSERT_EQ(level.size, masses + 2 + anchors);
+        for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
+            if (!chain_build_runs_here(build)) continue;
+            SCOPED_TRACE(std::string(chain_build_name(build)) + ", " + std::to_string(masses) +
+                         " masses, " + std::to_string(anchors) + " anchors");
+            CompiledLevel left_out = level, passed = level;
+            passed.fixed_after = 0;  // the loop passing them, as before they were left out
+            for (int i = 0; i < 480; ++i) {
+                step_chain(left_out, build);
+                step_chain(passed, build);
+                for (int s = 1; s <= level.size; ++s)
+                    ASSERT_EQ(left_out.x()[s], passed.x()[s]) << "MAT " << s << ", step " << i;
+            }
+            EXPECT_EQ(left_out.x()[masses + 2], 0.002);
+            EXPECT_NE(left_out.x()[masses + 1], 0.0) << "the pluck reached the last mass";
+        }
     }
-    EXPECT_NE(sim.position(m7), 0.0) << "the pluck reached the last mass";
+}
+
+// A state saved before the chain loop stopped at the fixed MATs (their x[n+1] a zero at the
+// start) plays on with them where they are.
+TEST(ChainKernel, AStateSavedBeforeHoldsTheFixedMatsWhereTheyAre) {
+    const Model model = chain_with_fixed_tail(7, 0);
+    Simulation before(compile(model));
+    CompiledLevel& level = before.model().levels[0];
+    level.x_next()[level.size] = 0.0;  // as compile() left it then
+    std::vector<double> state(before.state_size());
+    before.save_state(state.data());
+    Simulation loaded(compile(model));
+    loaded.load_state(state.data());
+    const MatSlot end = loaded.model().mat_slots.at("end_b");
+    for (int i = 0; i < 48; ++i) {
+        loaded.step();
+        ASSERT_EQ(loaded.position(end), 0.002) << "step " << i;
+    }
 }
 
 }  // namespace

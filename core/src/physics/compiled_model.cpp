@@ -107,11 +107,9 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
         const bool movable = m.kind == MatKind::Mass || m.kind == MatKind::Oscillator;
         lv.mass[s] = movable ? m.mass : 0.0;
         lv.coeff[s] = movable ? lv.dt * lv.dt / m.mass : 0.0;
-        // Initial state: x[0] = position, x[−1] = position − velocity·T. A fixed MAT holds its
-        // position in all three buffers, as the chain loop need not pass it (fixed_after).
+        // Initial state: x[0] = position, x[−1] = position − velocity·T.
         lv.x()[s] = m.position;
         lv.x_prev()[s] = movable ? m.position - m.velocity * lv.dt : m.position;
-        if (m.kind == MatKind::Fixed) lv.x_next()[s] = m.position;
         lv.fixed_after = m.kind == MatKind::Fixed ? lv.fixed_after + 1 : 0;
         if (m.kind == MatKind::Oscillator) {
             lv.grounds.push_back({s, order[k]});
@@ -136,6 +134,7 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
             lv.chain_element[s] = link;
         }
     }
+    hold_fixed_tail(lv);
     fold_grounds(lv);
     find_uniform_runs(lv);
 }
@@ -316,6 +315,14 @@ void compile_readouts(CompiledModel& c, const Model& model) {
 }
 
 }  // namespace
+
+void hold_fixed_tail(CompiledLevel& lv) {
+    for (int s = lv.size - lv.fixed_after + 1; s <= lv.size; ++s) {
+        // + 0.0: 2x − x⁻ + 0·F, the loop's update of a fixed MAT, is x but never −0.
+        const double position = lv.x()[s] + 0.0;
+        for (auto& buffer : lv.buffer) buffer[s] = position;
+    }
+}
 
 double modal_point_response(const CompiledLevel& lv, const CompiledModalPoint& point) {
     double response = 0;

@@ -108,8 +108,8 @@ void Simulation::write_slot(const ParameterSlot& s, double v) {
         case K::GestureForceScale:
             lv.gestures[s.index].force_scale = v;
             break;
-        case K::FixedPosition:
-            for (auto& b : lv.buffer) b[s.index] = v;
+        case K::FixedPosition:  // + 0.0: as the chain loop holds it (hold_fixed_tail())
+            for (auto& b : lv.buffer) b[s.index] = v + 0.0;
             break;
         case K::FingerK:
         case K::FingerZ:

@@ -68,6 +68,7 @@ void Simulation::load_state(const double* in) {
     for_each_state(*this,
                    [&](auto& v) { v = static_cast<std::remove_reference_t<decltype(v)>>(*in++); });
     for (auto& lv : model_.levels) {  // the masses, grounds and chain links loaded
+        hold_fixed_tail(lv);
         fold_grounds(lv);
         find_uniform_runs(lv);
         lv.has_chain_lengths = std::any_of(lv.chain_length.begin(), lv.chain_length.end(),

@@ -101,24 +101,28 @@ class FloorContender {
     }
     const std::string& error() const { return error_; }
     void render(double* out, int count) { floor_->render(out, count); }
-    /// The floor's sound against the scheme's over the first `samples`: the largest difference
-    /// (0 when every byte is the same) and the scheme's largest magnitude.
-    std::pair<double, double> difference(int samples) {
+    /// The floor's sound against the scheme's over the first `samples`.
+    struct Difference {
+        int samples_differing = 0;  ///< in their bytes (a NaN or a −0 against +0 too)
+        double largest = 0;         ///< |floor − scheme| where they differ
+        double scheme_peak = 0;     ///< the scheme's largest |sample|: 0 would prove nothing
+    };
+    Difference difference(int samples) {
         FloorContender fresh;
         std::vector<double> floor(samples);
         for (int done = 0; done < samples; done += kBlock)
             fresh.render(floor.data() + done, std::min(kBlock, samples - done));
-        double largest_difference = 0, largest = 0;
+        Difference d;
         for (int i = 0; i < samples; ++i) {
             fresh.sim_.step();
             const double scheme = fresh.sim_.output();
-            if (std::memcmp(&scheme, &floor[i], sizeof scheme) != 0)
-                largest_difference =
-                    std::max(largest_difference,
-                             std::isnan(floor[i]) ? HUGE_VAL : std::abs(floor[i] - scheme));
-            largest = std::max(largest, std::abs(scheme));
+            d.scheme_peak = std::max(d.scheme_peak, std::abs(scheme));
+            if (std::memcmp(&scheme, &floor[i], sizeof scheme) == 0) continue;
+            ++d.samples_differing;
+            const double apart = std::abs(floor[i] - scheme);
+            d.largest = std::isnan(apart) ? HUGE_VAL : std::max(d.largest, apart);
         }
-        return {largest_difference, largest};
+        return d;
     }
 
   private:
@@ -143,15 +147,21 @@ void add_floor(const std::string& name,
         return;
     }
     const int samples = static_cast<int>(kSampleRate);  // a second: the bow lands and plays
-    const auto [difference, largest] = floor->difference(samples);
-    if (!kRevised && difference != 0.0) {
-        std::printf("%s: skipped (its sound is not the scheme's: off by %.3g of %.3g)\n",
-                    name.c_str(), difference, largest);
+    const auto d = floor->difference(samples);
+    if (!(d.scheme_peak > 0.0)) {
+        std::printf("%s: skipped (the scheme is silent over its first second)\n", name.c_str());
+        return;
+    }
+    if (!kRevised && d.samples_differing != 0) {
+        std::printf(
+            "%s: skipped (%d of %d samples are not the scheme's bytes, off by up to %.3g "
+            "of %.3g)\n",
+            name.c_str(), d.samples_differing, samples, d.largest, d.scheme_peak);
         return;
     }
     if (kRevised)
         std::printf("%s: its sound differs from the scheme's by at most %.3g of %.3g (%.2g)\n",
-                    name.c_str(), difference, largest, difference / largest);
+                    name.c_str(), d.largest, d.scheme_peak, d.largest / d.scheme_peak);
     else
         std::printf("%s: the same bytes as the scheme over %d samples\n", name.c_str(), samples);
     add(name, [floor](double* out, int count) { floor->render(out, count); });

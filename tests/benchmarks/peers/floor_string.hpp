@@ -35,8 +35,13 @@ constexpr int kRounds = 8;  // storage 1 … 64: the fixed surface (65) is left 
 constexpr int kBridge = 1, kString = 8, kNut = 62, kBow = 63, kPress = 64, kSurface = 65;
 constexpr int kHapticDivider = 16;
 
-// Every helper of render() is built for AVX-512 as it is.
+// Every helper of render() is built for AVX-512 as it is, in whole 512-bit vectors (as
+// double_vectors.hpp asks each compiler).
+#if defined(__clang__)
+#define ARCHET_FLOOR_TARGET __attribute__((target("avx512f,fma"), min_vector_width(512)))
+#else
 #define ARCHET_FLOOR_TARGET __attribute__((target("avx512f,fma,prefer-vector-width=512")))
+#endif
 
 constexpr int round_of(int s) {
     return (s - 1) / 8;
@@ -202,8 +207,9 @@ class FloorString {
         using namespace floor_detail;
         Lanes only{};
         only[lane_of(s)] = -1;
+        const V spread = {value, value, value, value, value, value, value, value};
         V& round = v[round_of(s)];
-        round = only ? round + (V{} + value) : round;
+        round = only ? round + spread : round;
     }
 
     [[gnu::always_inline]] ARCHET_FLOOR_TARGET static double ground_pull(const Ground& g, double x,

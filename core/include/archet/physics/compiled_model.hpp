@@ -164,6 +164,11 @@ struct CompiledLevel {
     const double* x_next() const { return buffer[after(current)].data(); }
 };
 
+/// Writes the position (x[n]) of each fixed MAT the chain loop stops before (fixed_after) into
+/// all three buffers, a −0 as +0 as the loop wrote it: after compiling and after a state is
+/// loaded (one saved before the loop stopped there may hold a zero in x[n+1]).
+void hold_fixed_tail(CompiledLevel& level);
+
 /// Σ weight²·T²/m over a modal point's modes: its displacement per newton over a step, the
 /// `coeff` it keeps, again whenever a mode's mass changes.
 double modal_point_response(const CompiledLevel& lv, const CompiledModalPoint& point);
