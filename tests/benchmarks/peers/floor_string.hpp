@@ -17,7 +17,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <string>
 #include <utility>
 
@@ -149,16 +148,13 @@ class FloorString {
             double on_bow = 0.0, on_press = 0.0 - normal;
             on_bow += hand_force(hand_[0], lane<kBow>(x), done);
             on_press += hand_force(hand_[1], lane<kPress>(x), done);
-            // The chain loop, link 0 entering on the left of MAT 1.
-            {
-                const double d = 0.0 - lane<1>(x), dp = 0.0 - lane<1>(xp);
-                V left{};
-                left[7] = k0_ * d + z0_ * (d - dp);
-                chain(x, xp, xn, left, std::make_integer_sequence<int, kRounds>{});
-            }
-            // The bridge's two chain links, for its force.
-            const double f0 =
-                k0_ * (0.0 - lane<1>(x)) + z0_ * ((0.0 - lane<1>(x)) - (0.0 - lane<1>(xp)));
+            // The chain loop, link 0 (from the padding to the bridge) entering on the left of
+            // MAT 1; the bridge's force reads that link again, with link 1.
+            const double d0 = 0.0 - lane<1>(x), dp0 = 0.0 - lane<1>(xp);
+            const double f0 = k0_ * d0 + z0_ * (d0 - dp0);
+            V left{};
+            left[7] = f0;
+            chain(x, xp, xn, left, std::make_integer_sequence<int, kRounds>{});
             const double d1 = lane<1>(x) - lane<2>(x), dp1 = lane<1>(xp) - lane<2>(xp);
             const double f1 = k_[0][0] * d1 + z_[0][0] * (d1 - dp1);
             // The other forces, where there are any (the surface's is a zero on a fixed MAT).
