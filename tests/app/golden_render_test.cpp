@@ -69,6 +69,11 @@ std::vector<GoldenCase> golden_cases() {
                      "probes.csv"});
     cases.push_back({"take re-render",
                      {"render", "--take", test::test_data("golden/take").string(), "-o", "{out}"}});
+    // Played under scheme revision 3, before the friction solve took reciprocals (revision 4):
+    // it re-renders with the divisions it was played with.
+    cases.push_back(
+        {"take re-render, revision 3",
+         {"render", "--take", test::test_data("golden/take-revision-3").string(), "-o", "{out}"}});
     cases.push_back(
         {"new chain", {"new", "bowed-string", "--pitch", "330", "-o", "{out}"}, "model.json"});
     cases.push_back({"new harmonic modal",
