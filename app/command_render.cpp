@@ -49,6 +49,7 @@ struct RenderPlan {
     std::uint64_t frames = 0;              ///< 0: from duration
     std::vector<double> state;             ///< empty: from the model's start
     std::vector<ParameterChange> changes;  ///< made while the take played
+    int scheme = kSchemeRevision;          ///< the revision the take was played with
 };
 
 RenderPlan plan_from_arguments(const RenderArguments& a) {
@@ -122,6 +123,7 @@ RenderPlan plan_from_take(const RenderArguments& a) {
                   << kSchemeRevision
                   << " (docs/physics.md): the same physics, but the re-render may differ from "
                      "take.wav by rounding, which a bowed string can carry on\n";
+    plan.scheme = take.scheme;
     plan.gesture = load_gesture_file(folder / "gesture.json");
     plan.frames = take.frames;
     plan.duration = static_cast<double>(take.frames) / take.sample_rate;
@@ -172,6 +174,7 @@ int run_render(const RenderArguments& a) {
     const double duration = plan.duration;
 
     Simulation sim(compile(model));
+    sim.compute_as_of(plan.scheme);
     sim.set_gesture_track(gesture ? &*gesture : nullptr);
     if (!plan.state.empty()) {  // after the track: setting it moves the gesture points
         if (plan.state.size() != sim.state_size())

@@ -237,9 +237,10 @@ test::CommandResult render_as_of(const std::filesystem::path& dir, const std::st
 // A take records the scheme revision it was played with. One played before the scheme's
 // arithmetic last changed re-renders to the byte if its model computes the same under both
 // (the golden take, of revision 1: its string's grounds are not in the chain loop; the shipped
-// string under revision 2: its modal points have at most eight terms), and with a note that it
-// may differ by rounding if not (the shipped string's grounds since revision 2, a modal
-// string's long points since revision 3); a revision this Archet does not know is refused.
+// string under revisions 2 and 3: its modal points have at most eight terms, and its friction
+// divides as it did before revision 4), and with a note that it may differ by rounding if not
+// (the shipped string's grounds since revision 2, a modal string's long points since
+// revision 3); a revision this Archet does not know is refused.
 TEST(Take, ATakeOfAnOlderSchemeSaysWhenItMayDiffer) {
     const auto dir = test::temp_dir("older_scheme");
     std::filesystem::copy(test::test_data("golden/take"), dir / "golden");
@@ -261,13 +262,20 @@ TEST(Take, ATakeOfAnOlderSchemeSaysWhenItMayDiffer) {
         << r.err;
     EXPECT_NE(r.err.find("may differ from take.wav by rounding"), std::string::npos) << r.err;
 
-    r = render_as_of(dir, "shipped", 2);
+    // A take of the shipped string played under revision 3 (golden_render_test holds its
+    // re-render to the byte), and the same marked as played under revision 2.
+    std::filesystem::copy(test::test_data("golden/take-revision-3"), dir / "played-3");
+    r = test::run_archet(
+        {"render", "--take", (dir / "played-3").string(), "-o", (dir / "played-3.wav").string()});
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(r.err.find("scheme revision"), std::string::npos) << r.err;
-    EXPECT_EQ(test::read_file(dir / "shipped-2.wav"), test::read_file(dir / "shipped" / "take.wav"))
+    r = render_as_of(dir, "played-3", 2);
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find("scheme revision"), std::string::npos) << r.err;
+    EXPECT_EQ(test::read_file(dir / "played-3-2.wav"), test::read_file(dir / "played-3.wav"))
         << "the shipped string computes the same under revisions 2 and 3: no note, same bytes";
 
-    static_assert(kSchemeRevision == 3, "say which model computes differently since the newest");
+    static_assert(kSchemeRevision == 4, "say which model computes differently since the newest");
     r = test::run_archet({"new", "bowed-string", "--structure", "modal", "--masses", "30", "-o",
                           (dir / "modal.json").string()});
     ASSERT_EQ(r.status, 0) << r.err;

@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "archet/builders/bowed_string.hpp"
@@ -131,6 +133,46 @@ TEST(Friction, SticksWhenTheNeededForceIsBelowTheStaticLimit) {
     EXPECT_NEAR(bow.slip_velocity, 0.0, 1e-12);
     EXPECT_NEAR(sim.velocity(sim.model().mat_slots.at("string")),
                 sim.velocity(sim.model().mat_slots.at("bow")), 1e-12);
+}
+
+std::uint64_t bits(double value) {
+    return std::bit_cast<std::uint64_t>(value);
+}
+
+// Revision 4 multiplies by the reciprocals of T and of the masses' response where the solve
+// divided: the same physics, other last bits. A take of an older revision re-renders with the
+// divisions (compute_as_of()), and so does a simulation that continues from one.
+TEST(Friction, Revision4sReciprocalsChangeOnlyTheLastBits) {
+    BowedStringOptions o;
+    o.pitch = 220;
+    const Model model = build_bowed_string(o);
+    Simulation now(compile(model)), divided(compile(model));
+    divided.compute_as_of(3);
+    now.set_gesture_track(&*model.gesture);
+    divided.set_gesture_track(&*model.gesture);
+    int differing = 0, sticking = 0;
+    double largest = 0, largest_difference = 0;
+    for (int i = 0; i < 24000; ++i) {
+        now.step(), divided.step();
+        const CompiledBow &a = now.model().bows[0], &b = divided.model().bows[0];
+        differing += bits(a.friction) != bits(b.friction);
+        sticking += a.sticking && a.normal > 0;
+        largest = std::max(largest, std::abs(b.friction));
+        largest_difference = std::max(largest_difference, std::abs(a.friction - b.friction));
+    }
+    ASSERT_GT(sticking, 1000) << "the bow plays: it sticks and slips";
+    EXPECT_GT(differing, 100) << "the two revisions compute the friction differently";
+    EXPECT_LT(largest_difference, 1e-9 * largest) << "by rounding only";
+
+    Simulation continued(compile(model));
+    continued.set_gesture_track(&*model.gesture);
+    std::vector<double> scratch(continued.state_size());
+    ASSERT_TRUE(continued.continue_from(divided, scratch));
+    for (int i = 0; i < 4800; ++i) {
+        divided.step(), continued.step();
+        ASSERT_EQ(bits(continued.model().bows[0].friction), bits(divided.model().bows[0].friction))
+            << "step " << i << ": the continued simulation divides too";
+    }
 }
 
 TEST(Friction, NoContactNoFriction) {

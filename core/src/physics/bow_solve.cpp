@@ -7,6 +7,23 @@
 
 namespace archet {
 
+namespace {
+
+// a / b, or a times 1/b worked out beforehand (the form of the scheme since revision 4).
+template <bool kDivides>
+[[gnu::always_inline]] inline double over(double a, double b, double inverse_b) {
+    if constexpr (kDivides)
+        return a / b;
+    else
+        return a * inverse_b;
+}
+
+struct Friction {
+    double force = 0.0;       ///< F, on the string
+    double dissipated = 0.0;  ///< over the step
+    bool sticking = false;
+};
+
 // The bow–string friction, solved on the predicted motion so that it is stable for any
 // sharpness of the curve, and strictly passive in the scheme's own energy. Units below are
 // displacement per step (u = v·T); c = T²/m.
@@ -19,6 +36,40 @@ namespace archet {
 // Slip:  F = N·μ(|w|)·sign(w) at the mid-step velocity w = (u+ + u−)/(2T); with the
 //        hyperbolic curve μ(q) = μd + (μs − μd)·v0/(v0 + q) this is a quadratic in |w| with
 //        exactly one positive root.
+// For normal force n > 0. From revision 4 on it multiplies by 1/csum and 1/T, which wait for
+// nothing the step computes: dividing put a division, several times a product's latency, on
+// the path from the predicted motion to the force.
+template <bool kDivides>
+Friction solve_friction(const CompiledBow& bow, double n, double csum, double u_free, double u_prev,
+                        double dt) {
+    const double inverse_csum = 1.0 / csum, inverse_dt = 1.0 / dt;
+    Friction out;
+    const double f_target = over<kDivides>(u_free, csum, inverse_csum);
+    const double f_passive = over<kDivides>(u_free + u_prev, csum, inverse_csum);
+    const double f_stick = std::clamp(f_target, std::min(0.0, f_passive), std::max(0.0, f_passive));
+    if (std::abs(f_stick) <= bow.mu_s * n) {
+        out.force = f_stick;
+        out.sticking = true;
+        // F·(u+ + u−)/2 with u+ = ufree − F·csum, written so that rounding cannot flip
+        // its sign: F and (F_passive − F) share the sign of F_passive.
+        out.dissipated = 0.5 * f_stick * csum * (f_passive - f_stick);
+        return out;
+    }
+    const double w_free = 0.5 * (u_free + u_prev);
+    const double q_free = over<kDivides>(std::abs(w_free), dt, inverse_dt);
+    const double alpha = kDivides ? n * csum / (2.0 * dt) : n * csum * (0.5 * inverse_dt);
+    const double b = bow.v0 + alpha * bow.mu_d - q_free;
+    const double cq = bow.v0 * (alpha * bow.mu_s - q_free);  // < 0 when slipping
+    const double root = std::sqrt(b * b - 4.0 * cq);
+    const double q = b > 0.0 ? -2.0 * cq / (b + root) : 0.5 * (root - b);
+    const double mu = bow.mu_d + (bow.mu_s - bow.mu_d) * bow.v0 / (bow.v0 + q);
+    out.force = std::copysign(n * mu, w_free);
+    out.dissipated = n * mu * q * dt;  // |F|·|w|·T, w the mid-step velocity
+    return out;
+}
+
+}  // namespace
+
 void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
     const double* x = lv.x();
     const double* xp = lv.x_prev();
@@ -29,40 +80,20 @@ void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
     const double u_prev = (x[bow.bow] - xp[bow.bow]) - (x[bow.string] - xp[bow.string]);
     const double u_free = (xn[bow.bow] - x[bow.bow]) - (xn[bow.string] - x[bow.string]);
     const double n = bow.normal;
-    double f = 0.0;
-    bow.sticking = false;
-    bow.dissipated = 0.0;
-    if (n > 0.0) {
-        const double f_target = u_free / csum;
-        const double f_passive = (u_free + u_prev) / csum;
-        const double f_stick =
-            std::clamp(f_target, std::min(0.0, f_passive), std::max(0.0, f_passive));
-        if (std::abs(f_stick) <= bow.mu_s * n) {
-            f = f_stick;
-            bow.sticking = true;
-            // F·(u+ + u−)/2 with u+ = ufree − F·csum, written so that rounding cannot flip
-            // its sign: F and (F_passive − F) share the sign of F_passive.
-            bow.dissipated = 0.5 * f * csum * (f_passive - f);
-        } else {
-            const double w_free = 0.5 * (u_free + u_prev);
-            const double q_free = std::abs(w_free) / lv.dt;
-            const double alpha = n * csum / (2.0 * lv.dt);
-            const double b = bow.v0 + alpha * bow.mu_d - q_free;
-            const double cq = bow.v0 * (alpha * bow.mu_s - q_free);  // < 0 when slipping
-            const double root = std::sqrt(b * b - 4.0 * cq);
-            const double q = b > 0.0 ? -2.0 * cq / (b + root) : 0.5 * (root - b);
-            const double mu = bow.mu_d + (bow.mu_s - bow.mu_d) * bow.v0 / (bow.v0 + q);
-            f = std::copysign(n * mu, w_free);
-            bow.dissipated = n * mu * q * lv.dt;  // |F|·|w|·T, w the mid-step velocity
-        }
-    }
+    Friction friction;
+    if (n > 0.0)
+        friction = friction_divides_ ? solve_friction<true>(bow, n, csum, u_free, u_prev, lv.dt)
+                                     : solve_friction<false>(bow, n, csum, u_free, u_prev, lv.dt);
+    const double f = friction.force;
+    bow.sticking = friction.sticking;
+    bow.dissipated = friction.dissipated;
     push(lv, bow.string, f);
     push(lv, bow.bow, -f);
     lv.external[bow.string] += f;
     lv.external[bow.bow] -= f;
     const double u_next = u_free - f * csum;
     bow.friction = f;
-    bow.slip_velocity = u_next / lv.dt;
+    bow.slip_velocity = friction_divides_ ? u_next / lv.dt : u_next * (1.0 / lv.dt);
 }
 
 }  // namespace archet

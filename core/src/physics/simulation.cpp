@@ -1,5 +1,6 @@
 #include "archet/physics/simulation.hpp"
 
+#include "archet/common/scheme_revision.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/modal_point_position.hpp"
 
@@ -61,6 +62,11 @@ void Simulation::set_gesture_track(const Gesture* gesture) {
 double Simulation::gesture_axis(GestureAxis axis, double t) const {
     const GestureSample s = track_ ? track_->at(t) : device_;
     return axis == GestureAxis::Slide ? s.slide : s.press;
+}
+
+void Simulation::compute_as_of(int revision) {
+    static_assert(kSchemeRevision == 4, "say here how to compute as an older revision, if it can");
+    friction_divides_ = revision < 4;
 }
 
 void Simulation::enable_accounting(bool on) {

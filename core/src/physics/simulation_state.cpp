@@ -80,6 +80,7 @@ bool Simulation::continue_from(const Simulation& from, std::span<double> scratch
     if (from.state_size() != state_size() || scratch.size() != state_size()) return false;
     from.save_state(scratch.data());
     load_state(scratch.data());
+    friction_divides_ = from.friction_divides_;
     refresh_modal_points();  // the contact's masses are this compile's
     return true;
 }

@@ -12,8 +12,8 @@
 //   floor           the paper string's step written out by hand for that one model, its string
 //                   in AVX-512 registers (floor_string.hpp): the same bytes as archet paper
 //                   (checked first), so what this scheme costs here whatever the engine
-//   floor revised   the same with fused multiply-adds and reciprocals in the friction solve, a
-//                   change of the scheme's arithmetic: its largest difference is printed
+//   floor fused     the same with the chain's multiply-adds fused (FMA), a change of the
+//                   scheme's arithmetic: its largest difference is printed
 // A peer that is not installed is skipped with a message (Debian: faust, libstk-dev).
 
 #include <algorithm>
@@ -89,7 +89,7 @@ class ArchetString {
 };
 
 // The floor of the paper string (floor_string.hpp), bowed as ArchetString bows it.
-template <bool kRevised>
+template <bool kFused>
 class FloorContender {
   public:
     FloorContender()
@@ -134,14 +134,14 @@ class FloorContender {
     archet::Gesture stroke_;
     archet::Simulation sim_;
     std::string error_;
-    std::optional<archet::peers::FloorString<kRevised>> floor_;
+    std::optional<archet::peers::FloorString<kFused>> floor_;
 };
 
 // Adds the floor if it stands for the paper string here and plays its sound; says why not.
-template <bool kRevised>
+template <bool kFused>
 void add_floor(const std::string& name,
                const std::function<void(std::string, std::function<void(double*, int)>)>& add) {
-    auto floor = std::make_shared<FloorContender<kRevised>>();
+    auto floor = std::make_shared<FloorContender<kFused>>();
     if (!floor->error().empty()) {
         std::printf("%s: skipped (%s)\n", name.c_str(), floor->error().c_str());
         return;
@@ -152,14 +152,14 @@ void add_floor(const std::string& name,
         std::printf("%s: skipped (the scheme is silent over its first second)\n", name.c_str());
         return;
     }
-    if (!kRevised && d.samples_differing != 0) {
+    if (!kFused && d.samples_differing != 0) {
         std::printf(
             "%s: skipped (%d of %d samples are not the scheme's bytes, off by up to %.3g "
             "of %.3g)\n",
             name.c_str(), d.samples_differing, samples, d.largest, d.scheme_peak);
         return;
     }
-    if (kRevised)
+    if (kFused)
         std::printf("%s: its sound differs from the scheme's by at most %.3g of %.3g (%.2g)\n",
                     name.c_str(), d.largest, d.scheme_peak, d.largest / d.scheme_peak);
     else
@@ -221,7 +221,7 @@ int main() {
     add("archet bare", renderer(std::make_shared<ArchetString>(PeerString::Bare)));
     add("archet + body", renderer(std::make_shared<ArchetString>(PeerString::Body)));
     add_floor<false>("floor", add);
-    add_floor<true>("floor revised", add);
+    add_floor<true>("floor fused", add);
 #if ARCHET_PEER_FAUST
     add("mi.lib paper", renderer(std::make_shared<MiLibString<MiPaperString>>()));
     add("mi.lib bare", renderer(std::make_shared<MiLibString<MiBareString>>()));
@@ -273,9 +273,9 @@ int main() {
     ratio("archet bare", "mi.lib bare");
     ratio("archet paper", "stk Bowed");
     ratio("floor", "mi.lib paper");
-    ratio("floor revised", "mi.lib paper");
+    ratio("floor fused", "mi.lib paper");
     ratio("floor", "stk Bowed");
-    ratio("floor revised", "stk Bowed");
+    ratio("floor fused", "stk Bowed");
     ratio("archet paper", "floor");
     ratio("archet bare", "stk Bowed");
     return 0;

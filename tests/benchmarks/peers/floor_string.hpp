@@ -5,9 +5,9 @@
 // the same bytes (bench_peers checks that before timing it), and nothing a general step needs
 // besides: no lists, no levels, no books (the hand's work, the device's force). What it costs
 // is what this scheme costs on this machine, whatever the engine around it.
-// The revised floor also fuses the chain's multiply-adds (FMA) and multiplies by reciprocals
-// in the friction solve: a change of the scheme's arithmetic, so other bits, which it reports
-// as its largest difference from the scheme's sound.
+// The fused floor also fuses the chain's multiply-adds (FMA): a change of the scheme's
+// arithmetic, so other bits, which it reports as its largest difference from the scheme's
+// sound. (The scheme does not fuse them: a CPU without FMA would compute them in software.)
 // It stands only for the paper string at 220 Hz, 60 masses, bowed at mass 7: storage
 // 1 bridge, 2–61 the string, 62 nut, 63 bow, 64 bow pressure, 65 surface (fixed), and two
 // hand links from a 3 kHz hand. layout_error() says what differs when the builder changes.
@@ -89,7 +89,7 @@ inline std::string layout_error(const Simulation& sim) {
 
 /// The paper string's step by hand (see above); make it from a simulation whose gesture track
 /// is set and that has not stepped, after layout_error() found nothing.
-template <bool kRevised>
+template <bool kFused>
 class FloorString {
     using V = floor_detail::V;
 
@@ -112,7 +112,7 @@ class FloorString {
         c_string_ = a.coeff[kString], c_bow_ = a.coeff[kBow], c_press_ = a.coeff[kPress];
         surface_ = a.x()[kSurface], surface_prev_ = a.x_prev()[kSurface];
         const CompiledBow& b = m.bows[0];
-        kb_ = b.kb, zbdt_ = b.zbdt, mu_s_ = b.mu_s, mu_d_ = b.mu_d, v0_ = b.v0, dt_ = a.dt;
+        kb_ = b.kb, zbdt_ = b.zbdt, mu_s_ = b.mu_s, mu_d_ = b.mu_d, v0_ = b.v0;
         inverse_csum_ = 1.0 / (c_bow_ + c_string_), inverse_dt_ = 1.0 / a.dt;
         for (int i = 0; i < 2; ++i) {
             const CompiledCrossLink& l = m.cross_links[i];
@@ -235,7 +235,7 @@ class FloorString {
         const V p_after = r + 1 < floor_detail::kRounds ? xp[r + 1] : V{surface_prev_};
         const V d = x[r] - __builtin_shufflevector(x[r], after, 1, 2, 3, 4, 5, 6, 7, 8);
         const V dp = xp[r] - __builtin_shufflevector(xp[r], p_after, 1, 2, 3, 4, 5, 6, 7, 8);
-        if constexpr (kRevised) {
+        if constexpr (kFused) {
             const V right = _mm512_fmadd_pd(k_[r], d, z_[r] * (d - dp));
             const V from_left = __builtin_shufflevector(left, right, 7, 8, 9, 10, 11, 12, 13, 14);
             xn[r] = _mm512_fmadd_pd(c_[r], from_left - right, 2.0 * x[r] - xp[r]);
@@ -256,15 +256,14 @@ class FloorString {
         const double csum = c_bow_ + c_string_;
         const double u_prev = (xb - xbp) - (xs - xsp);
         const double u_free = (xbn - xb) - (xsn - xs);
-        const double f_target = kRevised ? u_free * inverse_csum_ : u_free / csum;
-        const double f_passive =
-            kRevised ? (u_free + u_prev) * inverse_csum_ : (u_free + u_prev) / csum;
+        const double f_target = u_free * inverse_csum_;
+        const double f_passive = (u_free + u_prev) * inverse_csum_;
         const double f_stick =
             std::clamp(f_target, std::min(0.0, f_passive), std::max(0.0, f_passive));
         if (std::abs(f_stick) <= mu_s_ * n) return f_stick;
         const double w_free = 0.5 * (u_free + u_prev);
-        const double q_free = kRevised ? std::abs(w_free) * inverse_dt_ : std::abs(w_free) / dt_;
-        const double alpha = kRevised ? n * csum * (0.5 * inverse_dt_) : n * csum / (2.0 * dt_);
+        const double q_free = std::abs(w_free) * inverse_dt_;
+        const double alpha = n * csum * (0.5 * inverse_dt_);
         const double b = v0_ + alpha * mu_d_ - q_free;
         const double cq = v0_ * (alpha * mu_s_ - q_free);
         const double root = std::sqrt(b * b - 4.0 * cq);
@@ -278,7 +277,7 @@ class FloorString {
     double k0_, z0_;
     Ground ground_[2];
     double c_string_, c_bow_, c_press_, surface_, surface_prev_;
-    double kb_, zbdt_, mu_s_, mu_d_, v0_, dt_, inverse_csum_, inverse_dt_;
+    double kb_, zbdt_, mu_s_, mu_d_, v0_, inverse_csum_, inverse_dt_;
     Hand hand_[2];
     double haptic_dt_, inverse_divider_, sample_rate_, gain_, output_gain_;
     const Gesture* gesture_;

@@ -9,9 +9,12 @@
 //      coefficients (docs/physics.md, The scheme)
 //   3  a modal point of more than eight terms sums them in eight interleaved partial sums
 //      (physics/modal_point_position.hpp)
+//   4  the friction solve multiplies by the reciprocals of T and of the masses' response where
+//      it divided (physics/bow_solve.cpp); Simulation::compute_as_of() still divides, for a
+//      take played before
 
 namespace archet {
 
-constexpr int kSchemeRevision = 3;
+constexpr int kSchemeRevision = 4;
 
 }  // namespace archet

@@ -58,6 +58,12 @@ class Simulation {
     /// real-time safe. False, and nothing changed, when the two states do not match.
     bool continue_from(const Simulation& from, std::span<double> scratch);
 
+    /// Computes as scheme revision `revision` (1 … kSchemeRevision) did where this Archet still
+    /// can, so that a take played under it re-renders to the byte: before revision 4 the friction
+    /// solve divided by T and by the masses' response (common/scheme_revision.hpp). A
+    /// simulation that continues from another computes as that one does.
+    void compute_as_of(int revision);
+
     /// Keeps the per-element dissipation (slower; off by default).
     void enable_accounting(bool on);
 
@@ -123,6 +129,7 @@ class Simulation {
     std::uint64_t tick_ = 0;
     double hand_work_ = 0;
     bool accounting_ = false;
+    bool friction_divides_ = false;  ///< as before scheme revision 4 (compute_as_of())
     std::vector<double> dissipated_;
     /// Per level: does it tick this step. (int, not char: a char store may alias anything.)
     std::vector<int> active_;
