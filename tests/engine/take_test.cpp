@@ -274,6 +274,18 @@ TEST(Take, ATakeOfAnOlderSchemeSaysWhenItMayDiffer) {
     EXPECT_EQ(r.err.find("scheme revision"), std::string::npos) << r.err;
     EXPECT_EQ(test::read_file(dir / "played-3-2.wav"), test::read_file(dir / "played-3.wav"))
         << "the shipped string computes the same under revisions 2 and 3: no note, same bytes";
+    // Its probes show the friction to nine digits: marked as played under revision 4 it
+    // re-renders with the reciprocals, and they differ (the sound's 24 bits hide it).
+    const auto probes_as_of = [&](int revision) {
+        render_as_of(dir, "played-3", revision);
+        const auto csv = dir / ("played-3-" + std::to_string(revision) + ".csv");
+        const auto r =
+            test::run_archet({"render", "--take", (dir / "played-3").string(), "--probes",
+                              csv.string(), "-o", (dir / "probes.wav").string()});
+        EXPECT_EQ(r.status, 0) << r.err;
+        return test::read_file(csv);
+    };
+    EXPECT_NE(probes_as_of(3), probes_as_of(4)) << "render --take computes as the take's revision";
 
     static_assert(kSchemeRevision == 4, "say which model computes differently since the newest");
     r = test::run_archet({"new", "bowed-string", "--structure", "modal", "--masses", "30", "-o",

@@ -9,7 +9,7 @@ namespace archet {
 
 namespace {
 
-// a / b, or a times 1/b worked out beforehand (the form of the scheme since revision 4).
+// a / b, or a times 1/b computed beside the solve, off its path (the form since revision 4).
 template <bool kDivides>
 [[gnu::always_inline]] inline double over(double a, double b, double inverse_b) {
     if constexpr (kDivides)
@@ -57,7 +57,7 @@ Friction solve_friction(const CompiledBow& bow, double n, double csum, double u_
     }
     const double w_free = 0.5 * (u_free + u_prev);
     const double q_free = over<kDivides>(std::abs(w_free), dt, inverse_dt);
-    const double alpha = kDivides ? n * csum / (2.0 * dt) : n * csum * (0.5 * inverse_dt);
+    const double alpha = over<kDivides>(n * csum, 2.0 * dt, 0.5 * inverse_dt);
     const double b = bow.v0 + alpha * bow.mu_d - q_free;
     const double cq = bow.v0 * (alpha * bow.mu_s - q_free);  // < 0 when slipping
     const double root = std::sqrt(b * b - 4.0 * cq);

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
 
 namespace archet {
@@ -66,6 +68,9 @@ double Simulation::gesture_axis(GestureAxis axis, double t) const {
 
 void Simulation::compute_as_of(int revision) {
     static_assert(kSchemeRevision == 4, "say here how to compute as an older revision, if it can");
+    if (revision < 1 || revision > kSchemeRevision)
+        throw std::invalid_argument("scheme revision " + std::to_string(revision) +
+                                    " is not 1 to " + std::to_string(kSchemeRevision));
     friction_divides_ = revision < 4;
 }
 
