@@ -223,13 +223,18 @@ TEST(Take, AKilledTakeIsRecoveredByRender) {
     EXPECT_EQ(test::read_file(dir / "twice.wav"), test::read_file(dir / "again.wav"));
 }
 
+// Marks the take in `dir / name` as played under `revision`.
+void mark_as_of(const std::filesystem::path& dir, const std::string& name, int revision) {
+    nlohmann::json description = read_json(dir / name / "take.json");
+    description["scheme"] = revision;
+    std::ofstream(dir / name / "take.json") << description.dump(2);
+}
+
 // Marks the take in `dir / name` as played under `revision`, and renders it to
 // `name`-`revision`.wav.
 test::CommandResult render_as_of(const std::filesystem::path& dir, const std::string& name,
                                  int revision) {
-    nlohmann::json description = read_json(dir / name / "take.json");
-    description["scheme"] = revision;
-    std::ofstream(dir / name / "take.json") << description.dump(2);
+    mark_as_of(dir, name, revision);
     return test::run_archet({"render", "--take", (dir / name).string(), "-o",
                              (dir / (name + "-" + std::to_string(revision) + ".wav")).string()});
 }
@@ -277,12 +282,12 @@ TEST(Take, ATakeOfAnOlderSchemeSaysWhenItMayDiffer) {
     // Its probes show the friction to nine digits: marked as played under revision 4 it
     // re-renders with the reciprocals, and they differ (the sound's 24 bits hide it).
     const auto probes_as_of = [&](int revision) {
-        render_as_of(dir, "played-3", revision);
+        mark_as_of(dir, "played-3", revision);
         const auto csv = dir / ("played-3-" + std::to_string(revision) + ".csv");
-        const auto r =
+        const auto rendered =
             test::run_archet({"render", "--take", (dir / "played-3").string(), "--probes",
                               csv.string(), "-o", (dir / "probes.wav").string()});
-        EXPECT_EQ(r.status, 0) << r.err;
+        EXPECT_EQ(rendered.status, 0) << rendered.err;
         return test::read_file(csv);
     };
     EXPECT_NE(probes_as_of(3), probes_as_of(4)) << "render --take computes as the take's revision";
