@@ -41,8 +41,8 @@ struct Friction {
 // the path from the predicted motion to the force.
 template <bool kDivides>
 Friction solve_friction(const CompiledBow& bow, double n, double csum, double u_free, double u_prev,
-                        double dt) {
-    const double inverse_csum = 1.0 / csum, inverse_dt = 1.0 / dt;
+                        double dt, double inverse_dt) {
+    const double inverse_csum = 1.0 / csum;
     Friction out;
     const double f_target = over<kDivides>(u_free, csum, inverse_csum);
     const double f_passive = over<kDivides>(u_free + u_prev, csum, inverse_csum);
@@ -80,10 +80,12 @@ void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
     const double u_prev = (x[bow.bow] - xp[bow.bow]) - (x[bow.string] - xp[bow.string]);
     const double u_free = (xn[bow.bow] - x[bow.bow]) - (xn[bow.string] - x[bow.string]);
     const double n = bow.normal;
+    const double inverse_dt = 1.0 / lv.dt;  // for the solve and the slip velocity alike
     Friction friction;
     if (n > 0.0)
-        friction = friction_divides_ ? solve_friction<true>(bow, n, csum, u_free, u_prev, lv.dt)
-                                     : solve_friction<false>(bow, n, csum, u_free, u_prev, lv.dt);
+        friction = friction_divides_
+                       ? solve_friction<true>(bow, n, csum, u_free, u_prev, lv.dt, inverse_dt)
+                       : solve_friction<false>(bow, n, csum, u_free, u_prev, lv.dt, inverse_dt);
     const double f = friction.force;
     bow.sticking = friction.sticking;
     bow.dissipated = friction.dissipated;
@@ -93,7 +95,7 @@ void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
     lv.external[bow.bow] -= f;
     const double u_next = u_free - f * csum;
     bow.friction = f;
-    bow.slip_velocity = friction_divides_ ? u_next / lv.dt : u_next * (1.0 / lv.dt);
+    bow.slip_velocity = friction_divides_ ? u_next / lv.dt : u_next * inverse_dt;
 }
 
 }  // namespace archet
