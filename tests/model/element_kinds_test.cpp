@@ -127,7 +127,9 @@ TEST(ElementKinds, RowsAreConsistent) {
             // A finger is solved implicitly: its stiffness and damping bound no step.
             EXPECT_EQ(r.info.stability_relevant, linear && kind != "finger")
                 << kind << "." << r.info.name;
-            if (r.file_default) EXPECT_TRUE(r.info.minimum <= *r.file_default);
+            if (r.file_default) {
+                EXPECT_TRUE(r.info.minimum <= *r.file_default);
+            }
         }
     };
     for (MatKind k : kMatKinds) check(kind_parameters(k), to_string(k));
@@ -150,14 +152,15 @@ TEST(ElementKinds, AFileMayLeaveOutOnlyParametersWithADefault) {
 
 TEST(ElementKinds, TheCompiledModelResolvesByTheTablesNames) {
     Model m;
-    m.mats = {{.id = "wall", .kind = MatKind::Fixed},
-              {.id = "osc", .kind = MatKind::Oscillator, .mass = 1, .stiffness = 10}};
-    m.lias.push_back({.id = "buf",
-                      .kind = LiaKind::Buffer,
-                      .from = "osc",
-                      .to = "wall",
-                      .stiffness = 100,
-                      .length = 0.01});
+    // Member by member: designated initializers would leave the other members to warn about.
+    Mat wall, osc;
+    wall.id = "wall", wall.kind = MatKind::Fixed;
+    osc.id = "osc", osc.kind = MatKind::Oscillator, osc.mass = 1, osc.stiffness = 10;
+    m.mats = {wall, osc};
+    Lia buffer;
+    buffer.id = "buf", buffer.kind = LiaKind::Buffer, buffer.from = "osc", buffer.to = "wall";
+    buffer.stiffness = 100, buffer.length = 0.01;
+    m.lias.push_back(buffer);
     const CompiledModel c = compile(m);
     EXPECT_EQ(c.resolve_parameter({"buf", "gap"}).kind, ParameterSlot::Kind::LinkLength);
     EXPECT_EQ(c.resolve_parameter({"osc", "stiffness"}).kind, ParameterSlot::Kind::GroundK);

@@ -122,8 +122,10 @@ TEST(SimulationParameters, ACoefficientSetWhilePlayingPlaysAsIfCompiledWithIt) {
             return std::any_of(runs.all().begin(), runs.all().end(),
                                [s](const UniformSpan& r) { return r.first <= s && s <= r.last; });
         };
-        if (c.mid_run) ASSERT_TRUE(in_a_run(slot.index - 8) && in_a_run(slot.index + 8));
-        if (c.mid_run) ASSERT_TRUE(in_a_run(slot.index));
+        if (c.mid_run) {
+            ASSERT_TRUE(in_a_run(slot.index - 8) && in_a_run(slot.index + 8));
+            ASSERT_TRUE(in_a_run(slot.index));
+        }
         set_live.write_slot(slot, c.value);
         if (c.mid_run) {
             EXPECT_FALSE(in_a_run(slot.index)) << what;

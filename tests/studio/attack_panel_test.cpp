@@ -259,7 +259,9 @@ TEST(StrokeDriverTest, SlidesFromRestWithTheChosenAccelerationToTheEdge) {
     // it never went back, and the press held.
     for (std::size_t i = 0; i < seen.size(); ++i) {
         EXPECT_LE(seen[i].slide, -0.1 + 0.5 * 8.0 * seen[i].t * seen[i].t + 1e-9) << i;
-        if (i > 0) EXPECT_GE(seen[i].slide, seen[i - 1].slide) << i;
+        if (i > 0) {
+            EXPECT_GE(seen[i].slide, seen[i - 1].slide) << i;
+        }
         EXPECT_EQ(seen[i].press, 0.002);
     }
     EXPECT_GE(seen.back().t, std::sqrt(2 * 0.25 / 8.0)) << "0.25 m from rest at 8 m/s²";
