@@ -57,8 +57,9 @@ TEST_P(BodyOnString, ModesShowTheBodyResonances) {
         ASSERT_NE(nearest, nullptr);
         EXPECT_NEAR(nearest->frequency / expected, 1.0, 0.03) << mode.frequency << " Hz";
         // The broad bridge-hill modes share their motion with the string's partials nearby.
-        if (mode.damping_ratio < 0.05)
+        if (mode.damping_ratio < 0.05) {
             EXPECT_TRUE(nearest->support) << mode.frequency << " Hz is a mode of the body";
+        }
     }
     // The builder tunes the string with its body: its first mode is the pitch.
     EXPECT_NEAR(1200 * std::log2(analysis.fundamental / 220.0), 0.0, 1.0);
