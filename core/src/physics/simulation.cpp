@@ -3,6 +3,7 @@
 #include "archet/common/scheme_revision.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/modal_point_position.hpp"
+#include "hand_link_tick.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -40,6 +41,7 @@ Simulation::Simulation(CompiledModel model) : model_(std::move(model)) {
                               l.hand_is_a ? l.a_weight : l.b_weight});
     }
     dissipated_.assign(model_.source.lias.size() + model_.source.mats.size(), 0.0);
+    bowed_chain_ = bowed_chain_misfit().empty();
     set_gesture_track(model_.source.gesture ? &*model_.source.gesture : nullptr);
 }
 
@@ -84,16 +86,7 @@ void Simulation::step() {
     const int levels = static_cast<int>(model_.levels.size());
     CompiledLevel* const level = model_.levels.data();
     const int* const active = active_.data();
-    // Countdowns rather than tick % divider: a 64-bit division per level costs more than
-    // the whole step of a small model.
-    for (int l = 0; l < levels; ++l) {
-        const bool ticks = countdown_[l] == 0;
-        active_[l] = ticks;
-        countdown_[l] = ticks ? level[l].divider - 1 : countdown_[l] - 1;
-        // How far into its period a faster link sees this level (see seen_position()).
-        period_done_[l] =
-            ticks ? 1.0 : (level[l].divider - 1 - countdown_[l]) * level[l].inverse_divider;
-    }
+    count_down_levels(0);
     if (!model_.controls.empty()) apply_controls();
     // Phase 1: every active LIA computes its force from x[n] (and x[n−1]).
     for (int l = 0; l < levels; ++l)
@@ -168,28 +161,14 @@ void Simulation::compute_hand_link_forces() {
         const CompiledLevel& hand = *p.hand_level;
         const double from = hand.x_prev()[p.hand_index], to = hand.x()[p.hand_index];
         const double h = from + (to - from) * done[p.hand_level_index];
-        // x(a) − x(b), and the force the end takes: a negation rather than a product with
-        // hand_sign (the same bits, a shorter wait for the friction solve downstream).
-        const double gap = h - p.end_level->x()[p.end_index];
-        const double d = l.hand_is_a ? gap : -gap;
-        const double d_prev = l.d_prev, d_before = l.d_before, force = l.force;
-        const double f = l.k * (d - l.length) + l.zdt * (d - d_prev);
-        const double end_force = l.hand_is_a ? f : -f;
-        const double work = l.hand_sign * 0.5 * (force + f) * (h - l.hand_seen);
-        if (accounting) dissipated_[l.element] += 0.25 * l.zdt * (d - d_before) * (d - d_before);
-        l.d_before = d_prev, l.d_prev = d, l.force = f, l.hand_seen = h;
-        *p.end_force += end_force;
-        // The hand's point takes the mean force over its period when it ticks.
-        l.hand_force_sum -= end_force;
-        hand_work += work;
-        l.hand_work_sum += work;
-        if (active[p.hand_level_index]) {
-            const double mean = l.hand_force_sum * p.hand_weight;
-            *p.hand_force += mean;
-            p.gesture->faster_links_force += mean;
-            p.gesture->faster_links_work += l.hand_work_sum;
-            l.hand_force_sum = l.hand_work_sum = 0.0;
-        }
+        const double d_before = l.d_before;
+        const hand_link::Tick t = hand_link::tick(l, h, p.end_level->x()[p.end_index]);
+        if (accounting)
+            dissipated_[l.element] += 0.25 * l.zdt * (t.d - d_before) * (t.d - d_before);
+        *p.end_force += t.end_force;
+        hand_work += t.work;
+        if (active[p.hand_level_index])
+            hand_link::hand_over(l, p.hand_weight, *p.hand_force, *p.gesture);
     }
     hand_work_ += hand_work;
 }

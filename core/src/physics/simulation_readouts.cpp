@@ -46,24 +46,4 @@ double Simulation::probe(std::size_t i) const {
     return 0;
 }
 
-double Simulation::output() const {
-    double sum = 0;
-    for (const auto& o : model_.outputs) {
-        double v = 0;
-        switch (o.signal) {
-            case Output::Signal::Position:
-                v = position(o.mat);
-                break;
-            case Output::Signal::Velocity:
-                v = velocity(o.mat);
-                break;
-            case Output::Signal::Force:
-                v = model_.levels[o.mat.level].watched_force[o.watched];
-                break;
-        }
-        sum += o.gain * v;
-    }
-    return model_.output_gain * sum;
-}
-
 }  // namespace archet

@@ -76,12 +76,7 @@ class ArchetString {
                                kSampleRate)) {
         sim_.set_gesture_track(&stroke_);
     }
-    void render(double* out, int count) {
-        for (int i = 0; i < count; ++i) {
-            sim_.step();
-            out[i] = sim_.output();
-        }
-    }
+    void render(double* out, int count) { sim_.run({out, static_cast<std::size_t>(count)}); }
 
   private:
     archet::Gesture stroke_;

@@ -1,9 +1,11 @@
 #pragma once
-// Runs a compiled model: one step() per tick of the master clock, the same call for offline
-// rendering, tests, benchmarks and the real-time engine. step() does not allocate.
+// Runs a compiled model: one step() per tick of the master clock, the same call for tests and
+// the real-time engine, or run() over a block of ticks (offline rendering, benchmarks), which
+// gives the same bytes. Neither allocates.
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "archet/model/gesture.hpp"
@@ -32,6 +34,17 @@ class Simulation {
 
     /// Advances one tick of the master clock.
     void step();
+    /// Advances out.size() ticks and writes the output after each into `out`: the same bytes as
+    /// step() then output() at every tick. A bowed chain (see bowed_chain_misfit()) runs a loop
+    /// written for its shape, which asks once per call what the general step asks at every
+    /// tick. Stops after a tick whose output is not finite; returns the ticks it ran.
+    std::size_t run(std::span<double> out);
+    /// Why run() steps this model with the general step, or "" when it runs it as a bowed chain:
+    /// a chain of masses at audio rate, one point bow, held by at most four hand links from
+    /// slower gesture points, without controls, links besides the chain's, modal bodies or
+    /// fingers at audio rate. Kept energy accounts and chain rest lengths take the general step
+    /// too, while they are on.
+    std::string bowed_chain_misfit() const;
 
     /// Writes a parameter's compiled slot while running (controls, the smoother, the engine):
     /// no check, the value was validated against the model before it was resolved.
@@ -121,6 +134,14 @@ class Simulation {
     /// every point of its body.
     void apply_modal_force(CompiledLevel& level, int point, double force);
     void account(CompiledLevel& level);
+    /// The countdowns of the levels from `first` on, at the start of a tick (see step()).
+    void count_down_levels(int first);
+    struct BowedChainFrame;  ///< what run_bowed_chain() holds over a block
+    std::size_t run_bowed_chain(std::span<double> out);
+    void bowed_chain_hand_links(BowedChainFrame& frame, const double* x);
+    void bowed_chain_audio_level(BowedChainFrame& frame, const double* x, const double* xp,
+                                 double* xn);
+    static constexpr int kMostHandLinks = 4;  ///< the bowed chain's loop holds them in its frame
     double gesture_axis(GestureAxis axis, double t) const;
 
     CompiledModel model_;
@@ -130,6 +151,7 @@ class Simulation {
     double hand_work_ = 0;
     bool accounting_ = false;
     bool friction_divides_ = false;  ///< as before scheme revision 4 (compute_as_of())
+    bool bowed_chain_ = false;       ///< the model's shape is a bowed chain's (run())
     std::vector<double> dissipated_;
     /// Per level: does it tick this step. (int, not char: a char store may alias anything.)
     std::vector<int> active_;
@@ -148,10 +170,46 @@ class Simulation {
     std::vector<HandLinkPlan> hand_plan_;
 };
 
+// Inline: the bowed chain's loop counts down at every tick. Countdowns rather than tick % divider:
+// a 64-bit division per level costs more than the whole step of a small model.
+inline void Simulation::count_down_levels(int first) {
+    const int levels = static_cast<int>(model_.levels.size());
+    const CompiledLevel* const level = model_.levels.data();
+    for (int l = first; l < levels; ++l) {
+        const bool ticks = countdown_[l] == 0;
+        active_[l] = ticks;
+        countdown_[l] = ticks ? level[l].divider - 1 : countdown_[l] - 1;
+        // How far into its period a faster link sees this level (see seen_position()).
+        period_done_[l] =
+            ticks ? 1.0 : (level[l].divider - 1 - countdown_[l]) * level[l].inverse_divider;
+    }
+}
+
 // Inline: the output and the probes read it at every step.
 inline double Simulation::velocity(MatSlot s) const {
     const CompiledLevel& lv = model_.levels[s.level];
     return (lv.x()[s.index] - lv.x_prev()[s.index]) / lv.dt;
+}
+
+// Inline: read after every step, by the bowed chain's loop too.
+inline double Simulation::output() const {
+    double sum = 0;
+    for (const auto& o : model_.outputs) {
+        double v = 0;
+        switch (o.signal) {
+            case Output::Signal::Position:
+                v = position(o.mat);
+                break;
+            case Output::Signal::Velocity:
+                v = velocity(o.mat);
+                break;
+            case Output::Signal::Force:
+                v = model_.levels[o.mat.level].watched_force[o.watched];
+                break;
+        }
+        sum += o.gain * v;
+    }
+    return model_.output_gain * sum;
 }
 
 // Inline: the bow and the finger solve with them at every step.

@@ -1,0 +1,220 @@
+// The step of a bowed chain: what step() does for that one shape, the paper's string (a chain
+// of masses at audio rate, a point bow, a hand holding it through links from slower gesture
+// points), with what the general step asks at every tick asked once per block. The same
+// operations in the same order, so the same bytes (bowed_chain_test.cpp holds it to step()).
+
+#include <cmath>
+#include <span>
+#include <string>
+
+#include "archet/physics/chain_kernel.hpp"
+#include "archet/physics/simulation.hpp"
+#include "friction_solve.hpp"
+#include "hand_link_tick.hpp"
+
+namespace archet {
+
+std::string Simulation::bowed_chain_misfit() const {
+    const CompiledModel& m = model_;
+    if (m.levels.empty() || m.levels[0].divider != 1) return "no level runs at the master clock";
+    if (!m.controls.empty()) return "it has controls";
+    const CompiledLevel& audio = m.levels[0];
+    if (!audio.links.empty()) return "links other than the chain's join its masses";
+    if (!audio.modal_points.empty()) return "it has a modal body";
+    if (!audio.fingers.empty()) return "it has a finger";
+    if (!audio.gestures.empty()) return "gesture points run at audio rate";
+    if (audio.bows.size() != 1 || m.bows.size() != 1) return "it has no bow, or more than one";
+    if (grounds_in_chain_loop(audio)) return "most of its masses have a ground";
+    if (m.hand_links > kMostHandLinks) return "more than four hand links hold it";
+    if (m.cross_links.size() != static_cast<std::size_t>(m.hand_links))
+        return "links join its rate levels besides the hand's";
+    for (const CompiledCrossLink& l : m.cross_links)
+        if (l.level != 0 || l.end_slot.level != 0 || l.hand_slot.level == 0)
+            return "a hand link does not hold a mass at audio rate";
+    const CompiledBow& bow = m.bows[0];
+    const int moving = audio.size - audio.fixed_after;
+    if (bow.string > moving || bow.bow > moving) return "the bow or the string it touches is fixed";
+    return "";
+}
+
+namespace {
+
+// A hand link's numbers for the length of a block, in the loop's own frame (so that they stay
+// in registers rather than being read again after every store of a force), written back after.
+struct HandLinkState {
+    CompiledCrossLink* link;
+    double k, zdt, length, hand_sign, hand_weight;
+    bool hand_is_a;
+    double d_prev, d_before, force, hand_seen, hand_force_sum, hand_work_sum;
+    int end, hand_index, hand_level;
+    const CompiledLevel* hand;
+    double* hand_force;
+    CompiledGesturePoint* gesture;
+};
+
+}  // namespace
+
+// What run_bowed_chain() holds over a block: the audio level's arrays, its bow (a copy, written
+// back after the block) and its hand links.
+struct Simulation::BowedChainFrame {
+    CompiledLevel& audio;
+    CompiledBow bow;
+    int string, bowed, press, surface;
+    double *ext, *chain_forces, *watched_force;
+    const double *held, *coeff, *ground_k, *ground_zdt, *ground_rest;
+    std::span<const int> touched, forces_used, watched;
+    std::span<const CompiledGround> grounds;
+    double string_response, bow_response, dt, inverse_dt;
+    bool divides;
+    int hands;
+    HandLinkState hand[kMostHandLinks];
+};
+
+std::size_t Simulation::run(std::span<double> out) {
+    if (out.empty()) return 0;  // (the loop below marks the audio level as ticking)
+    if (bowed_chain_ && !accounting_ && !model_.levels[0].has_chain_lengths)
+        return run_bowed_chain(out);
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        step();
+        out[i] = output();
+        if (!std::isfinite(out[i])) return i + 1;
+    }
+    return out.size();
+}
+
+// step() for the shape bowed_chain_misfit() accepts: the audio level ticks at every step, its
+// only forces besides the chain's are the bow's and the hand links', its bow's masses move by
+// T²/m per newton. The slower levels step as in step().
+std::size_t Simulation::run_bowed_chain(std::span<double> out) {
+    const int levels = static_cast<int>(model_.levels.size());
+    CompiledLevel* const level = model_.levels.data();
+    CompiledLevel& audio = level[0];
+    BowedChainFrame frame{audio,
+                          model_.bows[0],
+                          model_.bows[0].string,
+                          model_.bows[0].bow,
+                          model_.bows[0].press,
+                          model_.bows[0].surface,
+                          audio.external.data(),
+                          audio.chain_force.data(),
+                          audio.watched_force.data(),
+                          audio.held.data(),
+                          audio.coeff.data(),
+                          audio.ground_k.data(),
+                          audio.ground_zdt.data(),
+                          audio.ground_rest.data(),
+                          audio.touched,
+                          audio.chain_forces_used,
+                          audio.watched,
+                          audio.grounds,
+                          audio.coeff[model_.bows[0].string],
+                          audio.coeff[model_.bows[0].bow],
+                          audio.dt,
+                          1.0 / audio.dt,
+                          friction_divides_,
+                          static_cast<int>(hand_plan_.size()),
+                          {}};
+    for (int i = 0; i < frame.hands; ++i) {
+        const HandLinkPlan& p = hand_plan_[i];
+        const CompiledCrossLink& l = *p.link;
+        frame.hand[i] = {p.link,          l.k,           l.zdt,        l.length,
+                         l.hand_sign,     p.hand_weight, l.hand_is_a,  l.d_prev,
+                         l.d_before,      l.force,       l.hand_seen,  l.hand_force_sum,
+                         l.hand_work_sum, p.end_index,   p.hand_index, p.hand_level_index,
+                         p.hand_level,    p.hand_force,  p.gesture};
+    }
+    // What step() writes for a level of divider 1 at every tick.
+    active_[0] = 1, countdown_[0] = 0, period_done_[0] = 1.0;
+    const int* const active = active_.data();
+    std::size_t done = 0;
+    while (done < out.size()) {
+        count_down_levels(1);
+        const int now = audio.current;
+        const double* const x = audio.buffer[now].data();
+        const double* const xp = audio.buffer[CompiledLevel::before(now)].data();
+        double* const xn = audio.buffer[CompiledLevel::after(now)].data();
+        // Phase 1: the bow's pressure buffer, the audio level's one link; the slower levels'
+        // links; the hand links.
+        const double p = x[frame.press] - x[frame.surface];
+        const double pp = xp[frame.press] - xp[frame.surface];
+        CompiledBow& bow = frame.bow;
+        const double normal = p > 0.0 ? std::max(0.0, bow.kb * p + bow.zbdt * (p - pp)) : 0.0;
+        bow.normal = normal;
+        frame.ext[frame.press] -= normal;
+        frame.ext[frame.surface] += normal;
+        for (int l = 1; l < levels; ++l)
+            if (active[l]) compute_link_forces(level[l]);
+        bowed_chain_hand_links(frame, x);
+        // Phase 2: the audio level, then the slower levels; phase 3: x[n+1] becomes x[n].
+        bowed_chain_audio_level(frame, x, xp, xn);
+        for (int l = 1; l < levels; ++l)
+            if (active[l]) integrate(level[l]);
+        for (int l = 0; l < levels; ++l)
+            if (active[l]) level[l].current = CompiledLevel::after(level[l].current);
+        ++tick_;
+        const double sample = output();
+        out[done++] = sample;
+        if (!std::isfinite(sample)) break;
+    }
+    model_.bows[0] = frame.bow;
+    for (int i = 0; i < frame.hands; ++i) {
+        const HandLinkState& l = frame.hand[i];
+        CompiledCrossLink& link = *l.link;
+        link.d_prev = l.d_prev, link.d_before = l.d_before, link.force = l.force;
+        link.hand_seen = l.hand_seen, link.hand_force_sum = l.hand_force_sum;
+        link.hand_work_sum = l.hand_work_sum;
+    }
+    return done;
+}
+
+// compute_hand_link_forces() for links that tick at every step, without accounts.
+[[gnu::always_inline]] inline void Simulation::bowed_chain_hand_links(BowedChainFrame& frame,
+                                                                      const double* x) {
+    const int* const active = active_.data();
+    double hand_work = 0;
+    for (int i = 0; i < frame.hands; ++i) {
+        HandLinkState& l = frame.hand[i];
+        const double from = l.hand->x_prev()[l.hand_index], to = l.hand->x()[l.hand_index];
+        const double at = from + (to - from) * period_done_[l.hand_level];
+        const hand_link::Tick t = hand_link::tick(l, at, x[l.end]);
+        frame.ext[l.end] += t.end_force;
+        hand_work += t.work;
+        if (active[l.hand_level]) hand_link::hand_over(l, l.hand_weight, *l.hand_force, *l.gesture);
+    }
+    hand_work_ += hand_work;
+}
+
+// integrate() and solve_bow() for the audio level of a bowed chain.
+[[gnu::always_inline]] inline void Simulation::bowed_chain_audio_level(BowedChainFrame& frame,
+                                                                       const double* x,
+                                                                       const double* xp,
+                                                                       double* xn) {
+    CompiledLevel& audio = frame.audio;
+    const double* const c = frame.coeff;
+    double* const ext = frame.ext;
+    double* const f = frame.chain_forces;
+    integrate_chain(audio, xn);
+    for (int j : frame.forces_used) f[j] = chain_link_force(audio, x, xp, j);
+    for (int s : frame.touched) xn[s] += c[s] * (ext[s] + frame.held[s]);
+    for (const CompiledGround& g : frame.grounds) {
+        const int s = g.index;
+        xn[s] -= ground_pull(x[s], xp[s], c[s], frame.ground_k[s], frame.ground_zdt[s],
+                             frame.ground_rest[s]);
+    }
+    const int string = frame.string, bowed = frame.bowed;
+    const double cs = frame.string_response, cb = frame.bow_response;
+    const double friction = friction::solve_point_bow(
+        frame.bow, {x[bowed], xp[bowed], xn[bowed], cb, x[string], xp[string], xn[string], cs},
+        frame.dt, frame.inverse_dt, frame.divides);
+    xn[string] += cs * friction;
+    xn[bowed] += cb * -friction;
+    ext[string] += friction;
+    ext[bowed] -= friction;
+    for (std::size_t w = 0; w < frame.watched.size(); ++w) {
+        const int s = frame.watched[w];
+        frame.watched_force[w] = ext[s] + frame.held[s] + f[s - 1] - f[s];
+    }
+    for (int s : frame.touched) ext[s] = 0.0;
+}
+
+}  // namespace archet
