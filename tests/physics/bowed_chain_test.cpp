@@ -8,12 +8,17 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "archet/builders/bowed_chain.hpp"
 #include "archet/builders/bowed_string.hpp"
+#include "archet/common/input_error.hpp"
 #include "archet/model/model_validation.hpp"
+#include "archet/physics/blow_up.hpp"
 #include "archet/physics/compiled_model.hpp"
+#include "archet/physics/renderer.hpp"
 #include "archet/physics/simulation.hpp"
 
 namespace archet {
@@ -120,6 +125,7 @@ TEST(BowedChain, RunGivesStepsBytesOnABenchChain) {
 TEST(BowedChain, RunGivesStepsBytesWithTheHandLinksTurnedAround) {
     const Model turned = hands_turned(paper_string(220, 60, 0.12));
     const CompiledModel compiled = compile(turned);
+    ASSERT_EQ(compiled.hand_links, 2);
     for (int i = 0; i < compiled.hand_links; ++i) ASSERT_FALSE(compiled.cross_links[i].hand_is_a);
     expect_run_as_step(turned, wandering_bow(3, 0.5), {333}, 24000);
 }
@@ -134,15 +140,30 @@ TEST(BowedChain, RunFollowsTheDeviceAndParametersBetweenBlocks) {
     const Model model = paper_string(220, 60, 0.12);
     Simulation by_step(compile(model)), by_run(compile(model));
     for (Simulation* sim : {&by_step, &by_run}) sim->set_gesture_track(nullptr);
-    const ParameterSlot mu_s = by_run.model().resolve_parameter({"friction", "mu_s"});
-    const ParameterSlot mass = by_run.model().resolve_parameter({"s10", "mass"});
+    ASSERT_EQ(by_run.bowed_chain_misfit(), "");
+    const CompiledBow& bow = by_run.model().bows[0];
+    const std::string bowed = by_run.model().source.mats[bow.string - 1].id;
+    // What the loop reads once per block: the friction, the masses of the bowed pair, a hand
+    // link, the bow's pressure buffer; and a mass of the chain.
+    std::vector<std::pair<ParameterSlot, double>> changes;
+    for (auto [element, parameter, factor] : {std::tuple{"friction", "mu_s", 0.75},
+                                              {"s10", "mass", 1.2},
+                                              {bowed.c_str(), "mass", 0.9},
+                                              {"bow", "mass", 1.5},
+                                              {"bow_hold", "stiffness", 0.8},
+                                              {"press_hold", "damping", 1.3},
+                                              {"friction", "buffer_stiffness", 1.4}})
+        changes.push_back({by_run.model().resolve_parameter({element, parameter}), factor});
     std::vector<double> expected(240), got(240);
+    int sounding = 0;
     for (int block = 0; block < 100; ++block) {
         const GestureSample hand{0.002 * block, 0.0005 + 0.00003 * block};
         for (Simulation* sim : {&by_step, &by_run}) {
             sim->set_device_position(hand);
-            if (block == 40) sim->write_slot(mu_s, 0.6);
-            if (block == 70) sim->write_slot(mass, 1.2 * sim->read_slot(mass));
+            if (block >= 30 && block % 10 == 0) {
+                const auto& [slot, factor] = changes[(block / 10 - 3) % changes.size()];
+                sim->write_slot(slot, factor * sim->read_slot(slot));
+            }
         }
         for (double& sample : expected) {
             by_step.step();
@@ -152,7 +173,9 @@ TEST(BowedChain, RunFollowsTheDeviceAndParametersBetweenBlocks) {
         ASSERT_EQ(std::memcmp(expected.data(), got.data(), got.size() * sizeof(double)), 0)
             << "block " << block;
         ASSERT_TRUE(same_bytes(state_of(by_step), state_of(by_run))) << "block " << block;
+        for (double sample : got) sounding += sample != 0.0;
     }
+    EXPECT_GT(sounding, 12000) << "the string hardly sounded: the comparison proves little";
     // Ticks stepped one by one carry on from a block as from any other tick.
     for (int i = 0; i < 100; ++i) {
         by_step.step(), by_run.step();
@@ -172,20 +195,26 @@ TEST(BowedChain, OtherShapesRunTheGeneralStepAndSaySo) {
     BowedStringOptions o;
     o.pitch = 220;
     Simulation body(compile(build_bowed_string(o)));
-    EXPECT_NE(body.bowed_chain_misfit(), "");
+    EXPECT_EQ(body.bowed_chain_misfit(), "links other than the chain's join its masses");
     o.body = "none";
     Simulation losses(compile(build_bowed_string(o)));
-    EXPECT_NE(losses.bowed_chain_misfit(), "");
+    EXPECT_EQ(losses.bowed_chain_misfit(), "it has modal points (a body, or a modal string)");
+    Simulation accounted(compile(paper_string(220, 60, 0.12)));
+    accounted.enable_accounting(true);
+    EXPECT_EQ(accounted.bowed_chain_misfit(), "it keeps energy accounts");
     const Gesture bow = wandering_bow(5, 0.3);
-    for (Simulation* sim : {&body, &losses}) {
+    for (Simulation* sim : {&body, &losses, &accounted}) {
         Simulation twin(compile(sim->model().source));
+        twin.enable_accounting(sim == &accounted);
         sim->set_gesture_track(&bow), twin.set_gesture_track(&bow);
         std::vector<double> got(4800);
         ASSERT_EQ(sim->run(got), got.size());
         for (double sample : got) {
             twin.step();
-            ASSERT_EQ(twin.output(), sample);
+            const double expected = twin.output();
+            ASSERT_EQ(std::memcmp(&expected, &sample, sizeof sample), 0);
         }
+        EXPECT_TRUE(same_bytes(state_of(*sim), state_of(twin)));
     }
 }
 
@@ -202,13 +231,55 @@ TEST(BowedChain, RunStopsAfterTheFirstTickThatIsNotFinite) {
     // Far past the scheme's bound: a mass a million times lighter blows the chain up.
     by_step.write_slot(mass, 1e-6 * by_step.read_slot(mass));
     by_run.write_slot(mass, 1e-6 * by_run.read_slot(mass));
-    int first_not_finite = 0;
-    while (std::isfinite((by_step.step(), by_step.output()))) ++first_not_finite;
+    std::vector<double> expected;
+    while (expected.size() < 100000 && (expected.empty() || std::isfinite(expected.back()))) {
+        by_step.step();
+        expected.push_back(by_step.output());
+    }
+    ASSERT_FALSE(std::isfinite(expected.back())) << "the string did not blow up";
     std::vector<double> got(100000);
     const std::size_t ran = by_run.run(got);
-    EXPECT_EQ(ran, static_cast<std::size_t>(first_not_finite) + 1);
-    EXPECT_FALSE(std::isfinite(got[ran - 1]));
+    ASSERT_EQ(ran, expected.size());
+    EXPECT_EQ(std::memcmp(expected.data(), got.data(), ran * sizeof(double)), 0);
     EXPECT_EQ(by_run.tick(), by_step.tick());
+}
+
+// The renderer without probes runs blocks: a blow-up is reported as stepping tick by tick
+// reports it, at the same tick, naming the same element, with nothing of its block handed on.
+TEST(BowedChain, TheRendererReportsABlowUpAsTickByTick) {
+    const Model model = paper_string(220, 60, 0.12);
+    const Gesture bow = wandering_bow(7, 0.5);
+    auto blown = [&](Simulation& sim) {
+        sim.set_gesture_track(&bow);
+        const ParameterSlot mass = sim.model().resolve_parameter({"s10", "mass"});
+        for (int i = 0; i < 2000; ++i) sim.step();
+        sim.write_slot(mass, 1e-6 * sim.read_slot(mass));
+    };
+    Simulation by_step(compile(model)), by_render(compile(model));
+    blown(by_step), blown(by_render);
+    std::string expected;
+    try {
+        for (int i = 0; i < 100000; ++i) {
+            by_step.step();
+            if (!std::isfinite(by_step.output())) throw_blow_up(by_step);
+        }
+    } catch (const InputError& e) {
+        expected = e.what();
+    }
+    ASSERT_NE(expected, "") << "the string did not blow up";
+    RenderOptions options;
+    options.frames = 100000;
+    options.block_frames = 4096;
+    std::uint64_t handed = 0;
+    try {
+        render(by_render, options, [&](const RenderBlock& b) { handed += b.frames; });
+        FAIL() << "the render did not report the blow-up";
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()), expected);
+    }
+    EXPECT_EQ(by_render.tick(), by_step.tick());
+    EXPECT_LT(handed, by_render.tick() - 2000);
+    EXPECT_EQ(handed % options.block_frames, 0u);
 }
 
 }  // namespace

@@ -78,7 +78,7 @@ struct BowMotion {
 /// Solves the bow's friction on that motion and keeps what the bow reports of it (the force,
 /// sticking, the dissipation, the slip velocity after the step); returns the force on the string
 /// (the bow takes its opposite). Before revision 4 it divides where it now multiplies.
-/// `inverse_dt` is 1.0 / dt, computed by the caller once for many steps.
+/// `inverse_dt` is 1.0 / dt (the bowed chain's loop computes it once per block).
 inline double solve_point_bow(CompiledBow& bow, const BowMotion& m, double dt, double inverse_dt,
                               bool divides) {
     const double csum = m.bow_response + m.string_response;

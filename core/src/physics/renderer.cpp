@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "archet/common/denormal_guard.hpp"
 #include "archet/physics/blow_up.hpp"
@@ -10,6 +11,7 @@ namespace archet {
 
 void render(Simulation& sim, const RenderOptions& options,
             const std::function<void(const RenderBlock&)>& sink) {
+    if (options.block_frames == 0) throw std::invalid_argument("render: block_frames is 0");
     const DenormalGuard no_denormals;
     const std::size_t probe_count = options.with_probes ? sim.probe_count() : 0;
     std::vector<double> audio(options.block_frames);
@@ -22,7 +24,7 @@ void render(Simulation& sim, const RenderOptions& options,
             // Nothing to read or do between steps: the block in one call, which a bowed chain
             // runs in its own loop (Simulation::run() stops after a sample that is not finite).
             const std::size_t ran = sim.run({audio.data(), frames});
-            if (ran < frames || !std::isfinite(audio[frames - 1])) throw_blow_up(sim);
+            if (ran < frames || !std::isfinite(audio[ran - 1])) throw_blow_up(sim);
         } else {
             for (std::size_t i = 0; i < frames; ++i) {
                 if (options.before_step) options.before_step(sim);

@@ -41,7 +41,7 @@ Simulation::Simulation(CompiledModel model) : model_(std::move(model)) {
                               l.hand_is_a ? l.a_weight : l.b_weight});
     }
     dissipated_.assign(model_.source.lias.size() + model_.source.mats.size(), 0.0);
-    bowed_chain_ = bowed_chain_misfit().empty();
+    bowed_chain_ = bowed_chain_shape_misfit().empty();
     set_gesture_track(model_.source.gesture ? &*model_.source.gesture : nullptr);
 }
 

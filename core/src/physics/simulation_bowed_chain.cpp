@@ -14,26 +14,33 @@
 
 namespace archet {
 
-std::string Simulation::bowed_chain_misfit() const {
+// What keeps the model's shape from a bowed chain's, checked once when it is made: its
+// structure never changes after (model() is not for changing it).
+std::string Simulation::bowed_chain_shape_misfit() const {
     const CompiledModel& m = model_;
     if (m.levels.empty() || m.levels[0].divider != 1) return "no level runs at the master clock";
     if (!m.controls.empty()) return "it has controls";
     const CompiledLevel& audio = m.levels[0];
     if (!audio.links.empty()) return "links other than the chain's join its masses";
-    if (!audio.modal_points.empty()) return "it has a modal body";
+    if (!audio.modal_points.empty()) return "it has modal points (a body, or a modal string)";
     if (!audio.fingers.empty()) return "it has a finger";
     if (!audio.gestures.empty()) return "gesture points run at audio rate";
     if (audio.bows.size() != 1 || m.bows.size() != 1) return "it has no bow, or more than one";
     if (grounds_in_chain_loop(audio)) return "most of its masses have a ground";
-    if (m.hand_links > kMostHandLinks) return "more than four hand links hold it";
+    if (m.hand_links > kMostHandLinks)
+        return "more than " + std::to_string(kMostHandLinks) + " hand links hold it";
     if (m.cross_links.size() != static_cast<std::size_t>(m.hand_links))
         return "links join its rate levels besides the hand's";
     for (const CompiledCrossLink& l : m.cross_links)
         if (l.level != 0 || l.end_slot.level != 0 || l.hand_slot.level == 0)
             return "a hand link does not hold a mass at audio rate";
-    const CompiledBow& bow = m.bows[0];
-    const int moving = audio.size - audio.fixed_after;
-    if (bow.string > moving || bow.bow > moving) return "the bow or the string it touches is fixed";
+    return "";
+}
+
+std::string Simulation::bowed_chain_misfit() const {
+    if (!bowed_chain_) return bowed_chain_shape_misfit();
+    if (accounting_) return "it keeps energy accounts";
+    if (model_.levels[0].has_chain_lengths) return "its chain links have been given rest lengths";
     return "";
 }
 
@@ -72,8 +79,7 @@ struct Simulation::BowedChainFrame {
 
 std::size_t Simulation::run(std::span<double> out) {
     if (out.empty()) return 0;  // (the loop below marks the audio level as ticking)
-    if (bowed_chain_ && !accounting_ && !model_.levels[0].has_chain_lengths)
-        return run_bowed_chain(out);
+    if (runs_as_bowed_chain()) return run_bowed_chain(out);
     for (std::size_t i = 0; i < out.size(); ++i) {
         step();
         out[i] = output();

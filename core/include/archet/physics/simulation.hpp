@@ -40,10 +40,11 @@ class Simulation {
     /// tick. Stops after a tick whose output is not finite; returns the ticks it ran.
     std::size_t run(std::span<double> out);
     /// Why run() steps this model with the general step, or "" when it runs it as a bowed chain:
-    /// a chain of masses at audio rate, one point bow, held by at most four hand links from
-    /// slower gesture points, without controls, links besides the chain's, modal bodies or
-    /// fingers at audio rate. Kept energy accounts and chain rest lengths take the general step
-    /// too, while they are on.
+    /// a chain of masses at audio rate, not grounded for the most part, with one point bow held
+    /// by at most four hand links from slower gesture points, and at audio rate no controls,
+    /// links besides the chain's, modal points, fingers or gesture points, no links between rate
+    /// levels but the hand's. Energy accounts (enable_accounting()) and chain rest lengths, once
+    /// one has been given, also take the general step.
     std::string bowed_chain_misfit() const;
 
     /// Writes a parameter's compiled slot while running (controls, the smoother, the engine):
@@ -136,6 +137,10 @@ class Simulation {
     void account(CompiledLevel& level);
     /// The countdowns of the levels from `first` on, at the start of a tick (see step()).
     void count_down_levels(int first);
+    std::string bowed_chain_shape_misfit() const;
+    bool runs_as_bowed_chain() const {
+        return bowed_chain_ && !accounting_ && !model_.levels[0].has_chain_lengths;
+    }
     struct BowedChainFrame;  ///< what run_bowed_chain() holds over a block
     std::size_t run_bowed_chain(std::span<double> out);
     void bowed_chain_hand_links(BowedChainFrame& frame, const double* x);
@@ -151,7 +156,8 @@ class Simulation {
     double hand_work_ = 0;
     bool accounting_ = false;
     bool friction_divides_ = false;  ///< as before scheme revision 4 (compute_as_of())
-    bool bowed_chain_ = false;       ///< the model's shape is a bowed chain's (run())
+    /// The model's shape is a bowed chain's (run()), found once: its structure never changes.
+    bool bowed_chain_ = false;
     std::vector<double> dissipated_;
     /// Per level: does it tick this step. (int, not char: a char store may alias anything.)
     std::vector<int> active_;
