@@ -2,7 +2,9 @@
 // each round renders a quarter second on every contender in turn, and the medians over the
 // rounds are compared, so that a slower moment of the machine falls on all of them alike.
 //   archet paper    the paper's chaplet: link damping alone, bridges, a point bow
-//                   (`archet new bowed-string --pitch 220 --masses 60 --paper`)
+//                   (`archet new bowed-string --pitch 220 --masses 60 --paper`), which
+//                   Simulation::run() steps in the bowed chain's loop (the other two take the
+//                   general step)
 //   archet bare     the shipped string without its body: losses to its rest points too, and a
 //                   bow spread over three masses
 //   archet + body   the shipped string (`archet new bowed-string --pitch 220 --masses 60`)
