@@ -1,6 +1,7 @@
 #pragma once
-// The bow–string friction solve, shared by the bow module of every step (bow_solve.cpp) and
-// the bowed chain's (simulation_bowed_chain.cpp). Private to the physics sources.
+// The bow module's pressure buffer and bow–string friction solve, shared by the general step
+// (simulation.cpp, bow_solve.cpp) and the bowed chain's (simulation_bowed_chain.cpp). Private
+// to the physics sources.
 
 #include <algorithm>
 #include <cmath>
@@ -66,6 +67,15 @@ inline Friction solve_friction(const CompiledBow& bow, double n, double csum, do
     out.force = std::copysign(n * mu, w_free);
     out.dissipated = n * mu * q * dt;  // |F|·|w|·T, w the mid-step velocity
     return out;
+}
+
+/// The normal force of the bow's pressure buffer from where its press and the surface are now
+/// and a step before: a one-sided spring-damper, zero while they are apart or pulling.
+[[gnu::always_inline]] inline double pressure_buffer_normal(const CompiledBow& bow, const double* x,
+                                                            const double* xp) {
+    const double p = x[bow.press] - x[bow.surface];
+    const double pp = xp[bow.press] - xp[bow.surface];
+    return p > 0.0 ? std::max(0.0, bow.kb * p + bow.zbdt * (p - pp)) : 0.0;
 }
 
 /// Where a bow's two MATs are (x[n], x[n−1]) and would be after the step without the friction

@@ -3,6 +3,7 @@
 #include "archet/common/scheme_revision.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/modal_point_position.hpp"
+#include "friction_solve.hpp"
 #include "hand_link_tick.hpp"
 
 #include <algorithm>
@@ -137,9 +138,7 @@ void Simulation::compute_link_forces(CompiledLevel& lv) {
     // The bow's pressure buffer: its force is the normal force of the friction.
     for (int b : lv.bows) {
         CompiledBow& bow = model_.bows[b];
-        const double p = x[bow.press] - x[bow.surface];
-        const double pp = xp[bow.press] - xp[bow.surface];
-        bow.normal = p > 0.0 ? std::max(0.0, bow.kb * p + bow.zbdt * (p - pp)) : 0.0;
+        bow.normal = friction::pressure_buffer_normal(bow, x, xp);
         ext[bow.press] -= bow.normal;
         ext[bow.surface] += bow.normal;
     }
@@ -243,7 +242,7 @@ void Simulation::integrate(CompiledLevel& lv) {
     for (int b : lv.bows) solve_bow(lv, model_.bows[b]);
     for (std::size_t w = 0; w < lv.watched.size(); ++w) {
         const int s = lv.watched[w];
-        lv.watched_force[w] = ext[s] + held[s] + f[s - 1] - f[s];
+        lv.watched_force[w] = watched_total(ext, held, f, s);
     }
     if (!lv.gestures.empty()) update_gesture_points(lv);
     if (accounting_) account(lv);

@@ -141,11 +141,8 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out) {
         double* const xn = audio.buffer[CompiledLevel::after(now)].data();
         // Phase 1: the bow's pressure buffer, the audio level's one link; the slower levels'
         // links; the hand links.
-        const double p = x[frame.press] - x[frame.surface];
-        const double pp = xp[frame.press] - xp[frame.surface];
-        CompiledBow& bow = frame.bow;
-        const double normal = p > 0.0 ? std::max(0.0, bow.kb * p + bow.zbdt * (p - pp)) : 0.0;
-        bow.normal = normal;
+        const double normal = friction::pressure_buffer_normal(frame.bow, x, xp);
+        frame.bow.normal = normal;
         frame.ext[frame.press] -= normal;
         frame.ext[frame.surface] += normal;
         for (int l = 1; l < levels; ++l)
@@ -218,7 +215,7 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out) {
     ext[bowed] -= friction;
     for (std::size_t w = 0; w < frame.watched.size(); ++w) {
         const int s = frame.watched[w];
-        frame.watched_force[w] = ext[s] + frame.held[s] + f[s - 1] - f[s];
+        frame.watched_force[w] = watched_total(ext, frame.held, f, s);
     }
     for (int s : frame.touched) ext[s] = 0.0;
 }

@@ -33,6 +33,13 @@ inline double chain_link_force(const CompiledLevel& lv, const double* x, const d
                             lv.chain_length[j]);
 }
 
+/// The total force on a watched MAT s this step: the other links' (`external`), the held forces
+/// of slower links, and its two chain links' (`chain_force`, link j joining s and s + 1).
+inline double watched_total(const double* external, const double* held, const double* chain_force,
+                            int s) {
+    return external[s] + held[s] + chain_force[s - 1] - chain_force[s];
+}
+
 /// The scheme's new position of a MAT from the forces of its two chain links,
 /// 2x − x⁻ + T²/m·(f_left − f_right), for a double or a vector of them (every build of the
 /// chain loop computes it in this order).
