@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <string>
@@ -17,6 +18,7 @@
 #include "archet/common/input_error.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/physics/blow_up.hpp"
+#include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/renderer.hpp"
 #include "archet/physics/simulation.hpp"
@@ -78,7 +80,7 @@ bool same_bytes(const std::vector<double>& a, const std::vector<double>& b) {
 // Plays `model` twice along `gesture`, once tick by tick and once by run() in blocks of the
 // given sizes (cycled), and holds each block's sound and the state after it to the other's.
 void expect_run_as_step(const Model& model, const Gesture& gesture, std::vector<int> blocks,
-                        int ticks, int revision = 0) {
+                        int ticks, int revision = 0, ChainBuild build = chosen_chain_build()) {
     validate_model(model);
     Simulation by_step(compile(model)), by_run(compile(model));
     if (revision) by_step.compute_as_of(revision), by_run.compute_as_of(revision);
@@ -93,7 +95,7 @@ void expect_run_as_step(const Model& model, const Gesture& gesture, std::vector<
             by_step.step();
             sample = by_step.output();
         }
-        ASSERT_EQ(by_run.run(got), static_cast<std::size_t>(size));
+        ASSERT_EQ(by_run.run(got, build), static_cast<std::size_t>(size));
         for (int i = 0; i < size; ++i) {
             ASSERT_EQ(std::memcmp(&expected[i], &got[i], sizeof(double)), 0)
                 << model.name << ": tick " << done + i << ": " << expected[i] << " by step(), "
@@ -115,6 +117,21 @@ TEST(BowedChain, RunGivesStepsBytesOnThePapersStrings) {
     expect_run_as_step(paper_string(110, 60, 0.3), bow, {64, 1, 7}, 24000);
     expect_run_as_step(paper_string(440, 25, 0.45), bow, {1000}, 24000);
     expect_run_as_step(bow_forces_watched(paper_string(220, 40, 0.2)), bow, {100}, 24000);
+}
+
+// The loop is built for each instruction set, as the chain loop is; the general step takes the
+// widest, and every build gives its bytes.
+TEST(BowedChain, RunGivesStepsBytesInEveryBuildThisCpuRuns) {
+    const Gesture bow = wandering_bow(5, 0.5);
+    for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
+        if (!chain_build_runs_here(build)) {
+            std::printf("the %s build does not run on this CPU\n", chain_build_name(build));
+            continue;
+        }
+        SCOPED_TRACE(chain_build_name(build));
+        expect_run_as_step(paper_string(220, 60, 0.12), bow, {480}, 24000, 0, build);
+        expect_run_as_step(build_bowed_chain(37), bow, {64}, 12000, 0, build);
+    }
 }
 
 TEST(BowedChain, RunGivesStepsBytesOnABenchChain) {

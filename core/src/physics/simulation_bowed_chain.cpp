@@ -2,13 +2,18 @@
 // of masses at audio rate, a point bow, a hand holding it through links from slower gesture
 // points), with what the general step asks at every tick asked once per block. The same
 // operations in the same order, so the same bytes (bowed_chain_test.cpp holds it to step()).
+// Built for each instruction set as the chain loop is, with the chain's rounds inlined: the
+// build is chosen once per block, not at every tick.
 
 #include <cmath>
 #include <span>
+#include <stdexcept>
 #include <string>
 
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/simulation.hpp"
+#include "chain_rounds.hpp"
+#include "double_vectors.hpp"
 #include "friction_solve.hpp"
 #include "hand_link_tick.hpp"
 
@@ -66,9 +71,10 @@ struct HandLinkState {
 struct Simulation::BowedChainFrame {
     CompiledLevel& audio;
     CompiledBow bow;
-    int string, bowed, press, surface;
+    int string, bowed, press, surface, mats;
     double *ext, *chain_forces, *watched_force;
-    const double *held, *coeff, *ground_k, *ground_zdt, *ground_rest;
+    const double *held, *coeff, *ground_k, *ground_zdt, *ground_rest, *chain_k, *chain_zdt,
+        *chain_length, *update_x, *update_xp, *update_rest;
     std::span<const int> touched, forces_used, watched;
     std::span<const CompiledGround> grounds;
     double string_response, bow_response, dt, inverse_dt;
@@ -77,9 +83,39 @@ struct Simulation::BowedChainFrame {
     HandLinkState hand[kMostHandLinks];
 };
 
+// The ticks of a block, one build per instruction set (W doubles a vector in the chain's
+// rounds); a nested class, to reach the simulation's state.
+struct Simulation::BowedChainLoop {
+    template <int W>
+    [[gnu::always_inline]] static std::size_t ticks(Simulation& sim, BowedChainFrame& frame,
+                                                    std::span<double> out);
+    [[gnu::always_inline]] static void hand_links(Simulation& sim, BowedChainFrame& frame,
+                                                  const double* x);
+    template <int W>
+    [[gnu::always_inline]] static void audio_level(BowedChainFrame& frame, const double* x,
+                                                   const double* xp, double* xn);
+
+    ARCHET_TARGET_AVX512 static std::size_t avx512(Simulation& sim, BowedChainFrame& frame,
+                                                   std::span<double> out) {
+        return ticks<8>(sim, frame, out);
+    }
+    __attribute__((target("avx2"))) static std::size_t avx2(Simulation& sim, BowedChainFrame& frame,
+                                                            std::span<double> out) {
+        return ticks<4>(sim, frame, out);
+    }
+    static std::size_t plain(Simulation& sim, BowedChainFrame& frame, std::span<double> out) {
+        return ticks<2>(sim, frame, out);
+    }
+};
+
 std::size_t Simulation::run(std::span<double> out) {
+    return run(out, chosen_chain_build());
+}
+
+std::size_t Simulation::run(std::span<double> out, ChainBuild build) {
+    if (!chain_build_runs_here(build)) throw std::logic_error("chain build not run here");
     if (out.empty()) return 0;  // (the loop below marks the audio level as ticking)
-    if (runs_as_bowed_chain()) return run_bowed_chain(out);
+    if (runs_as_bowed_chain()) return run_bowed_chain(out, build);
     for (std::size_t i = 0; i < out.size(); ++i) {
         step();
         out[i] = output();
@@ -91,16 +127,16 @@ std::size_t Simulation::run(std::span<double> out) {
 // step() for the shape bowed_chain_misfit() accepts: the audio level ticks at every step, its
 // only forces besides the chain's are the bow's and the hand links', its bow's masses move by
 // T²/m per newton. The slower levels step as in step().
-std::size_t Simulation::run_bowed_chain(std::span<double> out) {
-    const int levels = static_cast<int>(model_.levels.size());
-    CompiledLevel* const level = model_.levels.data();
-    CompiledLevel& audio = level[0];
+std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build) {
+    CompiledLevel& audio = model_.levels[0];
+    const CompiledBow& bow = model_.bows[0];
     BowedChainFrame frame{audio,
-                          model_.bows[0],
-                          model_.bows[0].string,
-                          model_.bows[0].bow,
-                          model_.bows[0].press,
-                          model_.bows[0].surface,
+                          bow,
+                          bow.string,
+                          bow.bow,
+                          bow.press,
+                          bow.surface,
+                          audio.size - audio.fixed_after,
                           audio.external.data(),
                           audio.chain_force.data(),
                           audio.watched_force.data(),
@@ -109,12 +145,18 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out) {
                           audio.ground_k.data(),
                           audio.ground_zdt.data(),
                           audio.ground_rest.data(),
+                          audio.chain_k.data(),
+                          audio.chain_zdt.data(),
+                          audio.chain_length.data(),
+                          audio.update_x.data(),
+                          audio.update_xp.data(),
+                          audio.update_rest.data(),
                           audio.touched,
                           audio.chain_forces_used,
                           audio.watched,
                           audio.grounds,
-                          audio.coeff[model_.bows[0].string],
-                          audio.coeff[model_.bows[0].bow],
+                          audio.coeff[bow.string],
+                          audio.coeff[bow.bow],
                           audio.dt,
                           1.0 / audio.dt,
                           friction_divides_,
@@ -131,33 +173,17 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out) {
     }
     // What step() writes for a level of divider 1 at every tick.
     active_[0] = 1, countdown_[0] = 0, period_done_[0] = 1.0;
-    const int* const active = active_.data();
     std::size_t done = 0;
-    while (done < out.size()) {
-        count_down_levels(1);
-        const int now = audio.current;
-        const double* const x = audio.buffer[now].data();
-        const double* const xp = audio.buffer[CompiledLevel::before(now)].data();
-        double* const xn = audio.buffer[CompiledLevel::after(now)].data();
-        // Phase 1: the bow's pressure buffer, the audio level's one link; the slower levels'
-        // links; the hand links.
-        const double normal = friction::pressure_buffer_normal(frame.bow, x, xp);
-        frame.bow.normal = normal;
-        frame.ext[frame.press] -= normal;
-        frame.ext[frame.surface] += normal;
-        for (int l = 1; l < levels; ++l)
-            if (active[l]) compute_link_forces(level[l]);
-        bowed_chain_hand_links(frame, x);
-        // Phase 2: the audio level, then the slower levels; phase 3: x[n+1] becomes x[n].
-        bowed_chain_audio_level(frame, x, xp, xn);
-        for (int l = 1; l < levels; ++l)
-            if (active[l]) integrate(level[l]);
-        for (int l = 0; l < levels; ++l)
-            if (active[l]) level[l].current = CompiledLevel::after(level[l].current);
-        ++tick_;
-        const double sample = output();
-        out[done++] = sample;
-        if (!std::isfinite(sample)) break;
+    switch (build) {
+        case ChainBuild::Avx512:
+            done = BowedChainLoop::avx512(*this, frame, out);
+            break;
+        case ChainBuild::Avx2:
+            done = BowedChainLoop::avx2(*this, frame, out);
+            break;
+        case ChainBuild::Plain:
+            done = BowedChainLoop::plain(*this, frame, out);
+            break;
     }
     model_.bows[0] = frame.bow;
     for (int i = 0; i < frame.hands; ++i) {
@@ -170,33 +196,77 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out) {
     return done;
 }
 
+template <int W>
+[[gnu::always_inline]] inline std::size_t Simulation::BowedChainLoop::ticks(Simulation& sim,
+                                                                            BowedChainFrame& frame,
+                                                                            std::span<double> out) {
+    const int levels = static_cast<int>(sim.model_.levels.size());
+    CompiledLevel* const level = sim.model_.levels.data();
+    CompiledLevel& audio = frame.audio;
+    const int* const active = sim.active_.data();
+    std::size_t done = 0;
+    while (done < out.size()) {
+        sim.count_down_levels(1);
+        const int now = audio.current;
+        const double* const x = audio.buffer[now].data();
+        const double* const xp = audio.buffer[CompiledLevel::before(now)].data();
+        double* const xn = audio.buffer[CompiledLevel::after(now)].data();
+        // Phase 1: the bow's pressure buffer, the audio level's one link; the slower levels'
+        // links; the hand links.
+        const double normal = friction::pressure_buffer_normal(frame.bow, x, xp);
+        frame.bow.normal = normal;
+        frame.ext[frame.press] -= normal;
+        frame.ext[frame.surface] += normal;
+        for (int l = 1; l < levels; ++l)
+            if (active[l]) sim.compute_link_forces(level[l]);
+        hand_links(sim, frame, x);
+        // Phase 2: the audio level, then the slower levels; phase 3: x[n+1] becomes x[n].
+        audio_level<W>(frame, x, xp, xn);
+        for (int l = 1; l < levels; ++l)
+            if (active[l]) sim.integrate(level[l]);
+        for (int l = 0; l < levels; ++l)
+            if (active[l]) level[l].current = CompiledLevel::after(level[l].current);
+        ++sim.tick_;
+        const double sample = sim.output();
+        out[done++] = sample;
+        if (!std::isfinite(sample)) break;
+    }
+    return done;
+}
+
 // compute_hand_link_forces() for links that tick at every step, without accounts.
-[[gnu::always_inline]] inline void Simulation::bowed_chain_hand_links(BowedChainFrame& frame,
-                                                                      const double* x) {
-    const int* const active = active_.data();
+[[gnu::always_inline]] inline void Simulation::BowedChainLoop::hand_links(Simulation& sim,
+                                                                          BowedChainFrame& frame,
+                                                                          const double* x) {
+    const int* const active = sim.active_.data();
     double hand_work = 0;
     for (int i = 0; i < frame.hands; ++i) {
         HandLinkState& l = frame.hand[i];
         const double from = l.hand->x_prev()[l.hand_index], to = l.hand->x()[l.hand_index];
-        const double at = from + (to - from) * period_done_[l.hand_level];
+        const double at = from + (to - from) * sim.period_done_[l.hand_level];
         const hand_link::Tick t = hand_link::tick(l, at, x[l.end]);
         frame.ext[l.end] += t.end_force;
         hand_work += t.work;
         if (active[l.hand_level]) hand_link::hand_over(l, l.hand_weight, *l.hand_force, *l.gesture);
     }
-    hand_work_ += hand_work;
+    sim.hand_work_ += hand_work;
 }
 
-// integrate() and solve_bow() for the audio level of a bowed chain.
-[[gnu::always_inline]] inline void Simulation::bowed_chain_audio_level(BowedChainFrame& frame,
-                                                                       const double* x,
-                                                                       const double* xp,
-                                                                       double* xn) {
+// integrate() and solve_bow() for the audio level of a bowed chain: the chain's rounds, W
+// MATs a vector, then the other forces.
+template <int W>
+[[gnu::always_inline]] inline void Simulation::BowedChainLoop::audio_level(BowedChainFrame& frame,
+                                                                           const double* x,
+                                                                           const double* xp,
+                                                                           double* xn) {
     CompiledLevel& audio = frame.audio;
     const double* const c = frame.coeff;
     double* const ext = frame.ext;
     double* const f = frame.chain_forces;
-    integrate_chain(audio, xn);
+    chain_rounds::chain_loop<W, false, false>(
+        {x, xp, xn, frame.chain_k, frame.chain_zdt, frame.chain_length, c, frame.update_x,
+         frame.update_xp, frame.update_rest, &audio.uniform},
+        frame.mats);
     for (int j : frame.forces_used) f[j] = chain_link_force(audio, x, xp, j);
     for (int s : frame.touched) xn[s] += c[s] * (ext[s] + frame.held[s]);
     for (const CompiledGround& g : frame.grounds) {

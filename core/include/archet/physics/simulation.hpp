@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "archet/model/gesture.hpp"
+#include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 
 namespace archet {
@@ -39,6 +40,9 @@ class Simulation {
     /// written for its shape, which asks once per call what the general step asks at every
     /// tick. Stops after a tick whose output is not finite; returns the ticks it ran.
     std::size_t run(std::span<double> out);
+    /// run() with the bowed chain's loop in a given build (tests and benchmarks): it must run
+    /// on this CPU (chain_build_runs_here()).
+    std::size_t run(std::span<double> out, ChainBuild build);
     /// Why run() steps this model with the general step, or "" when it runs it as a bowed chain:
     /// a chain of masses at audio rate, not grounded for the most part, with one point bow held
     /// by at most four hand links from slower gesture points, and at audio rate no controls,
@@ -142,10 +146,8 @@ class Simulation {
         return bowed_chain_ && !accounting_ && !model_.levels[0].has_chain_lengths;
     }
     struct BowedChainFrame;  ///< what run_bowed_chain() holds over a block
-    std::size_t run_bowed_chain(std::span<double> out);
-    void bowed_chain_hand_links(BowedChainFrame& frame, const double* x);
-    void bowed_chain_audio_level(BowedChainFrame& frame, const double* x, const double* xp,
-                                 double* xn);
+    struct BowedChainLoop;   ///< its ticks, built per instruction set
+    std::size_t run_bowed_chain(std::span<double> out, ChainBuild build);
     static constexpr int kMostHandLinks = 4;  ///< the bowed chain's loop holds them in its frame
     double gesture_axis(GestureAxis axis, double t) const;
 
