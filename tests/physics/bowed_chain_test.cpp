@@ -200,6 +200,38 @@ TEST(BowedChain, RunFollowsTheDeviceAndParametersBetweenBlocks) {
     }
 }
 
+// A rest length given to a chain link takes the general step; set back to 0, once the batch of
+// changes is over (refresh_uniform_runs(), as the end of a glide calls it), the loop again, on
+// the same bytes.
+TEST(BowedChain, AChainLinksRestLengthSetBackToZeroReturnsToTheLoop) {
+    const Model model = paper_string(220, 60, 0.12);
+    const Gesture bow = wandering_bow(6, 0.5);
+    Simulation by_step(compile(model)), by_run(compile(model));
+    const ParameterSlot length = by_run.model().resolve_parameter({"k20", "length"});
+    std::vector<double> expected(4800), got(4800);
+    auto expect_same_block = [&](const char* when) {
+        for (double& sample : expected) {
+            by_step.step();
+            sample = by_step.output();
+        }
+        ASSERT_EQ(by_run.run(got), got.size());
+        ASSERT_EQ(std::memcmp(expected.data(), got.data(), got.size() * sizeof(double)), 0) << when;
+        ASSERT_TRUE(same_bytes(state_of(by_step), state_of(by_run))) << when;
+    };
+    for (Simulation* sim : {&by_step, &by_run}) sim->set_gesture_track(&bow);
+    expect_same_block("before the length");
+    for (Simulation* sim : {&by_step, &by_run}) sim->write_slot(length, 0.0001);
+    EXPECT_EQ(by_run.bowed_chain_misfit(), "its chain links have been given rest lengths");
+    expect_same_block("with the length");
+    for (Simulation* sim : {&by_step, &by_run}) {
+        sim->write_slot(length, 0.0);
+        sim->refresh_uniform_runs();
+    }
+    EXPECT_EQ(by_run.bowed_chain_misfit(), "");
+    expect_same_block("with the length back to 0");
+    EXPECT_NE(expected.back(), 0.0) << "the string was silent: the comparison proves little";
+}
+
 TEST(BowedChain, AnEmptyBlockChangesNothing) {
     const Model model = paper_string(220, 60, 0.12);
     Simulation untouched(compile(model)), ran(compile(model));

@@ -324,6 +324,11 @@ void hold_fixed_tail(CompiledLevel& lv) {
     }
 }
 
+void find_chain_lengths(CompiledLevel& lv) {
+    lv.has_chain_lengths = std::any_of(lv.chain_length.begin(), lv.chain_length.end(),
+                                       [](double length) { return length != 0.0; });
+}
+
 double modal_point_response(const CompiledLevel& lv, const CompiledModalPoint& point) {
     double response = 0;
     for (std::size_t k = 0; k < point.modes.size(); ++k)

@@ -35,7 +35,10 @@ void set_mass(CompiledLevel& lv, int s, double mass) {
 }  // namespace
 
 void Simulation::refresh_uniform_runs() {
-    for (auto& lv : model_.levels) find_uniform_runs(lv);
+    for (auto& lv : model_.levels) {
+        find_uniform_runs(lv);
+        find_chain_lengths(lv);
+    }
 }
 
 void Simulation::write_slot(const ParameterSlot& s, double v) {

@@ -71,8 +71,7 @@ void Simulation::load_state(const double* in) {
         hold_fixed_tail(lv);
         fold_grounds(lv);
         find_uniform_runs(lv);
-        lv.has_chain_lengths = std::any_of(lv.chain_length.begin(), lv.chain_length.end(),
-                                           [](double length) { return length != 0.0; });
+        find_chain_lengths(lv);
     }
 }
 

@@ -169,6 +169,11 @@ struct CompiledLevel {
 /// loaded (one saved before the loop stopped there may hold a zero in x[n+1]).
 void hold_fixed_tail(CompiledLevel& level);
 
+/// Sets has_chain_lengths from the chain's rest lengths, after a state is loaded or a batch of
+/// live changes (Simulation::refresh_uniform_runs()): a length set back to 0 lets the chain loop
+/// leave lengths out again (the same bits as subtracting zeros). O(MATs), no allocation.
+void find_chain_lengths(CompiledLevel& level);
+
 /// Σ weight²·T²/m over a modal point's modes: its displacement per newton over a step, the
 /// `coeff` it keeps, again whenever a mode's mass changes.
 double modal_point_response(const CompiledLevel& lv, const CompiledModalPoint& point);

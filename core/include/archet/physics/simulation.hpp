@@ -47,8 +47,9 @@ class Simulation {
     /// a chain of masses at audio rate, not grounded for the most part, with one point bow held
     /// by at most four hand links from slower gesture points, and at audio rate no controls,
     /// links besides the chain's, modal points, fingers or gesture points, no links between rate
-    /// levels but the hand's. Energy accounts (enable_accounting()) and chain rest lengths, once
-    /// one has been given, also take the general step.
+    /// levels but the hand's. Energy accounts (enable_accounting()) and chain rest lengths also
+    /// take the general step (a length set back to 0 counts as none after
+    /// refresh_uniform_runs()).
     std::string bowed_chain_misfit() const;
 
     /// Writes a parameter's compiled slot while running (controls, the smoother, the engine):
@@ -58,7 +59,8 @@ class Simulation {
     double read_slot(const ParameterSlot& slot) const;
     /// After a batch of writes (a knob that scales every damper, the end of a glide): finds
     /// again the runs of alike MATs whose coefficients the chain loop broadcasts, which each
-    /// write could only split or shorten. O(MATs), no allocation.
+    /// write could only split or shorten, and whether any chain link still has a rest length
+    /// (one set back to 0 lets run() take the bowed chain's loop again). O(MATs), no allocation.
     void refresh_uniform_runs();
 
     /// The whole state of a running model (positions, link and bow states, parameters, the
