@@ -57,7 +57,7 @@ class ChainRounds {
     using V = Doubles<W>;
 
   public:
-    explicit ChainRounds(const ChainArrays& arrays)
+    [[gnu::always_inline]] explicit ChainRounds(const ChainArrays& arrays)
         : x_(arrays.x),
           xp_(arrays.xp),
           xn_(arrays.xn),

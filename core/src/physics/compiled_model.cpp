@@ -129,7 +129,8 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
             const bool forward = l.from == m.id;
             lv.chain_k[s] = l.stiffness;
             lv.chain_zdt[s] = l.damping / lv.dt;
-            lv.chain_length[s] = forward ? l.length : -l.length;
+            lv.chain_length[s] =
+                (forward ? l.length : -l.length) + 0.0;  // never −0, see write_slot()
             lv.has_chain_lengths = lv.has_chain_lengths || l.length != 0.0;
             lv.chain_element[s] = link;
         }

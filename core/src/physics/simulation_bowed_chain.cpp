@@ -71,10 +71,11 @@ struct HandLinkState {
 struct Simulation::BowedChainFrame {
     CompiledLevel& audio;
     CompiledBow bow;
-    int string, bowed, press, surface, mats;
+    int string, bowed, press, surface;
+    int mats;  ///< the chain loop's: MATs 1 … mats, before the fixed tail
     double *ext, *chain_forces, *watched_force;
-    const double *held, *coeff, *ground_k, *ground_zdt, *ground_rest, *chain_k, *chain_zdt,
-        *chain_length, *update_x, *update_xp, *update_rest;
+    const double *held, *coeff, *ground_k, *ground_zdt, *ground_rest;
+    const double *chain_k, *chain_zdt, *chain_length, *update_x, *update_xp, *update_rest;
     std::span<const int> touched, forces_used, watched;
     std::span<const CompiledGround> grounds;
     double string_response, bow_response, dt, inverse_dt;
@@ -95,25 +96,37 @@ struct Simulation::BowedChainLoop {
     [[gnu::always_inline]] static void audio_level(BowedChainFrame& frame, const double* x,
                                                    const double* xp, double* xn);
 
-    ARCHET_TARGET_AVX512 static std::size_t avx512(Simulation& sim, BowedChainFrame& frame,
-                                                   std::span<double> out) {
-        return ticks<8>(sim, frame, out);
-    }
-    __attribute__((target("avx2"))) static std::size_t avx2(Simulation& sim, BowedChainFrame& frame,
-                                                            std::span<double> out) {
-        return ticks<4>(sim, frame, out);
-    }
-    static std::size_t plain(Simulation& sim, BowedChainFrame& frame, std::span<double> out) {
-        return ticks<2>(sim, frame, out);
-    }
+    static std::size_t avx512(Simulation& sim, BowedChainFrame& frame, std::span<double> out);
+    static std::size_t avx2(Simulation& sim, BowedChainFrame& frame, std::span<double> out);
+    static std::size_t plain(Simulation& sim, BowedChainFrame& frame, std::span<double> out);
 };
 
+ARCHET_TARGET_AVX512 std::size_t Simulation::BowedChainLoop::avx512(Simulation& sim,
+                                                                    BowedChainFrame& frame,
+                                                                    std::span<double> out) {
+    return ticks<8>(sim, frame, out);
+}
+
+__attribute__((target("avx2"))) std::size_t Simulation::BowedChainLoop::avx2(
+    Simulation& sim, BowedChainFrame& frame, std::span<double> out) {
+    return ticks<4>(sim, frame, out);
+}
+
+std::size_t Simulation::BowedChainLoop::plain(Simulation& sim, BowedChainFrame& frame,
+                                              std::span<double> out) {
+    return ticks<2>(sim, frame, out);
+}
+
 std::size_t Simulation::run(std::span<double> out) {
-    return run(out, chosen_chain_build());
+    return run_in(out, chosen_chain_build());
 }
 
 std::size_t Simulation::run(std::span<double> out, ChainBuild build) {
     if (!chain_build_runs_here(build)) throw std::logic_error("chain build not run here");
+    return run_in(out, build);
+}
+
+std::size_t Simulation::run_in(std::span<double> out, ChainBuild build) {
     if (out.empty()) return 0;  // (the loop below marks the audio level as ticking)
     if (runs_as_bowed_chain()) return run_bowed_chain(out, build);
     for (std::size_t i = 0; i < out.size(); ++i) {
@@ -130,38 +143,38 @@ std::size_t Simulation::run(std::span<double> out, ChainBuild build) {
 std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build) {
     CompiledLevel& audio = model_.levels[0];
     const CompiledBow& bow = model_.bows[0];
-    BowedChainFrame frame{audio,
-                          bow,
-                          bow.string,
-                          bow.bow,
-                          bow.press,
-                          bow.surface,
-                          audio.size - audio.fixed_after,
-                          audio.external.data(),
-                          audio.chain_force.data(),
-                          audio.watched_force.data(),
-                          audio.held.data(),
-                          audio.coeff.data(),
-                          audio.ground_k.data(),
-                          audio.ground_zdt.data(),
-                          audio.ground_rest.data(),
-                          audio.chain_k.data(),
-                          audio.chain_zdt.data(),
-                          audio.chain_length.data(),
-                          audio.update_x.data(),
-                          audio.update_xp.data(),
-                          audio.update_rest.data(),
-                          audio.touched,
-                          audio.chain_forces_used,
-                          audio.watched,
-                          audio.grounds,
-                          audio.coeff[bow.string],
-                          audio.coeff[bow.bow],
-                          audio.dt,
-                          1.0 / audio.dt,
-                          friction_divides_,
-                          static_cast<int>(hand_plan_.size()),
-                          {}};
+    BowedChainFrame frame{.audio = audio,
+                          .bow = bow,
+                          .string = bow.string,
+                          .bowed = bow.bow,
+                          .press = bow.press,
+                          .surface = bow.surface,
+                          .mats = audio.size - audio.fixed_after,
+                          .ext = audio.external.data(),
+                          .chain_forces = audio.chain_force.data(),
+                          .watched_force = audio.watched_force.data(),
+                          .held = audio.held.data(),
+                          .coeff = audio.coeff.data(),
+                          .ground_k = audio.ground_k.data(),
+                          .ground_zdt = audio.ground_zdt.data(),
+                          .ground_rest = audio.ground_rest.data(),
+                          .chain_k = audio.chain_k.data(),
+                          .chain_zdt = audio.chain_zdt.data(),
+                          .chain_length = audio.chain_length.data(),
+                          .update_x = audio.update_x.data(),
+                          .update_xp = audio.update_xp.data(),
+                          .update_rest = audio.update_rest.data(),
+                          .touched = audio.touched,
+                          .forces_used = audio.chain_forces_used,
+                          .watched = audio.watched,
+                          .grounds = audio.grounds,
+                          .string_response = audio.coeff[bow.string],
+                          .bow_response = audio.coeff[bow.bow],
+                          .dt = audio.dt,
+                          .inverse_dt = 1.0 / audio.dt,
+                          .divides = friction_divides_,
+                          .hands = static_cast<int>(hand_plan_.size()),
+                          .hand = {}};
     for (int i = 0; i < frame.hands; ++i) {
         const HandLinkPlan& p = hand_plan_[i];
         const CompiledCrossLink& l = *p.link;
@@ -263,6 +276,7 @@ template <int W>
     const double* const c = frame.coeff;
     double* const ext = frame.ext;
     double* const f = frame.chain_forces;
+    // Without rest lengths or grounds in the loop: runs_as_bowed_chain() and the shape's check.
     chain_rounds::chain_loop<W, false, false>(
         {x, xp, xn, frame.chain_k, frame.chain_zdt, frame.chain_length, c, frame.update_x,
          frame.update_xp, frame.update_rest, &audio.uniform},

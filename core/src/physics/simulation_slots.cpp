@@ -59,7 +59,8 @@ void Simulation::write_slot(const ParameterSlot& s, double v) {
         case K::ChainLength: {
             const Lia& l = model_.source.lias[lv.chain_element[s.index]];
             const bool forward = model_.source.mats[lv.element_of[s.index]].id == l.from;
-            lv.chain_length[s.index] = forward ? v : -v;
+            // + 0.0: a zero length turned around is +0, the bits of none (find_chain_lengths()).
+            lv.chain_length[s.index] = (forward ? v : -v) + 0.0;
             lv.has_chain_lengths = lv.has_chain_lengths || v != 0.0;
             split_uniform_run(lv, s.index);
             break;

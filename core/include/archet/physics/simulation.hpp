@@ -9,10 +9,11 @@
 #include <vector>
 
 #include "archet/model/gesture.hpp"
-#include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 
 namespace archet {
+
+enum class ChainBuild;  ///< chain_kernel.hpp
 
 class Simulation {
   public:
@@ -149,6 +150,7 @@ class Simulation {
     }
     struct BowedChainFrame;  ///< what run_bowed_chain() holds over a block
     struct BowedChainLoop;   ///< its ticks, built per instruction set
+    std::size_t run_in(std::span<double> out, ChainBuild build);  ///< run() in that build
     std::size_t run_bowed_chain(std::span<double> out, ChainBuild build);
     static constexpr int kMostHandLinks = 4;  ///< the bowed chain's loop holds them in its frame
     double gesture_axis(GestureAxis axis, double t) const;
