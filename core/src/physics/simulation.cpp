@@ -5,6 +5,7 @@
 #include "archet/physics/modal_point_position.hpp"
 #include "friction_solve.hpp"
 #include "hand_link_tick.hpp"
+#include "level_forces.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -217,20 +218,15 @@ void Simulation::integrate(CompiledLevel& lv) {
     const double* xp = lv.x_prev();
     const double* c = lv.coeff.data();
     double* f = lv.chain_force.data();
-    const double *gk = lv.ground_k.data(), *gz = lv.ground_zdt.data(),
-                 *rest = lv.ground_rest.data();
     integrate_chain(lv, xn);
     for (int j : lv.chain_forces_used) f[j] = chain_link_force(lv, x, xp, j);
-    // The update is linear in force, so the other forces add their share afterwards, only
-    // where there are any: the other links' (`external`), held forces of slower links, and
-    // grounds the chain loop did not take.
     const double* ext = lv.external.data();
     const double* held = lv.held.data();
-    for (int s : lv.touched) xn[s] += c[s] * (ext[s] + held[s]);
+    level_forces::add_touched(lv.touched, c, ext, held, xn);
     if (!grounds_in_chain_loop(lv))
-        for (const auto& g : lv.grounds)
-            xn[g.index] -= ground_pull(x[g.index], xp[g.index], c[g.index], gk[g.index],
-                                       gz[g.index], rest[g.index]);
+        level_forces::pull_grounds(
+            lv.grounds, x, xp, c, {lv.ground_k.data(), lv.ground_zdt.data(), lv.ground_rest.data()},
+            xn);
     if (!lv.modal_points.empty()) {
         for (const auto& p : lv.modal_points) {
             const double force = ext[p.index] + held[p.index];
@@ -240,13 +236,10 @@ void Simulation::integrate(CompiledLevel& lv) {
     }
     for (int f : lv.fingers) solve_finger(lv, model_.fingers[f]);
     for (int b : lv.bows) solve_bow(lv, model_.bows[b]);
-    for (std::size_t w = 0; w < lv.watched.size(); ++w) {
-        const int s = lv.watched[w];
-        lv.watched_force[w] = watched_total(ext, held, f, s);
-    }
+    level_forces::sum_watched(lv.watched, ext, held, f, lv.watched_force.data());
     if (!lv.gestures.empty()) update_gesture_points(lv);
     if (accounting_) account(lv);
-    for (int s : lv.touched) lv.external[s] = 0.0;
+    level_forces::clear_touched(lv.touched, lv.external.data());
 }
 
 void Simulation::update_modal_points(CompiledLevel& lv) {

@@ -16,6 +16,7 @@
 #include "double_vectors.hpp"
 #include "friction_solve.hpp"
 #include "hand_link_tick.hpp"
+#include "level_forces.hpp"
 
 namespace archet {
 
@@ -74,7 +75,8 @@ struct Simulation::BowedChainFrame {
     int string, bowed, press, surface;
     int mats;  ///< the chain loop's: MATs 1 … mats, before the fixed tail
     double *ext, *chain_forces, *watched_force;
-    const double *held, *coeff, *ground_k, *ground_zdt, *ground_rest;
+    const double *held, *coeff;
+    level_forces::GroundArrays ground;
     const double *chain_k, *chain_zdt, *chain_length, *update_x, *update_xp, *update_rest;
     std::span<const int> touched, forces_used, watched;
     std::span<const CompiledGround> grounds;
@@ -143,38 +145,37 @@ std::size_t Simulation::run_in(std::span<double> out, ChainBuild build) {
 std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build) {
     CompiledLevel& audio = model_.levels[0];
     const CompiledBow& bow = model_.bows[0];
-    BowedChainFrame frame{.audio = audio,
-                          .bow = bow,
-                          .string = bow.string,
-                          .bowed = bow.bow,
-                          .press = bow.press,
-                          .surface = bow.surface,
-                          .mats = audio.size - audio.fixed_after,
-                          .ext = audio.external.data(),
-                          .chain_forces = audio.chain_force.data(),
-                          .watched_force = audio.watched_force.data(),
-                          .held = audio.held.data(),
-                          .coeff = audio.coeff.data(),
-                          .ground_k = audio.ground_k.data(),
-                          .ground_zdt = audio.ground_zdt.data(),
-                          .ground_rest = audio.ground_rest.data(),
-                          .chain_k = audio.chain_k.data(),
-                          .chain_zdt = audio.chain_zdt.data(),
-                          .chain_length = audio.chain_length.data(),
-                          .update_x = audio.update_x.data(),
-                          .update_xp = audio.update_xp.data(),
-                          .update_rest = audio.update_rest.data(),
-                          .touched = audio.touched,
-                          .forces_used = audio.chain_forces_used,
-                          .watched = audio.watched,
-                          .grounds = audio.grounds,
-                          .string_response = audio.coeff[bow.string],
-                          .bow_response = audio.coeff[bow.bow],
-                          .dt = audio.dt,
-                          .inverse_dt = 1.0 / audio.dt,
-                          .divides = friction_divides_,
-                          .hands = static_cast<int>(hand_plan_.size()),
-                          .hand = {}};
+    BowedChainFrame frame{
+        .audio = audio,
+        .bow = bow,
+        .string = bow.string,
+        .bowed = bow.bow,
+        .press = bow.press,
+        .surface = bow.surface,
+        .mats = audio.size - audio.fixed_after,
+        .ext = audio.external.data(),
+        .chain_forces = audio.chain_force.data(),
+        .watched_force = audio.watched_force.data(),
+        .held = audio.held.data(),
+        .coeff = audio.coeff.data(),
+        .ground = {audio.ground_k.data(), audio.ground_zdt.data(), audio.ground_rest.data()},
+        .chain_k = audio.chain_k.data(),
+        .chain_zdt = audio.chain_zdt.data(),
+        .chain_length = audio.chain_length.data(),
+        .update_x = audio.update_x.data(),
+        .update_xp = audio.update_xp.data(),
+        .update_rest = audio.update_rest.data(),
+        .touched = audio.touched,
+        .forces_used = audio.chain_forces_used,
+        .watched = audio.watched,
+        .grounds = audio.grounds,
+        .string_response = audio.coeff[bow.string],
+        .bow_response = audio.coeff[bow.bow],
+        .dt = audio.dt,
+        .inverse_dt = 1.0 / audio.dt,
+        .divides = friction_divides_,
+        .hands = static_cast<int>(hand_plan_.size()),
+        .hand = {}};
     for (int i = 0; i < frame.hands; ++i) {
         const HandLinkPlan& p = hand_plan_[i];
         const CompiledCrossLink& l = *p.link;
@@ -282,12 +283,8 @@ template <int W>
          frame.update_xp, frame.update_rest, &audio.uniform},
         frame.mats);
     for (int j : frame.forces_used) f[j] = chain_link_force(audio, x, xp, j);
-    for (int s : frame.touched) xn[s] += c[s] * (ext[s] + frame.held[s]);
-    for (const CompiledGround& g : frame.grounds) {
-        const int s = g.index;
-        xn[s] -= ground_pull(x[s], xp[s], c[s], frame.ground_k[s], frame.ground_zdt[s],
-                             frame.ground_rest[s]);
-    }
+    level_forces::add_touched(frame.touched, c, ext, frame.held, xn);
+    level_forces::pull_grounds(frame.grounds, x, xp, c, frame.ground, xn);
     const int string = frame.string, bowed = frame.bowed;
     const double cs = frame.string_response, cb = frame.bow_response;
     const double friction = friction::solve_point_bow(
@@ -297,11 +294,8 @@ template <int W>
     xn[bowed] += cb * -friction;
     ext[string] += friction;
     ext[bowed] -= friction;
-    for (std::size_t w = 0; w < frame.watched.size(); ++w) {
-        const int s = frame.watched[w];
-        frame.watched_force[w] = watched_total(ext, frame.held, f, s);
-    }
-    for (int s : frame.touched) ext[s] = 0.0;
+    level_forces::sum_watched(frame.watched, ext, frame.held, f, frame.watched_force);
+    level_forces::clear_touched(frame.touched, ext);
 }
 
 }  // namespace archet

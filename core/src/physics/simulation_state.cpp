@@ -1,7 +1,6 @@
 // The state of a running simulation as a flat list of numbers, in one fixed order, so that a
 // take started mid-performance can be re-rendered from exactly where it began.
 
-#include <algorithm>
 #include <type_traits>
 
 #include "archet/physics/chain_kernel.hpp"
