@@ -11,6 +11,14 @@ struct Tick {
     double work;       ///< the hand's work over the tick, in the scheme's energy
 };
 
+/// Where the link sees the hand now: along the line from its previous position to its newest,
+/// `done` of the way through the hand's period (seen_position() says why).
+[[gnu::always_inline]] inline double hand_seen_at(const double* hand_x_prev, const double* hand_x,
+                                                  int index, double done) {
+    const double from = hand_x_prev[index], to = hand_x[index];
+    return from + (to - from) * done;
+}
+
 /// The link's force from where it sees the hand now and where its end is, its state carried to
 /// the next tick, and its sums over the hand's period.
 template <class Link>

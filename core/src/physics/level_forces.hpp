@@ -12,6 +12,15 @@
 
 namespace archet::level_forces {
 
+/// The forces of the chain links something reads this step (a watched MAT's total, a probe):
+/// the chain loop folds the others into the update without keeping them.
+[[gnu::always_inline]] inline void recompute_used_chain_forces(std::span<const int> used,
+                                                               const CompiledLevel& lv,
+                                                               const double* x, const double* xp,
+                                                               double* chain_force) {
+    for (int j : used) chain_force[j] = chain_link_force(lv, x, xp, j);
+}
+
 /// The update is linear in force, so the other forces add their share afterwards, only where
 /// there are any: the other links' (`external`) and the held forces of slower links.
 [[gnu::always_inline]] inline void add_touched(std::span<const int> touched, const double* c,

@@ -159,8 +159,8 @@ void Simulation::compute_hand_link_forces() {
         CompiledCrossLink& l = *p.link;
         if (!active[l.level]) continue;
         const CompiledLevel& hand = *p.hand_level;
-        const double from = hand.x_prev()[p.hand_index], to = hand.x()[p.hand_index];
-        const double h = from + (to - from) * done[p.hand_level_index];
+        const double h = hand_link::hand_seen_at(hand.x_prev(), hand.x(), p.hand_index,
+                                                 done[p.hand_level_index]);
         const double d_before = l.d_before;
         const hand_link::Tick t = hand_link::tick(l, h, p.end_level->x()[p.end_index]);
         if (accounting)
@@ -219,7 +219,7 @@ void Simulation::integrate(CompiledLevel& lv) {
     const double* c = lv.coeff.data();
     double* f = lv.chain_force.data();
     integrate_chain(lv, xn);
-    for (int j : lv.chain_forces_used) f[j] = chain_link_force(lv, x, xp, j);
+    level_forces::recompute_used_chain_forces(lv.chain_forces_used, lv, x, xp, f);
     const double* ext = lv.external.data();
     const double* held = lv.held.data();
     level_forces::add_touched(lv.touched, c, ext, held, xn);

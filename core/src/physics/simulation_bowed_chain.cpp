@@ -256,8 +256,8 @@ template <int W>
     double hand_work = 0;
     for (int i = 0; i < frame.hands; ++i) {
         HandLinkState& l = frame.hand[i];
-        const double from = l.hand->x_prev()[l.hand_index], to = l.hand->x()[l.hand_index];
-        const double at = from + (to - from) * sim.period_done_[l.hand_level];
+        const double at = hand_link::hand_seen_at(l.hand->x_prev(), l.hand->x(), l.hand_index,
+                                                  sim.period_done_[l.hand_level]);
         const hand_link::Tick t = hand_link::tick(l, at, x[l.end]);
         frame.ext[l.end] += t.end_force;
         hand_work += t.work;
@@ -282,7 +282,7 @@ template <int W>
         {x, xp, xn, frame.chain_k, frame.chain_zdt, frame.chain_length, c, frame.update_x,
          frame.update_xp, frame.update_rest, &audio.uniform},
         frame.mats);
-    for (int j : frame.forces_used) f[j] = chain_link_force(audio, x, xp, j);
+    level_forces::recompute_used_chain_forces(frame.forces_used, audio, x, xp, f);
     level_forces::add_touched(frame.touched, c, ext, frame.held, xn);
     level_forces::pull_grounds(frame.grounds, x, xp, c, frame.ground, xn);
     const int string = frame.string, bowed = frame.bowed;
