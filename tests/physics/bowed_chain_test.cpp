@@ -16,12 +16,14 @@
 #include "archet/builders/bowed_chain.hpp"
 #include "archet/builders/bowed_string.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/files/model_file.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/physics/blow_up.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/renderer.hpp"
 #include "archet/physics/simulation.hpp"
+#include "test_support.hpp"
 
 namespace archet {
 namespace {
@@ -35,6 +37,15 @@ Gesture wandering_bow(unsigned seed, double seconds) {
     for (double t = 0.03; t <= seconds; t += 0.05)
         frames.push_back({t, x += step(random), press(random)});
     return Gesture("wandering", frames);
+}
+
+// What `archet new bowed-string` writes: losses to ground along the string, a violin body at
+// the bridge through a link, the bow's hair on a modal point over three masses.
+Model shipped_string(double pitch, int masses) {
+    BowedStringOptions o;
+    o.pitch = pitch;
+    o.masses = masses;
+    return build_bowed_string(o);
 }
 
 Model paper_string(double pitch, int masses, double bow_position) {
@@ -132,6 +143,7 @@ TEST(BowedChain, RunGivesStepsBytesInEveryBuildThisCpuRuns) {
         SCOPED_TRACE(chain_build_name(build));
         expect_run_as_step(paper_string(220, 60, 0.12), bow, {480}, 24000, 0, build);
         expect_run_as_step(build_bowed_chain(37), bow, {64}, 12000, 0, build);
+        expect_run_as_step(shipped_string(220, 60), bow, {480}, 12000, 0, build);
     }
 }
 
@@ -152,25 +164,16 @@ TEST(BowedChain, RunComputesAsTheRevisionItIsAskedFor) {
     expect_run_as_step(paper_string(220, 60, 0.12), wandering_bow(4, 0.5), {512}, 24000, 3);
 }
 
-// Between blocks the player moves the live device and changes parameters; run() and step()
-// then go on from the same state.
-TEST(BowedChain, RunFollowsTheDeviceAndParametersBetweenBlocks) {
-    const Model model = paper_string(220, 60, 0.12);
+using Change = std::tuple<std::string, std::string, double>;  // element, parameter, factor
+
+// Plays `model` from the live device, moving it and making the `changes` in turn between
+// blocks, and holds run() to step() after each.
+void expect_run_follows_changes(const Model& model, const std::vector<Change>& made) {
     Simulation by_step(compile(model)), by_run(compile(model));
     for (Simulation* sim : {&by_step, &by_run}) sim->set_gesture_track(nullptr);
     ASSERT_EQ(by_run.bowed_chain_misfit(), "");
-    const CompiledBow& bow = by_run.model().bows[0];
-    const std::string bowed = by_run.model().source.mats[bow.string - 1].id;
-    // What the loop reads once per block: the friction, the masses of the bowed pair, a hand
-    // link, the bow's pressure buffer; and a mass of the chain.
     std::vector<std::pair<ParameterSlot, double>> changes;
-    for (auto [element, parameter, factor] : {std::tuple{"friction", "mu_s", 0.75},
-                                              {"s10", "mass", 1.2},
-                                              {bowed.c_str(), "mass", 0.9},
-                                              {"bow", "mass", 1.5},
-                                              {"bow_hold", "stiffness", 0.8},
-                                              {"press_hold", "damping", 1.3},
-                                              {"friction", "buffer_stiffness", 1.4}})
+    for (const auto& [element, parameter, factor] : made)
         changes.push_back({by_run.model().resolve_parameter({element, parameter}), factor});
     std::vector<double> expected(240), got(240);
     int sounding = 0;
@@ -199,6 +202,36 @@ TEST(BowedChain, RunFollowsTheDeviceAndParametersBetweenBlocks) {
         by_step.step(), by_run.step();
         ASSERT_EQ(by_step.output(), by_run.output());
     }
+}
+
+// Between blocks the player moves the live device and changes parameters; run() and step()
+// then go on from the same state.
+TEST(BowedChain, RunFollowsTheDeviceAndParametersBetweenBlocks) {
+    const Model model = paper_string(220, 60, 0.12);
+    const CompiledModel compiled = compile(model);
+    const std::string bowed = model.mats[compiled.bows[0].string - 1].id;
+    // What the loop reads once per block: the friction, the masses of the bowed pair, a hand
+    // link, the bow's pressure buffer; and a mass of the chain.
+    expect_run_follows_changes(model, {{"friction", "mu_s", 0.75},
+                                       {"s10", "mass", 1.2},
+                                       {bowed, "mass", 0.9},
+                                       {"bow", "mass", 1.5},
+                                       {"bow_hold", "stiffness", 0.8},
+                                       {"press_hold", "damping", 1.3},
+                                       {"friction", "buffer_stiffness", 1.4}});
+}
+
+// The same on the shipped string: also a mass under the bow's hair (which moves the response of
+// its contact point), a string mass's ground and a body mode.
+TEST(BowedChain, RunFollowsTheDeviceAndParametersBetweenBlocksOnTheShippedString) {
+    expect_run_follows_changes(shipped_string(220, 60), {{"friction", "mu_s", 0.75},
+                                                         {"s7", "mass", 1.2},
+                                                         {"s30", "damping", 3.0},
+                                                         {"body1", "mass", 0.8},
+                                                         {"body2", "stiffness", 1.3},
+                                                         {"bow", "mass", 1.5},
+                                                         {"press_hold", "damping", 1.3},
+                                                         {"friction", "buffer_stiffness", 1.4}});
 }
 
 // A rest length given to a chain link takes the general step; set back to 0, once the batch of
@@ -239,6 +272,31 @@ TEST(BowedChain, AChainLinksRestLengthSetBackToZeroReturnsToTheLoop) {
     expect_same_block("with the length back to 0");
 }
 
+// The shipped strings, as built and as shipped, and without their body or with a point bow:
+// the loop takes their grounds in the chain's rounds and their body and bow's modal points
+// as integrate() does.
+TEST(BowedChain, RunGivesStepsBytesOnTheShippedStrings) {
+    const Gesture bow = wandering_bow(7, 0.5);
+    const Model violin = shipped_string(220, 60);
+    const CompiledModel compiled = compile(violin);
+    const CompiledLevel& audio = compiled.levels[0];
+    ASSERT_TRUE(grounds_in_chain_loop(audio));
+    ASSERT_FALSE(audio.links.empty());
+    ASSERT_GE(audio.modal_point_of[compiled.bows[0].string], 0) << "the hair's contact point";
+    expect_run_as_step(violin, bow, {4096}, 24000);
+    BowedStringOptions o;
+    o.pitch = 330, o.body = "none";
+    expect_run_as_step(build_bowed_string(o), bow, {64, 1, 7}, 24000);
+    o.body = "violin", o.point_bow = true;
+    expect_run_as_step(build_bowed_string(o), bow, {1000}, 24000);
+    for (const char* file :
+         {"models/bowed-string-110.json", "models/bowed-string-440-harmonic.json",
+          "models/bowed-string-880.json"}) {
+        SCOPED_TRACE(file);
+        expect_run_as_step(load_model_file(test::resource(file)), bow, {480}, 12000);
+    }
+}
+
 TEST(BowedChain, AnEmptyBlockChangesNothing) {
     const Model model = paper_string(220, 60, 0.12);
     Simulation untouched(compile(model)), ran(compile(model));
@@ -250,16 +308,14 @@ TEST(BowedChain, AnEmptyBlockChangesNothing) {
 TEST(BowedChain, OtherShapesRunTheGeneralStepAndSaySo) {
     BowedStringOptions o;
     o.pitch = 220;
-    Simulation body(compile(build_bowed_string(o)));
-    EXPECT_EQ(body.bowed_chain_misfit(), "links other than the chain's join its masses");
-    o.body = "none";
-    Simulation losses(compile(build_bowed_string(o)));
-    EXPECT_EQ(losses.bowed_chain_misfit(), "it has modal points (a body, or a modal string)");
-    Simulation accounted(compile(paper_string(220, 60, 0.12)));
+    o.finger = true, o.finger_position = 0.75;
+    Simulation fingered(compile(build_bowed_string(o)));
+    EXPECT_EQ(fingered.bowed_chain_misfit(), "it has a finger");
+    Simulation accounted(compile(shipped_string(220, 60)));
     accounted.enable_accounting(true);
     EXPECT_EQ(accounted.bowed_chain_misfit(), "it keeps energy accounts");
     const Gesture bow = wandering_bow(5, 0.3);
-    for (Simulation* sim : {&body, &losses, &accounted}) {
+    for (Simulation* sim : {&fingered, &accounted}) {
         Simulation twin(compile(sim->model().source));
         twin.enable_accounting(sim == &accounted);
         sim->set_gesture_track(&bow), twin.set_gesture_track(&bow);

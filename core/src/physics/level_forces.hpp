@@ -4,13 +4,29 @@
 // arrays each its own way (the loop in its frame, read once per block). Private to the physics
 // sources.
 
+#include <algorithm>
 #include <cstddef>
 #include <span>
 
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
+#include "archet/physics/modal_point_position.hpp"
 
 namespace archet::level_forces {
+
+/// The forces of the level's links other than its chain's (a body's bridge, a contact), from
+/// x[n] and x[n−1], onto `ext`.
+[[gnu::always_inline]] inline void add_link_forces(const CompiledLevel& lv, const double* x,
+                                                   const double* xp, double* ext) {
+    for (const CompiledLink& l : lv.links) {
+        const double d = x[l.a] - x[l.b];
+        const double dp = xp[l.a] - xp[l.b];
+        double f = l.k * (d - l.length) + l.zdt * (d - dp);
+        if (l.contact) f = (d - l.length > 0.0) ? std::max(f, 0.0) : 0.0;
+        ext[l.a] -= f;
+        ext[l.b] += f;
+    }
+}
 
 /// The forces of the chain links something reads this step (a watched MAT's total, a probe):
 /// the chain loop folds the others into the update without keeping them.
@@ -41,6 +57,24 @@ struct GroundArrays {
         const int s = ground.index;
         xn[s] -= ground_pull(x[s], xp[s], c[s], g.k[s], g.zdt[s], g.rest[s]);
     }
+}
+
+/// Every modal point where its modes put it.
+[[gnu::always_inline]] inline void follow_modes(std::span<const CompiledModalPoint> points,
+                                                double* xn) {
+    for (const CompiledModalPoint& p : points) xn[p.index] = modal_point_position(p, xn);
+}
+
+/// The modal points' share of the update: each point's force moves its modes, then every point
+/// follows its modes.
+[[gnu::always_inline]] inline void move_modal_points(std::span<const CompiledModalPoint> points,
+                                                     const double* c, const double* ext,
+                                                     const double* held, double* xn) {
+    for (const CompiledModalPoint& p : points) {
+        const double force = ext[p.index] + held[p.index];
+        if (force != 0.0) add_modal_force(p, c, xn, force);
+    }
+    follow_modes(points, xn);
 }
 
 /// Each watched MAT's total force this step, once every force on it is known.

@@ -128,14 +128,7 @@ void Simulation::compute_link_forces(CompiledLevel& lv) {
     const double* x = lv.x();
     const double* xp = lv.x_prev();
     double* ext = lv.external.data();
-    for (const auto& l : lv.links) {
-        const double d = x[l.a] - x[l.b];
-        const double dp = xp[l.a] - xp[l.b];
-        double f = l.k * (d - l.length) + l.zdt * (d - dp);
-        if (l.contact) f = (d - l.length > 0.0) ? std::max(f, 0.0) : 0.0;
-        ext[l.a] -= f;
-        ext[l.b] += f;
-    }
+    level_forces::add_link_forces(lv, x, xp, ext);
     // The bow's pressure buffer: its force is the normal force of the friction.
     for (int b : lv.bows) {
         CompiledBow& bow = model_.bows[b];
@@ -227,13 +220,8 @@ void Simulation::integrate(CompiledLevel& lv) {
         level_forces::pull_grounds(
             lv.grounds, x, xp, c, {lv.ground_k.data(), lv.ground_zdt.data(), lv.ground_rest.data()},
             xn);
-    if (!lv.modal_points.empty()) {
-        for (const auto& p : lv.modal_points) {
-            const double force = ext[p.index] + held[p.index];
-            if (force != 0.0) add_modal_force(p, c, xn, force);
-        }
-        update_modal_points(lv);
-    }
+    if (!lv.modal_points.empty())
+        level_forces::move_modal_points(lv.modal_points, c, ext, held, xn);
     for (int f : lv.fingers) solve_finger(lv, model_.fingers[f]);
     for (int b : lv.bows) solve_bow(lv, model_.bows[b]);
     level_forces::sum_watched(lv.watched, ext, held, f, lv.watched_force.data());
@@ -243,8 +231,7 @@ void Simulation::integrate(CompiledLevel& lv) {
 }
 
 void Simulation::update_modal_points(CompiledLevel& lv) {
-    double* xn = lv.x_next();
-    for (const auto& p : lv.modal_points) xn[p.index] = modal_point_position(p, xn);
+    level_forces::follow_modes(lv.modal_points, lv.x_next());
 }
 
 void Simulation::apply_modal_force(CompiledLevel& lv, int point, double force) {

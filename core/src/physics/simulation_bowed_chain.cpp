@@ -1,6 +1,7 @@
-// The step of a bowed chain: what step() does for that one shape, the paper's string (a chain
-// of masses at audio rate, a point bow, a hand holding it through links from slower gesture
-// points), with what the general step asks at every tick asked once per block. The same
+// The step of a bowed chain: what step() does for that one shape, a bowed string (a chain of
+// masses at audio rate, with or without grounds, a body or other modal points and links besides
+// the chain's, one bow, a hand holding it through links from slower gesture points), with what
+// the general step asks at every tick asked once per block. The same
 // operations in the same order, so the same bytes (bowed_chain_test.cpp holds it to step()).
 // Built for each instruction set as the chain loop is, with the chain's rounds inlined: the
 // build is chosen once per block, not at every tick.
@@ -27,12 +28,9 @@ std::string Simulation::bowed_chain_shape_misfit() const {
     if (m.levels.empty() || m.levels[0].divider != 1) return "no level runs at the master clock";
     if (!m.controls.empty()) return "it has controls";
     const CompiledLevel& audio = m.levels[0];
-    if (!audio.links.empty()) return "links other than the chain's join its masses";
-    if (!audio.modal_points.empty()) return "it has modal points (a body, or a modal string)";
     if (!audio.fingers.empty()) return "it has a finger";
     if (!audio.gestures.empty()) return "gesture points run at audio rate";
     if (audio.bows.size() != 1 || m.bows.size() != 1) return "it has no bow, or more than one";
-    if (grounds_in_chain_loop(audio)) return "most of its masses have a ground";
     if (m.hand_links > kMostHandLinks)
         return "more than " + std::to_string(kMostHandLinks) + " hand links hold it";
     if (m.cross_links.size() != static_cast<std::size_t>(m.hand_links))
@@ -80,8 +78,11 @@ struct Simulation::BowedChainFrame {
     const double *chain_k, *chain_zdt, *chain_length, *update_x, *update_xp, *update_rest;
     std::span<const int> touched, forces_used, watched;
     std::span<const CompiledGround> grounds;
+    std::span<const CompiledModalPoint> modal_points;
+    int string_point, bow_point;  ///< the bow's masses as modal points, or −1
     double string_response, bow_response, dt, inverse_dt;
-    bool divides;
+    bool divides, grounds_in_loop;
+    bool body;  ///< links besides the chain's, or modal points
     int hands;
     HandLinkState hand[kMostHandLinks];
 };
@@ -90,13 +91,19 @@ struct Simulation::BowedChainFrame {
 // rounds); a nested class, to reach the simulation's state.
 struct Simulation::BowedChainLoop {
     template <int W>
+    [[gnu::always_inline]] static std::size_t build(Simulation& sim, BowedChainFrame& frame,
+                                                    std::span<double> out);
+    template <int W, bool kWithGrounds, bool kWithBody>
     [[gnu::always_inline]] static std::size_t ticks(Simulation& sim, BowedChainFrame& frame,
                                                     std::span<double> out);
     [[gnu::always_inline]] static void hand_links(Simulation& sim, BowedChainFrame& frame,
                                                   const double* x);
-    template <int W>
-    [[gnu::always_inline]] static void audio_level(BowedChainFrame& frame, const double* x,
-                                                   const double* xp, double* xn);
+    template <int W, bool kWithGrounds, bool kWithBody>
+    [[gnu::always_inline]] static void audio_level(Simulation& sim, BowedChainFrame& frame,
+                                                   const double* x, const double* xp, double* xn);
+    template <bool kWithBody>
+    [[gnu::always_inline]] static void push(Simulation& sim, BowedChainFrame& frame, double* xn,
+                                            int s, int point, double response, double force);
 
     static std::size_t avx512(Simulation& sim, BowedChainFrame& frame, std::span<double> out);
     static std::size_t avx2(Simulation& sim, BowedChainFrame& frame, std::span<double> out);
@@ -106,17 +113,17 @@ struct Simulation::BowedChainLoop {
 ARCHET_TARGET_AVX512 std::size_t Simulation::BowedChainLoop::avx512(Simulation& sim,
                                                                     BowedChainFrame& frame,
                                                                     std::span<double> out) {
-    return ticks<8>(sim, frame, out);
+    return build<8>(sim, frame, out);
 }
 
 __attribute__((target("avx2"))) std::size_t Simulation::BowedChainLoop::avx2(
     Simulation& sim, BowedChainFrame& frame, std::span<double> out) {
-    return ticks<4>(sim, frame, out);
+    return build<4>(sim, frame, out);
 }
 
 std::size_t Simulation::BowedChainLoop::plain(Simulation& sim, BowedChainFrame& frame,
                                               std::span<double> out) {
-    return ticks<2>(sim, frame, out);
+    return build<2>(sim, frame, out);
 }
 
 std::size_t Simulation::run(std::span<double> out) {
@@ -169,11 +176,16 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build)
         .forces_used = audio.chain_forces_used,
         .watched = audio.watched,
         .grounds = audio.grounds,
-        .string_response = audio.coeff[bow.string],
-        .bow_response = audio.coeff[bow.bow],
+        .modal_points = audio.modal_points,
+        .string_point = audio.modal_point_of[bow.string],
+        .bow_point = audio.modal_point_of[bow.bow],
+        .string_response = response(audio, bow.string),
+        .bow_response = response(audio, bow.bow),
         .dt = audio.dt,
         .inverse_dt = 1.0 / audio.dt,
         .divides = friction_divides_,
+        .grounds_in_loop = grounds_in_chain_loop(audio),
+        .body = !audio.links.empty() || !audio.modal_points.empty(),
         .hands = static_cast<int>(hand_plan_.size()),
         .hand = {}};
     for (int i = 0; i < frame.hands; ++i) {
@@ -210,7 +222,20 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build)
     return done;
 }
 
+// The build's ticks, with the level's grounds in the chain's rounds or after them, and with or
+// without a body (the paper's string has none, and runs without asking at every tick).
 template <int W>
+[[gnu::always_inline]] inline std::size_t Simulation::BowedChainLoop::build(Simulation& sim,
+                                                                            BowedChainFrame& frame,
+                                                                            std::span<double> out) {
+    if (frame.body)
+        return frame.grounds_in_loop ? ticks<W, true, true>(sim, frame, out)
+                                     : ticks<W, false, true>(sim, frame, out);
+    return frame.grounds_in_loop ? ticks<W, true, false>(sim, frame, out)
+                                 : ticks<W, false, false>(sim, frame, out);
+}
+
+template <int W, bool kWithGrounds, bool kWithBody>
 [[gnu::always_inline]] inline std::size_t Simulation::BowedChainLoop::ticks(Simulation& sim,
                                                                             BowedChainFrame& frame,
                                                                             std::span<double> out) {
@@ -225,8 +250,9 @@ template <int W>
         const double* const x = audio.buffer[now].data();
         const double* const xp = audio.buffer[CompiledLevel::before(now)].data();
         double* const xn = audio.buffer[CompiledLevel::after(now)].data();
-        // Phase 1: the bow's pressure buffer, the audio level's one link; the slower levels'
+        // Phase 1: the audio level's links, then its bow's pressure buffer; the slower levels'
         // links; the hand links.
+        if constexpr (kWithBody) level_forces::add_link_forces(audio, x, xp, frame.ext);
         const double normal = friction::pressure_buffer_normal(frame.bow, x, xp);
         frame.bow.normal = normal;
         frame.ext[frame.press] -= normal;
@@ -235,7 +261,7 @@ template <int W>
             if (active[l]) sim.compute_link_forces(level[l]);
         hand_links(sim, frame, x);
         // Phase 2: the audio level, then the slower levels; phase 3: x[n+1] becomes x[n].
-        audio_level<W>(frame, x, xp, xn);
+        audio_level<W, kWithGrounds, kWithBody>(sim, frame, x, xp, xn);
         for (int l = 1; l < levels; ++l)
             if (active[l]) sim.integrate(level[l]);
         for (int l = 0; l < levels; ++l)
@@ -266,32 +292,46 @@ template <int W>
     sim.hand_work_ += hand_work;
 }
 
+// push() with the frame's response: the friction's share of a bow's mass's update, or of its
+// modes' when it is a modal point.
+template <bool kWithBody>
+[[gnu::always_inline]] inline void Simulation::BowedChainLoop::push(Simulation& sim,
+                                                                    BowedChainFrame& frame,
+                                                                    double* xn, int s, int point,
+                                                                    double response, double force) {
+    if (!kWithBody || point < 0)
+        xn[s] += response * force;
+    else if (force != 0.0)
+        sim.apply_modal_force(frame.audio, point, force);
+}
+
 // integrate() and solve_bow() for the audio level of a bowed chain: the chain's rounds, W
 // MATs a vector, then the other forces.
-template <int W>
-[[gnu::always_inline]] inline void Simulation::BowedChainLoop::audio_level(BowedChainFrame& frame,
-                                                                           const double* x,
-                                                                           const double* xp,
-                                                                           double* xn) {
+template <int W, bool kWithGrounds, bool kWithBody>
+[[gnu::always_inline]] inline void Simulation::BowedChainLoop::audio_level(
+    Simulation& sim, BowedChainFrame& frame, const double* x, const double* xp, double* xn) {
     CompiledLevel& audio = frame.audio;
     const double* const c = frame.coeff;
     double* const ext = frame.ext;
     double* const f = frame.chain_forces;
-    // Without rest lengths or grounds in the loop: runs_as_bowed_chain() and the shape's check.
-    chain_rounds::chain_loop<W, false, false>(
+    // Without rest lengths: runs_as_bowed_chain().
+    chain_rounds::chain_loop<W, false, kWithGrounds>(
         {x, xp, xn, frame.chain_k, frame.chain_zdt, frame.chain_length, c, frame.update_x,
          frame.update_xp, frame.update_rest, &audio.uniform},
         frame.mats);
     level_forces::recompute_used_chain_forces(frame.forces_used, audio, x, xp, f);
     level_forces::add_touched(frame.touched, c, ext, frame.held, xn);
-    level_forces::pull_grounds(frame.grounds, x, xp, c, frame.ground, xn);
+    if constexpr (!kWithGrounds)
+        level_forces::pull_grounds(frame.grounds, x, xp, c, frame.ground, xn);
+    if (kWithBody && !frame.modal_points.empty())
+        level_forces::move_modal_points(frame.modal_points, c, ext, frame.held, xn);
     const int string = frame.string, bowed = frame.bowed;
     const double cs = frame.string_response, cb = frame.bow_response;
     const double friction = friction::solve_point_bow(
         frame.bow, {x[bowed], xp[bowed], xn[bowed], cb, x[string], xp[string], xn[string], cs},
         frame.dt, frame.inverse_dt, frame.divides);
-    xn[string] += cs * friction;
-    xn[bowed] += cb * -friction;
+    push<kWithBody>(sim, frame, xn, string, frame.string_point, cs, friction);
+    push<kWithBody>(sim, frame, xn, bowed, frame.bow_point, cb, -friction);
     ext[string] += friction;
     ext[bowed] -= friction;
     level_forces::sum_watched(frame.watched, ext, frame.held, f, frame.watched_force);
