@@ -21,6 +21,7 @@
 #include "archet/physics/blow_up.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
+#include "archet/physics/parameter_smoother.hpp"
 #include "archet/physics/renderer.hpp"
 #include "archet/physics/simulation.hpp"
 #include "test_support.hpp"
@@ -234,9 +235,9 @@ TEST(BowedChain, RunFollowsTheDeviceAndParametersBetweenBlocksOnTheShippedString
                                                          {"friction", "buffer_stiffness", 1.4}});
 }
 
-// A rest length given to a chain link takes the general step; set back to 0, once the batch of
-// changes is over (refresh_uniform_runs(), as the end of a glide calls it), the loop again, on
-// the same bytes.
+// A rest length given to a chain link takes the general step; glided back to 0 as the studio
+// glides a knob (the glide's end refreshes the chain loop's runs), the loop again, on the same
+// bytes.
 TEST(BowedChain, AChainLinksRestLengthSetBackToZeroReturnsToTheLoop) {
     // The link turned around (from s21 to s20): its length is stored negated, and a zero one
     // must be +0, the bits of no length.
@@ -263,9 +264,13 @@ TEST(BowedChain, AChainLinksRestLengthSetBackToZeroReturnsToTheLoop) {
     for (Simulation* sim : {&by_step, &by_run}) sim->write_slot(length, 0.0001);
     EXPECT_EQ(by_run.bowed_chain_misfit(), "its chain links have been given rest lengths");
     expect_same_block("with the length");
-    for (Simulation* sim : {&by_step, &by_run}) {
-        sim->write_slot(length, 0.0);
-        sim->refresh_uniform_runs();
+    ParameterSmoother step_knob, run_knob;
+    step_knob.glide(by_step, length, 0.0, 480);
+    run_knob.glide(by_run, length, 0.0, 480);
+    while (run_knob.active() > 0) {  // a glide moves its slot at every tick
+        step_knob.advance(by_step), run_knob.advance(by_run);
+        by_step.step(), by_run.step();
+        ASSERT_EQ(by_step.output(), by_run.output());
     }
     EXPECT_EQ(by_run.bowed_chain_misfit(), "");
     EXPECT_FALSE(std::signbit(by_run.model().levels[0].chain_length[length.index]));
