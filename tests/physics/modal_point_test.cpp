@@ -221,5 +221,72 @@ TEST(ModalPoint, OnlyPointsOfMoreThanEightTermsComputeDifferentlySinceRevision3)
     EXPECT_TRUE(computes_differently_since(string, 1)) << "its grounds, since revision 2";
 }
 
+// Plays `model` along its own stroke as compiled and with every modal point moved after each
+// force on one (as before the plan), and holds the two to the same bits, sound and state.
+void expect_moves_as_moving_all(const Model& model, int ticks) {
+    ASSERT_TRUE(model.gesture);
+    CompiledModel all = compile(model);
+    for (CompiledLevel& lv : all.levels) lv.modal_force_moves_all = true;
+    Simulation planned(compile(model)), moving_all(std::move(all));
+    planned.set_gesture_track(&*model.gesture), moving_all.set_gesture_track(&*model.gesture);
+    double loudest = 0;
+    for (int i = 0; i < ticks; ++i) {
+        planned.step(), moving_all.step();
+        ASSERT_EQ(bits(planned.output()), bits(moving_all.output())) << "sample " << i;
+        loudest = std::max(loudest, std::abs(planned.output()));
+    }
+    std::vector<double> a(planned.state_size()), b(moving_all.state_size());
+    planned.save_state(a.data()), moving_all.save_state(b.data());
+    EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), [](double x, double y) {
+        return bits(x) == bits(y);
+    })) << "the states differ";
+    EXPECT_GT(loudest, 1e-3) << "it was bowed";
+}
+
+std::vector<int> moving_with(const CompiledLevel& lv, int storage) {
+    return lv.modal_points[lv.modal_point_of[storage]].moving_with;
+}
+
+// A force on a modal point moves the points that share its modes, the others being where
+// their modes are already: the shipped string (the bow's hair on three masses, the bridge on
+// six body modes) and a modal string (every point on every mode) play to the bits of moving
+// every point.
+TEST(ModalPoint, AForceMovesThePointsSharingItsModesToTheBitsOfMovingThemAll) {
+    BowedStringOptions o;
+    o.pitch = 220;
+    const Model shipped = build_bowed_string(o);
+    const CompiledModel compiled = compile(shipped);
+    const CompiledLevel& audio = compiled.levels[0];
+    EXPECT_FALSE(audio.modal_force_moves_all);
+    const int hair = compiled.bows[0].string, bridge = compiled.mat_slots.at("bridge").index;
+    EXPECT_EQ(moving_with(audio, hair), std::vector<int>{audio.modal_point_of[hair]});
+    EXPECT_EQ(moving_with(audio, bridge), std::vector<int>{audio.modal_point_of[bridge]});
+    expect_moves_as_moving_all(shipped, 48000);
+    const Model modal = build_bowed_string(modal_string());
+    const CompiledModel modal_compiled = compile(modal);
+    for (const CompiledModalPoint& p : modal_compiled.levels[0].modal_points)
+        EXPECT_EQ(p.moving_with, (std::vector<int>{0, 1, 2}));
+    expect_moves_as_moving_all(modal, 24000);
+}
+
+// Where a finger or a bow's plain mass may move a point's modes between the points following
+// them and a force on one, that force moves them all.
+TEST(ModalPoint, AFingerOrABowOnAModeLetsAForceMoveEveryPoint) {
+    BowedStringOptions o;
+    o.pitch = 220;
+    o.with_gesture = false;  // its shape alone
+    o.finger = true, o.finger_position = 0.75;
+    EXPECT_TRUE(compile(build_bowed_string(o)).levels[0].modal_force_moves_all) << "a finger";
+    o.finger = false;
+    Model on_a_mode = build_bowed_string(o);
+    Lia* friction = on_a_mode.find_lia("friction");
+    const Mat* hair = on_a_mode.find_mat(friction->bowed_string());
+    ASSERT_EQ(hair->kind, MatKind::ModalPoint);
+    friction->to = hair->modes[1];  // the middle mass under the hair, which the hair reads
+    EXPECT_TRUE(compile(on_a_mode).levels[0].modal_force_moves_all) << "a bow on a mode";
+    o.point_bow = true;  // a plain mass, which no point reads
+    EXPECT_FALSE(compile(build_bowed_string(o)).levels[0].modal_force_moves_all) << "a point bow";
+}
+
 }  // namespace
 }  // namespace archet

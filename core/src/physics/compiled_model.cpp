@@ -337,6 +337,31 @@ double modal_point_response(const CompiledLevel& lv, const CompiledModalPoint& p
     return response;
 }
 
+void plan_modal_moves(CompiledModel& c) {
+    for (CompiledLevel& lv : c.levels) {
+        std::vector<bool> is_mode(lv.modal_point_of.size(), false);
+        for (const CompiledModalPoint& p : lv.modal_points)
+            for (int mode : p.modes) is_mode[mode] = true;
+        const auto shares_a_mode = [](const CompiledModalPoint& p, const CompiledModalPoint& q) {
+            return std::any_of(p.modes.begin(), p.modes.end(), [&](int mode) {
+                return std::find(q.modes.begin(), q.modes.end(), mode) != q.modes.end();
+            });
+        };
+        for (CompiledModalPoint& p : lv.modal_points) {
+            p.moving_with.clear();
+            for (std::size_t q = 0; q < lv.modal_points.size(); ++q)
+                if (shares_a_mode(p, lv.modal_points[q]))
+                    p.moving_with.push_back(static_cast<int>(q));
+        }
+        // A finger, and a bow on a plain mass, push it without moving the points that read it.
+        const auto plain_mode = [&](int s) { return lv.modal_point_of[s] < 0 && is_mode[s]; };
+        lv.modal_force_moves_all = !lv.fingers.empty();
+        for (int b : lv.bows)
+            lv.modal_force_moves_all = lv.modal_force_moves_all || plain_mode(c.bows[b].bow) ||
+                                       plain_mode(c.bows[b].string);
+    }
+}
+
 CompiledModel compile(const Model& model, double sample_rate) {
     CompiledModel c;
     c.source = model;
@@ -347,6 +372,7 @@ CompiledModel compile(const Model& model, double sample_rate) {
     compile_levels(c, model, level_index, is_chain_link);
     compile_modal_points(c, model);
     compile_links(c, model, level_index, is_chain_link);
+    plan_modal_moves(c);
     compile_readouts(c, model);
     for (const auto& ctl : model.controls) {
         CompiledControl cc;

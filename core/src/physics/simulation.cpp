@@ -236,8 +236,16 @@ void Simulation::update_modal_points(CompiledLevel& lv) {
 
 void Simulation::apply_modal_force(CompiledLevel& lv, int point, double force) {
     double* xn = lv.x_next();
-    add_modal_force(lv.modal_points[point], lv.coeff.data(), xn, force);
-    update_modal_points(lv);  // every point of the body moves with its modes
+    const CompiledModalPoint& pushed = lv.modal_points[point];
+    add_modal_force(pushed, lv.coeff.data(), xn, force);
+    if (lv.modal_force_moves_all) {
+        update_modal_points(lv);
+        return;
+    }
+    for (int q : pushed.moving_with) {  // the others are where their modes are
+        const CompiledModalPoint& p = lv.modal_points[q];
+        xn[p.index] = modal_point_position(p, xn);
+    }
 }
 
 void Simulation::update_gesture_points(CompiledLevel& lv) {

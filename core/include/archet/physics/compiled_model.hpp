@@ -83,6 +83,9 @@ struct CompiledModalPoint {  ///< x = Σ weight·x(mode); a force F on it moves 
     int first_mode = -1;     ///< modes[k] = first_mode + k when they lie so, else −1
     std::vector<double> weights;
     double coeff = 0;  ///< Σ weight²·T²/m: its displacement per newton over a step
+    /// The level's modal points that share a mode with it, itself included, in order: those a
+    /// force on it moves (plan_modal_moves()).
+    std::vector<int> moving_with;
 };
 
 struct CompiledBow {
@@ -148,8 +151,12 @@ struct CompiledLevel {
     std::vector<int> fingers;  ///< indices into CompiledModel::fingers
     std::vector<CompiledModalPoint> modal_points;
     std::vector<int> modal_point_of;  ///< storage index → index into modal_points, or −1
-    std::vector<int> touched;         ///< storage indices whose `external` must be cleared
-    std::vector<int> watched;         ///< storage indices whose total link force is kept
+    /// A force on a modal point puts every point where its modes are, not only those sharing
+    /// its modes: where a finger or a bow's plain mass may have moved another point's modes
+    /// since they last followed them (plan_modal_moves()).
+    bool modal_force_moves_all = false;
+    std::vector<int> touched;  ///< storage indices whose `external` must be cleared
+    std::vector<int> watched;  ///< storage indices whose total link force is kept
     std::vector<double> watched_force;
     std::vector<int> element_of;  ///< storage index → index into Model::mats (−1 pad)
 
@@ -262,5 +269,9 @@ const CompiledLevel* hand_level(const CompiledModel& model);
 /// Compiles a model (validate it first). `sample_rate` > 0 overrides the model's master
 /// clock; all rate levels follow it.
 CompiledModel compile(const Model& model, double sample_rate = 0);
+/// Which modal points a force on each one moves: only those sharing its modes, when nothing else
+/// moves a mode between the points following their modes and the forces of the bows (the
+/// other points are then where their modes are already), else all of them.
+void plan_modal_moves(CompiledModel& c);
 
 }  // namespace archet
