@@ -178,7 +178,9 @@ void expect_run_follows_changes(const Model& model, const std::vector<Change>& m
         changes.push_back({by_run.model().resolve_parameter({element, parameter}), factor});
     std::vector<double> expected(240), got(240);
     int sounding = 0;
-    for (int block = 0; block < 100; ++block) {
+    // From block 30, a change every ten blocks, each one made.
+    const int blocks = 40 + 10 * static_cast<int>(changes.size());
+    for (int block = 0; block < blocks; ++block) {
         const GestureSample hand{0.002 * block, 0.0005 + 0.00003 * block};
         for (Simulation* sim : {&by_step, &by_run}) {
             sim->set_device_position(hand);
@@ -294,6 +296,24 @@ TEST(BowedChain, RunGivesStepsBytesOnTheShippedStrings) {
     expect_run_as_step(build_bowed_string(o), bow, {64, 1, 7}, 24000);
     o.body = "violin", o.point_bow = true;
     expect_run_as_step(build_bowed_string(o), bow, {1000}, 24000);
+    // Each of the loop's four builds by grounds and body (the paper's string, above, has
+    // neither), and the string in modal form, every point on every mode.
+    o = {};
+    o.pitch = 220, o.with_gesture = false;
+    auto expect_shape = [&](bool grounds, bool body, const char* what) {
+        SCOPED_TRACE(what);
+        const Model model = build_bowed_string(o);
+        const CompiledLevel audio = compile(model).levels[0];
+        ASSERT_EQ(grounds_in_chain_loop(audio), grounds);
+        ASSERT_EQ(!audio.links.empty() || !audio.modal_points.empty(), body);
+        expect_run_as_step(model, bow, {777}, 12000);
+    };
+    o.body = "none", o.point_bow = true;
+    expect_shape(true, false, "grounds without a body");
+    o.body = "violin", o.point_bow = false, o.string_damping = 0.001;
+    expect_shape(false, true, "a body without grounds (the string's losses in its links)");
+    o.string_damping = -1.0, o.structure = Structure::Modal, o.paper = true, o.masses = 60;
+    expect_shape(true, true, "a modal string");
     for (const char* file :
          {"models/bowed-string-110.json", "models/bowed-string-440-harmonic.json",
           "models/bowed-string-880.json"}) {
@@ -319,8 +339,17 @@ TEST(BowedChain, OtherShapesRunTheGeneralStepAndSaySo) {
     Simulation accounted(compile(shipped_string(220, 60)));
     accounted.enable_accounting(true);
     EXPECT_EQ(accounted.bowed_chain_misfit(), "it keeps energy accounts");
+    Model controlled = shipped_string(220, 60);  // the bow's friction on an envelope
+    Control envelope;
+    envelope.id = "mu", envelope.target = {"friction", "mu_s"};
+    envelope.envelope = {{0.0, 0.3}, {0.3, 0.5}};
+    envelope.minimum = 0.1, envelope.maximum = 1.0;
+    controlled.controls.push_back(envelope);
+    validate_model(controlled);
+    Simulation with_control(compile(controlled));
+    EXPECT_EQ(with_control.bowed_chain_misfit(), "it has controls");
     const Gesture bow = wandering_bow(5, 0.3);
-    for (Simulation* sim : {&fingered, &accounted}) {
+    for (Simulation* sim : {&fingered, &accounted, &with_control}) {
         Simulation twin(compile(sim->model().source));
         twin.enable_accounting(sim == &accounted);
         sim->set_gesture_track(&bow), twin.set_gesture_track(&bow);

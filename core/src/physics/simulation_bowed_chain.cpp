@@ -1,8 +1,8 @@
 // The step of a bowed chain: what step() does for that one shape, a bowed string (a chain of
 // masses at audio rate, with or without grounds, a body or other modal points and links besides
 // the chain's, one bow, a hand holding it through links from slower gesture points), with what
-// the general step asks at every tick asked once per block. The same
-// operations in the same order, so the same bytes (bowed_chain_test.cpp holds it to step()).
+// the general step asks at every tick asked once per block. The same operations in the same
+// order, so the same bytes (bowed_chain_test.cpp holds it to step()).
 // Built for each instruction set as the chain loop is, with the chain's rounds inlined: the
 // build is chosen once per block, not at every tick.
 
@@ -147,8 +147,8 @@ std::size_t Simulation::run_in(std::span<double> out, ChainBuild build) {
 }
 
 // step() for the shape bowed_chain_misfit() accepts: the audio level ticks at every step, its
-// only forces besides the chain's are the bow's and the hand links', its bow's masses move by
-// T²/m per newton. The slower levels step as in step().
+// one bow solves after its links, grounds and modal points, and its hand links tick with it.
+// The slower levels step as in step().
 std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build) {
     CompiledLevel& audio = model_.levels[0];
     const CompiledBow& bow = model_.bows[0];
