@@ -337,6 +337,11 @@ double modal_point_response(const CompiledLevel& lv, const CompiledModalPoint& p
     return response;
 }
 
+namespace {
+
+// Which modal points a force on each one moves: only those sharing its modes, when nothing else
+// moves a mode between the points following their modes and the forces of the bows (the other
+// points are then where their modes are already), else all of them.
 void plan_modal_moves(CompiledModel& c) {
     for (CompiledLevel& lv : c.levels) {
         std::vector<bool> is_mode(lv.modal_point_of.size(), false);
@@ -361,6 +366,8 @@ void plan_modal_moves(CompiledModel& c) {
                                        plain_mode(c.bows[b].string);
     }
 }
+
+}  // namespace
 
 CompiledModel compile(const Model& model, double sample_rate) {
     CompiledModel c;

@@ -79,7 +79,6 @@ struct Simulation::BowedChainFrame {
     std::span<const int> touched, forces_used, watched;
     std::span<const CompiledGround> grounds;
     std::span<const CompiledModalPoint> modal_points;
-    int string_point, bow_point;  ///< the bow's masses as modal points, or −1
     double string_response, bow_response, dt, inverse_dt;
     bool divides, grounds_in_loop;
     bool body;  ///< links besides the chain's, or modal points
@@ -101,9 +100,6 @@ struct Simulation::BowedChainLoop {
     template <int W, bool kWithGrounds, bool kWithBody>
     [[gnu::always_inline]] static void audio_level(Simulation& sim, BowedChainFrame& frame,
                                                    const double* x, const double* xp, double* xn);
-    template <bool kWithBody>
-    [[gnu::always_inline]] static void push(Simulation& sim, BowedChainFrame& frame, double* xn,
-                                            int s, int point, double response, double force);
 
     static std::size_t avx512(Simulation& sim, BowedChainFrame& frame, std::span<double> out);
     static std::size_t avx2(Simulation& sim, BowedChainFrame& frame, std::span<double> out);
@@ -177,8 +173,6 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build)
         .watched = audio.watched,
         .grounds = audio.grounds,
         .modal_points = audio.modal_points,
-        .string_point = audio.modal_point_of[bow.string],
-        .bow_point = audio.modal_point_of[bow.bow],
         .string_response = response(audio, bow.string),
         .bow_response = response(audio, bow.bow),
         .dt = audio.dt,
@@ -292,19 +286,6 @@ template <int W, bool kWithGrounds, bool kWithBody>
     sim.hand_work_ += hand_work;
 }
 
-// push() with the frame's response: the friction's share of a bow's mass's update, or of its
-// modes' when it is a modal point.
-template <bool kWithBody>
-[[gnu::always_inline]] inline void Simulation::BowedChainLoop::push(Simulation& sim,
-                                                                    BowedChainFrame& frame,
-                                                                    double* xn, int s, int point,
-                                                                    double response, double force) {
-    if (!kWithBody || point < 0)
-        xn[s] += response * force;
-    else if (force != 0.0)
-        sim.apply_modal_force(frame.audio, point, force);
-}
-
 // integrate() and solve_bow() for the audio level of a bowed chain: the chain's rounds, W
 // MATs a vector, then the other forces.
 template <int W, bool kWithGrounds, bool kWithBody>
@@ -330,8 +311,13 @@ template <int W, bool kWithGrounds, bool kWithBody>
     const double friction = friction::solve_point_bow(
         frame.bow, {x[bowed], xp[bowed], xn[bowed], cb, x[string], xp[string], xn[string], cs},
         frame.dt, frame.inverse_dt, frame.divides);
-    push<kWithBody>(sim, frame, xn, string, frame.string_point, cs, friction);
-    push<kWithBody>(sim, frame, xn, bowed, frame.bow_point, cb, -friction);
+    if constexpr (kWithBody) {  // a bow's mass may be a modal point
+        sim.push(audio, string, friction);
+        sim.push(audio, bowed, -friction);
+    } else {
+        xn[string] += cs * friction;
+        xn[bowed] += cb * -friction;
+    }
     ext[string] += friction;
     ext[bowed] -= friction;
     level_forces::sum_watched(frame.watched, ext, frame.held, f, frame.watched_force);

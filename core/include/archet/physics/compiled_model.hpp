@@ -269,9 +269,5 @@ const CompiledLevel* hand_level(const CompiledModel& model);
 /// Compiles a model (validate it first). `sample_rate` > 0 overrides the model's master
 /// clock; all rate levels follow it.
 CompiledModel compile(const Model& model, double sample_rate = 0);
-/// Which modal points a force on each one moves: only those sharing its modes, when nothing else
-/// moves a mode between the points following their modes and the forces of the bows (the
-/// other points are then where their modes are already), else all of them.
-void plan_modal_moves(CompiledModel& c);
 
 }  // namespace archet
