@@ -116,13 +116,21 @@ RenderPlan plan_from_take(const RenderArguments& a) {
                          "the take holds no sample (it ended before it began); nothing to render");
     RenderPlan plan;
     plan.model = load_validated_model((folder / "model.json").string(), {}, take.sample_rate);
-    if (take.scheme != kSchemeRevision &&
-        computes_differently_since(compile(plan.model, take.sample_rate), take.scheme))
+    const SchemeChange change =
+        take.scheme == kSchemeRevision
+            ? SchemeChange::None
+            : scheme_change_since(compile(plan.model, take.sample_rate), take.scheme);
+    if (change != SchemeChange::None)
         std::cerr << "archet: note: " << folder.string() << " was played with scheme revision "
                   << take.scheme << "; this Archet computes its model with revision "
-                  << kSchemeRevision
-                  << " (docs/physics.md): the same physics, but the re-render may differ from "
-                     "take.wav by rounding, which a bowed string can carry on\n";
+                  << kSchemeRevision << " (docs/physics.md): "
+                  << (change == SchemeChange::Fix
+                          ? "it moves a modal point with the mass a finger pushes, which the "
+                            "take's revision did late (a fix), so the re-render may differ from "
+                            "take.wav"
+                          : "the same physics, but the re-render may differ from take.wav by "
+                            "rounding")
+                  << ", which a bowed string can carry on\n";
     plan.scheme = take.scheme;
     plan.gesture = load_gesture_file(folder / "gesture.json");
     plan.frames = take.frames;

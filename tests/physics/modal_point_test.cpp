@@ -203,7 +203,7 @@ TEST(ModalPoint, AContinuedModalStringPlaysOnToTheSameBits) {
 // six body modes, a bow over three masses) do not, nor does its bow since revision 4 (a take
 // re-renders with the friction's divisions).
 TEST(ModalPoint, OnlyPointsOfMoreThanEightTermsComputeDifferentlySinceRevision3) {
-    static_assert(kSchemeRevision == 4);
+    static_assert(kSchemeRevision == 5);
     const CompiledModel modal = compile(build_bowed_string(modal_string()));
     EXPECT_TRUE(computes_differently_since(modal, 2));
     EXPECT_FALSE(computes_differently_since(modal, 3));
@@ -270,15 +270,27 @@ TEST(ModalPoint, AForceMovesThePointsSharingItsModesToTheBitsOfMovingThemAll) {
     expect_moves_as_moving_all(modal, 24000);
 }
 
-// Where a finger or a bow's plain mass may move a point's modes between the points following
-// them and a force on one, that force moves them all.
-TEST(ModalPoint, AFingerOrABowOnAModeLetsAForceMoveEveryPoint) {
+// A finger moves the points reading its plain mass after its push (solve_finger()), so a
+// fingered string moves only the points sharing a pushed point's modes, to the same bits; also
+// with the finger between the bridge and the first mass under the hair.
+TEST(ModalPoint, AFingeredStringMovesThePointsSharingItsModesToTheBitsOfMovingThemAll) {
+    BowedStringOptions o;
+    o.pitch = 220, o.finger = true, o.finger_position = 0.75;
+    const Model fingered = build_bowed_string(o);
+    EXPECT_FALSE(compile(fingered).levels[0].modal_force_moves_all);
+    expect_moves_as_moving_all(fingered, 24000);
+    o.masses = 63, o.finger_position = 1.0 / 128;  // halfway between the bridge and s1
+    Model at_the_bridge = build_bowed_string(o);
+    at_the_bridge.find_mat("bow_contact")->modes = {"s1", "s2", "s3"};
+    expect_moves_as_moving_all(at_the_bridge, 24000);
+}
+
+// Where a bow's plain mass may move a point's modes between the points following them and a
+// force on one, that force moves them all.
+TEST(ModalPoint, ABowOnAModeLetsAForceMoveEveryPoint) {
     BowedStringOptions o;
     o.pitch = 220;
     o.with_gesture = false;  // its shape alone
-    o.finger = true, o.finger_position = 0.75;
-    EXPECT_TRUE(compile(build_bowed_string(o)).levels[0].modal_force_moves_all) << "a finger";
-    o.finger = false;
     Model on_a_mode = build_bowed_string(o);
     Lia* friction = on_a_mode.find_lia("friction");
     const Mat* hair = on_a_mode.find_mat(friction->bowed_string());

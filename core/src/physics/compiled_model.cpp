@@ -337,6 +337,13 @@ double modal_point_response(const CompiledLevel& lv, const CompiledModalPoint& p
     return response;
 }
 
+std::vector<bool> read_by_modal_points(const CompiledLevel& lv) {
+    std::vector<bool> read(lv.modal_point_of.size(), false);
+    for (const CompiledModalPoint& p : lv.modal_points)
+        for (int mode : p.modes) read[mode] = true;
+    return read;
+}
+
 namespace {
 
 // Which modal points a force on each one moves: only those sharing its modes, when nothing else
@@ -344,9 +351,7 @@ namespace {
 // points are then where their modes are already), else all of them.
 void plan_modal_moves(CompiledModel& c) {
     for (CompiledLevel& lv : c.levels) {
-        std::vector<bool> is_mode(lv.modal_point_of.size(), false);
-        for (const CompiledModalPoint& p : lv.modal_points)
-            for (int mode : p.modes) is_mode[mode] = true;
+        const std::vector<bool> is_mode = read_by_modal_points(lv);
         const auto shares_a_mode = [](const CompiledModalPoint& p, const CompiledModalPoint& q) {
             return std::any_of(p.modes.begin(), p.modes.end(), [&](int mode) {
                 return std::find(q.modes.begin(), q.modes.end(), mode) != q.modes.end();
@@ -358,9 +363,10 @@ void plan_modal_moves(CompiledModel& c) {
                 if (shares_a_mode(p, lv.modal_points[q]))
                     p.moving_with.push_back(static_cast<int>(q));
         }
-        // A finger, and a bow on a plain mass, push it without moving the points that read it.
+        // A bow on a plain mass pushes it without moving the points that read it. (A finger
+        // moves them after its push: solve_finger().)
         const auto plain_mode = [&](int s) { return lv.modal_point_of[s] < 0 && is_mode[s]; };
-        lv.modal_force_moves_all = !lv.fingers.empty();
+        lv.modal_force_moves_all = false;
         for (int b : lv.bows)
             lv.modal_force_moves_all = lv.modal_force_moves_all || plain_mode(c.bows[b].bow) ||
                                        plain_mode(c.bows[b].string);

@@ -38,8 +38,9 @@ void Simulation::solve_finger(CompiledLevel& lv, CompiledFinger& finger) {
     const double f = -(k * (u_free + u_before) + zdt * (u_free - u_before)) / (2.0 + c * (k + zdt));
     push(lv, t.a, t.wa * f);
     push(lv, t.b, t.wb * f);
-    // A modal point may read these masses (a wide bow's contact): it follows them.
-    if (!lv.modal_points.empty() && lv.modal_point_of[t.a] < 0 && lv.modal_point_of[t.b] < 0)
+    // A modal point may read a plain mass of the two (a wide bow's contact): it follows it. A
+    // force on a modal point has moved the points sharing its modes, not those reading a mass.
+    if (!lv.modal_points.empty() && (lv.modal_point_of[t.a] < 0 || lv.modal_point_of[t.b] < 0))
         update_modal_points(lv);
 }
 

@@ -13,9 +13,12 @@
 //   4  the friction solve, and the slip velocity it reports, multiply by the reciprocals of T
 //      and of the masses' response where they divided (physics/bow_solve.cpp); told to compute
 //      as of an older revision (Simulation::compute_as_of()), the solve divides
+//   5  a fix, not arithmetic: a finger touching a modal point and a plain mass moves the other
+//      points that read that mass before anything reads them (physics/simulation_finger.cpp);
+//      before, a bow on such a point read it where the finger's push had not yet moved it
 
 namespace archet {
 
-constexpr int kSchemeRevision = 4;
+constexpr int kSchemeRevision = 5;
 
 }  // namespace archet
