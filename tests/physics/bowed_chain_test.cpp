@@ -329,6 +329,23 @@ TEST(BowedChain, AnEmptyBlockChangesNothing) {
     EXPECT_TRUE(same_bytes(state_of(untouched), state_of(ran)));
 }
 
+// run() against step() then output(), sound and state, over a tenth of a second of a bow
+// wandering along and into the string.
+void expect_run_gives_steps_bytes(Simulation& sim, bool accounting) {
+    const Gesture bow = wandering_bow(5, 0.3);
+    Simulation twin(compile(sim.model().source));
+    twin.enable_accounting(accounting);
+    sim.set_gesture_track(&bow), twin.set_gesture_track(&bow);
+    std::vector<double> got(4800);
+    ASSERT_EQ(sim.run(got), got.size());
+    for (double sample : got) {
+        twin.step();
+        const double expected = twin.output();
+        ASSERT_EQ(std::memcmp(&expected, &sample, sizeof sample), 0);
+    }
+    EXPECT_TRUE(same_bytes(state_of(sim), state_of(twin)));
+}
+
 // Whatever run() does not write for its shape, it steps as step() does; and it says why.
 TEST(BowedChain, OtherShapesRunTheGeneralStepAndSaySo) {
     BowedStringOptions o;
@@ -348,20 +365,64 @@ TEST(BowedChain, OtherShapesRunTheGeneralStepAndSaySo) {
     validate_model(controlled);
     Simulation with_control(compile(controlled));
     EXPECT_EQ(with_control.bowed_chain_misfit(), "it has controls");
-    const Gesture bow = wandering_bow(5, 0.3);
-    for (Simulation* sim : {&fingered, &accounted, &with_control}) {
-        Simulation twin(compile(sim->model().source));
-        twin.enable_accounting(sim == &accounted);
-        sim->set_gesture_track(&bow), twin.set_gesture_track(&bow);
-        std::vector<double> got(4800);
-        ASSERT_EQ(sim->run(got), got.size());
-        for (double sample : got) {
-            twin.step();
-            const double expected = twin.output();
-            ASSERT_EQ(std::memcmp(&expected, &sample, sizeof sample), 0);
-        }
-        EXPECT_TRUE(same_bytes(state_of(*sim), state_of(twin)));
+    for (Simulation* sim : {&fingered, &accounted, &with_control})
+        expect_run_gives_steps_bytes(*sim, sim == &accounted);
+}
+
+// The shapes the loop's frame has no place for: the hand at audio rate, a second bow, more than
+// four hand links, a link across the rates that is not the hand's, and a hand link holding a
+// mass at a rate between the audio's and the hand's.
+TEST(BowedChain, ShapesWithoutAPlaceInTheLoopRunTheGeneralStepAndSaySo) {
+    const auto misfit_of = [](const Model& model) {
+        validate_model(model);
+        Simulation sim(compile(model));
+        expect_run_gives_steps_bytes(sim, false);
+        return sim.bowed_chain_misfit();
+    };
+    Model hand_at_audio_rate = shipped_string(220, 60);
+    for (const char* hand : {"hand_slide", "hand_press"})
+        hand_at_audio_rate.find_mat(hand)->rate = "audio";
+    EXPECT_EQ(misfit_of(hand_at_audio_rate), "gesture points run at audio rate");
+
+    Model two_bows = shipped_string(220, 60);  // a second bow, resting on s40
+    Lia second = *two_bows.find_lia("friction");
+    for (const char* mass : {"bow", "bow_press"}) {
+        Mat copy = *two_bows.find_mat(mass);
+        copy.id += "2";
+        two_bows.mats.push_back(copy);
     }
+    second.id = "friction2", second.from = "bow2", second.press = "bow_press2", second.to = "s40";
+    two_bows.lias.push_back(second);
+    EXPECT_EQ(misfit_of(two_bows), "it has no bow, or more than one");
+
+    Model five_hand_links = shipped_string(220, 60);
+    for (const char* mass : {"s20", "s30", "s40"}) {
+        Lia hold = *five_hand_links.find_lia("bow_hold");
+        hold.id = std::string("hold_") + mass, hold.to = mass, hold.stiffness = 1.0;
+        hold.damping = 0.01;
+        five_hand_links.lias.push_back(hold);
+    }
+    EXPECT_EQ(misfit_of(five_hand_links), "more than 4 hand links hold it");
+
+    Model across_the_rates = shipped_string(220, 60);  // a mass at the hand's rate, on the bow
+    Mat arm;
+    arm.id = "arm", arm.kind = MatKind::Mass, arm.rate = "haptic", arm.mass = 1.0;
+    across_the_rates.mats.push_back(arm);
+    Lia arm_link = *across_the_rates.find_lia("bow_hold");
+    arm_link.id = "arm_link", arm_link.from = "arm", arm_link.stiffness = 1.0;
+    arm_link.damping = 0.01;
+    across_the_rates.lias.push_back(arm_link);
+    EXPECT_EQ(misfit_of(across_the_rates), "links join its rate levels besides the hand's");
+
+    Model held_between_the_rates = shipped_string(220, 60);  // a wrist at 12 kHz, held by hand
+    held_between_the_rates.rates.push_back({"wrist", 4});
+    Mat wrist;
+    wrist.id = "wrist", wrist.kind = MatKind::Mass, wrist.rate = "wrist", wrist.mass = 1.0;
+    held_between_the_rates.mats.push_back(wrist);
+    Lia wrist_hold = *held_between_the_rates.find_lia("bow_hold");
+    wrist_hold.id = "wrist_hold", wrist_hold.rate = "wrist", wrist_hold.to = "wrist";
+    held_between_the_rates.lias.push_back(wrist_hold);
+    EXPECT_EQ(misfit_of(held_between_the_rates), "a hand link does not hold a mass at audio rate");
 }
 
 // A tick whose sound is not finite ends the block there, as the renderer reports it.
