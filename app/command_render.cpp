@@ -125,12 +125,11 @@ RenderPlan plan_from_take(const RenderArguments& a) {
                   << take.scheme << "; this Archet computes its model with revision "
                   << kSchemeRevision << " (docs/physics.md): "
                   << (change == SchemeChange::Fix
-                          ? "it moves a modal point with the mass a finger pushes, which the "
-                            "take's revision did late (a fix), so the re-render may differ from "
-                            "take.wav"
+                          ? "a finger's push now moves the modal points reading its mass before "
+                            "the bow reads them (a fix the take's revision lacked), so the "
+                            "re-render may differ from take.wav\n"
                           : "the same physics, but the re-render may differ from take.wav by "
-                            "rounding")
-                  << ", which a bowed string can carry on\n";
+                            "rounding, which a bowed string can carry on\n");
     plan.scheme = take.scheme;
     plan.gesture = load_gesture_file(folder / "gesture.json");
     plan.frames = take.frames;

@@ -320,7 +320,7 @@ TEST(Take, ATakeOfAnOlderSchemeSaysWhenItMayDiffer) {
     r = render_as_of(dir, "fingered", 4);
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_NE(r.err.find("was played with scheme revision 4"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("(a fix)"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("(a fix the take's revision lacked)"), std::string::npos) << r.err;
 
     r = test::run_archet({"new", "bowed-string", "--structure", "modal", "--masses", "30", "-o",
                           (dir / "modal.json").string()});
