@@ -125,9 +125,9 @@ RenderPlan plan_from_take(const RenderArguments& a) {
                   << take.scheme << "; this Archet computes its model with revision "
                   << kSchemeRevision << " (docs/physics.md): "
                   << (change == SchemeChange::Fix
-                          ? "a finger's push now moves the modal points reading its mass before "
-                            "the bow reads them (a fix the take's revision lacked), so the "
-                            "re-render may differ from take.wav\n"
+                          ? "a finger's or a bow's push now moves the modal points reading its "
+                            "mass before anything reads them (a fix the take's revision lacked), "
+                            "so the re-render may differ from take.wav\n"
                           : "the same physics, but the re-render may differ from take.wav by "
                             "rounding, which a bowed string can carry on\n");
     plan.scheme = take.scheme;

@@ -296,6 +296,11 @@ TEST(BowedChain, RunGivesStepsBytesOnTheShippedStrings) {
     expect_run_as_step(build_bowed_string(o), bow, {64, 1, 7}, 24000);
     o.body = "violin", o.point_bow = true;
     expect_run_as_step(build_bowed_string(o), bow, {1000}, 24000);
+    // A bow on the hair's middle mass, which the hair's point reads and follows.
+    Model on_a_mode = shipped_string(220, 60);
+    Lia* friction = on_a_mode.find_lia("friction");
+    friction->to = on_a_mode.find_mat(friction->bowed_string())->modes[1];
+    expect_run_as_step(on_a_mode, bow, {333}, 12000);
     // Each of the loop's four builds by grounds and body (the paper's string, above, has
     // neither), and the string in modal form, every point on every mode.
     o = {};

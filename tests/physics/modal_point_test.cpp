@@ -15,6 +15,7 @@
 #include "archet/builders/bowed_string.hpp"
 #include "archet/common/scheme_revision.hpp"
 #include "archet/model/gesture.hpp"
+#include "archet/model/model_validation.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/modal_point_position.hpp"
 #include "archet/physics/scheme_changes.hpp"
@@ -205,8 +206,8 @@ TEST(ModalPoint, AContinuedModalStringPlaysOnToTheSameBits) {
 TEST(ModalPoint, OnlyPointsOfMoreThanEightTermsComputeDifferentlySinceRevision3) {
     static_assert(kSchemeRevision == 5);
     const CompiledModel modal = compile(build_bowed_string(modal_string()));
-    EXPECT_TRUE(computes_differently_since(modal, 2));
-    EXPECT_FALSE(computes_differently_since(modal, 3));
+    EXPECT_EQ(scheme_change_since(modal, 2), SchemeChange::Rounding);
+    EXPECT_EQ(scheme_change_since(modal, 3), SchemeChange::None);
     BowedStringOptions shipped;
     shipped.pitch = 220;
     const CompiledModel string = compile(build_bowed_string(shipped));
@@ -217,30 +218,27 @@ TEST(ModalPoint, OnlyPointsOfMoreThanEightTermsComputeDifferentlySinceRevision3)
             ++points;
         }
     EXPECT_EQ(points, 2);
-    EXPECT_FALSE(computes_differently_since(string, 3));
-    EXPECT_FALSE(computes_differently_since(string, 2));
-    EXPECT_TRUE(computes_differently_since(string, 1)) << "its grounds, since revision 2";
+    EXPECT_EQ(scheme_change_since(string, 4), SchemeChange::None);
+    EXPECT_EQ(scheme_change_since(string, 3), SchemeChange::None);
+    EXPECT_EQ(scheme_change_since(string, 2), SchemeChange::None);
+    EXPECT_EQ(scheme_change_since(string, 1), SchemeChange::Rounding) << "its grounds, since 2";
 }
 
-// Plays `model` along its own stroke as compiled and with every modal point moved after each
-// force on one (as before the plan), and holds the two to the same bits, sound and state.
-void expect_moves_as_moving_all(const Model& model, int ticks) {
+// Plays `model` along its own stroke and, after every step, holds each modal point to the bits
+// of the sum of its modes: where a push left one behind, nothing after it in the step moved it.
+void expect_points_where_their_modes_are(const Model& model, int ticks) {
     ASSERT_TRUE(model.gesture);
-    CompiledModel all = compile(model);
-    for (CompiledLevel& lv : all.levels) lv.modal_force_moves_all = true;
-    Simulation planned(compile(model)), moving_all(std::move(all));
-    planned.set_gesture_track(&*model.gesture), moving_all.set_gesture_track(&*model.gesture);
+    Simulation sim(compile(model));
+    sim.set_gesture_track(&*model.gesture);
     double loudest = 0;
     for (int i = 0; i < ticks; ++i) {
-        planned.step(), moving_all.step();
-        ASSERT_EQ(bits(planned.output()), bits(moving_all.output())) << "sample " << i;
-        loudest = std::max(loudest, std::abs(planned.output()));
+        sim.step();
+        for (const CompiledLevel& lv : sim.model().levels)
+            for (const CompiledModalPoint& p : lv.modal_points)
+                ASSERT_EQ(bits(lv.x()[p.index]), bits(modal_point_position(p, lv.x())))
+                    << "a point behind its modes after step " << i;
+        loudest = std::max(loudest, std::abs(sim.output()));
     }
-    std::vector<double> a(planned.state_size()), b(moving_all.state_size());
-    planned.save_state(a.data()), moving_all.save_state(b.data());
-    EXPECT_TRUE(std::equal(a.begin(), a.end(), b.begin(), [](double x, double y) {
-        return bits(x) == bits(y);
-    })) << "the states differ";
     EXPECT_GT(loudest, 1e-3) << "it was bowed";
 }
 
@@ -250,74 +248,69 @@ std::vector<int> moving_with(const CompiledLevel& lv, int storage) {
 
 // A force on a modal point moves the points that share its modes, the others being where
 // their modes are already: the shipped string (the bow's hair on three masses, the bridge on
-// six body modes) and a modal string (every point on every mode) play to the bits of moving
-// every point.
-TEST(ModalPoint, AForceMovesThePointsSharingItsModesToTheBitsOfMovingThemAll) {
+// six body modes) and a modal string (every point on every mode).
+TEST(ModalPoint, AForceMovesThePointsSharingItsModes) {
     BowedStringOptions o;
     o.pitch = 220;
     const Model shipped = build_bowed_string(o);
     const CompiledModel compiled = compile(shipped);
     const CompiledLevel& audio = compiled.levels[0];
-    EXPECT_FALSE(audio.modal_force_moves_all);
     const int hair = compiled.bows[0].string, bridge = compiled.mat_slots.at("bridge").index;
     EXPECT_EQ(moving_with(audio, hair), std::vector<int>{audio.modal_point_of[hair]});
     EXPECT_EQ(moving_with(audio, bridge), std::vector<int>{audio.modal_point_of[bridge]});
-    expect_moves_as_moving_all(shipped, 48000);
+    expect_points_where_their_modes_are(shipped, 48000);
     const Model modal = build_bowed_string(modal_string());
     const CompiledModel modal_compiled = compile(modal);
     for (const CompiledModalPoint& p : modal_compiled.levels[0].modal_points)
         EXPECT_EQ(p.moving_with, (std::vector<int>{0, 1, 2}));
-    expect_moves_as_moving_all(modal, 24000);
+    expect_points_where_their_modes_are(modal, 24000);
 }
 
-// A finger moves the points reading its plain mass after its push (solve_finger()), so a
-// fingered string moves only the points sharing a pushed point's modes, to the same bits; also
-// with the finger between the bridge and the first mass under the hair.
-TEST(ModalPoint, AFingeredStringMovesThePointsSharingItsModesToTheBitsOfMovingThemAll) {
+// A finger's push on a plain mass a point reads moves that point (follow_pushed_masses()): on
+// the shipped fingered string, and with the finger halfway between the bridge and s1 where a
+// point of its own reads s1 alone and the hair reads s2–s4 (nothing else moves that point).
+TEST(ModalPoint, AFingersPushMovesThePointsReadingItsMass) {
     BowedStringOptions o;
     o.pitch = 220, o.finger = true, o.finger_position = 0.75;
-    const Model fingered = build_bowed_string(o);
-    EXPECT_FALSE(compile(fingered).levels[0].modal_force_moves_all);
-    expect_moves_as_moving_all(fingered, 24000);
-    o.masses = 63, o.finger_position = 1.0 / 128;  // halfway between the bridge and s1
+    expect_points_where_their_modes_are(build_bowed_string(o), 24000);
+    o.masses = 63;
+    o.finger_position = 1.0 / 128;
     Model at_the_bridge = build_bowed_string(o);
-    at_the_bridge.find_mat("bow_contact")->modes = {"s1", "s2", "s3"};
-    expect_moves_as_moving_all(at_the_bridge, 24000);
+    at_the_bridge.find_mat("bow_contact")->modes = {"s2", "s3", "s4"};
+    Mat on_s1;
+    on_s1.id = "on_s1", on_s1.kind = MatKind::ModalPoint, on_s1.rate = "audio";
+    on_s1.modes = {"s1"}, on_s1.weights = {1.0};
+    at_the_bridge.mats.push_back(on_s1);
+    validate_model(at_the_bridge);
+    expect_points_where_their_modes_are(at_the_bridge, 24000);
 }
 
-// Where a bow's plain mass may move a point's modes between the points following them and a
-// force on one, that force moves them all.
-TEST(ModalPoint, ABowOnAModeLetsAForceMoveEveryPoint) {
+// A bow's push on a plain mass a point reads moves that point: a bow on the hair's middle mass,
+// alone and followed by a second bow on the bridge, which reads the hair's modes after it.
+TEST(ModalPoint, ABowsPushMovesThePointsReadingItsMass) {
     BowedStringOptions o;
     o.pitch = 220;
-    o.with_gesture = false;  // its shape alone
     Model on_a_mode = build_bowed_string(o);
     Lia* friction = on_a_mode.find_lia("friction");
     const Mat* hair = on_a_mode.find_mat(friction->bowed_string());
     ASSERT_EQ(hair->kind, MatKind::ModalPoint);
     friction->to = hair->modes[1];  // the middle mass under the hair, which the hair reads
-    EXPECT_TRUE(compile(on_a_mode).levels[0].modal_force_moves_all) << "a bow on a mode";
-    o.point_bow = true;  // a plain mass, which no point reads
-    EXPECT_FALSE(compile(build_bowed_string(o)).levels[0].modal_force_moves_all) << "a point bow";
-    // Why: a second bow, on the bridge, after the one on the hair's middle mass. Its force
-    // moves the bridge alone where the hair's point is not yet where its modes are.
+    validate_model(on_a_mode);
+    expect_points_where_their_modes_are(on_a_mode, 24000);
+    const CompiledModel compiled = compile(on_a_mode);
+    EXPECT_EQ(scheme_change_since(compiled, 4), SchemeChange::Fix);
+    EXPECT_EQ(scheme_change_since(compiled, 5), SchemeChange::None);
     Lia second = *friction;
     second.id = "friction2", second.to = "bridge";
-    on_a_mode.lias.push_back(second);
-    on_a_mode.probes = {{"hair", ProbeKind::Position, hair->id}};
-    const Gesture stroke = steady_bow_gesture(0.1, 0.002, 0.5);
-    CompiledModel compiled = compile(on_a_mode), moving_few = compiled;
-    ASSERT_TRUE(compiled.levels[0].modal_force_moves_all);
-    moving_few.levels[0].modal_force_moves_all = false;
-    Simulation planned(std::move(compiled)), few(std::move(moving_few));
-    planned.set_gesture_track(&stroke), few.set_gesture_track(&stroke);
-    int apart = 0;
-    for (int i = 0; i < 24000; ++i) {
-        planned.step(), few.step();
-        apart += bits(planned.probe(0)) != bits(few.probe(0));
+    for (const char* mass : {"bow", "bow_press"}) {
+        Mat copy = *on_a_mode.find_mat(mass);
+        copy.id += "2";
+        on_a_mode.mats.push_back(copy);
     }
-    EXPECT_GT(apart, 0) << "moving only the points that share its modes would leave the hair's "
-                           "point behind its modes";
+    second.from = "bow2", second.press = "bow_press2";
+    on_a_mode.lias.push_back(second);
+    validate_model(on_a_mode);
+    expect_points_where_their_modes_are(on_a_mode, 24000);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@ void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
         1.0 / lv.dt, friction_divides_);
     push(lv, s, f);
     push(lv, b, -f);
+    follow_pushed_masses(lv, s, b);
     lv.external[s] += f;
     lv.external[b] -= f;
 }

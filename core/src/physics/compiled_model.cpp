@@ -337,21 +337,16 @@ double modal_point_response(const CompiledLevel& lv, const CompiledModalPoint& p
     return response;
 }
 
-std::vector<bool> read_by_modal_points(const CompiledLevel& lv) {
-    std::vector<bool> read(lv.modal_point_of.size(), false);
-    for (const CompiledModalPoint& p : lv.modal_points)
-        for (int mode : p.modes) read[mode] = true;
-    return read;
-}
-
 namespace {
 
-// Which modal points a force on each one moves: only those sharing its modes, when nothing else
-// moves a mode between the points following their modes and the forces of the bows (the other
-// points are then where their modes are already), else all of them.
+// Which modal points a force on each one moves: those sharing its modes, the others being
+// where their modes are already, as every force on a plain mass a point reads is followed by
+// all the points following their modes (integrate(), and after a finger's or a bow's pushes).
 void plan_modal_moves(CompiledModel& c) {
     for (CompiledLevel& lv : c.levels) {
-        const std::vector<bool> is_mode = read_by_modal_points(lv);
+        lv.read_by_point.assign(lv.modal_point_of.size(), 0);
+        for (const CompiledModalPoint& p : lv.modal_points)
+            for (int mode : p.modes) lv.read_by_point[mode] = 1;
         const auto shares_a_mode = [](const CompiledModalPoint& p, const CompiledModalPoint& q) {
             return std::any_of(p.modes.begin(), p.modes.end(), [&](int mode) {
                 return std::find(q.modes.begin(), q.modes.end(), mode) != q.modes.end();
@@ -363,13 +358,6 @@ void plan_modal_moves(CompiledModel& c) {
                 if (shares_a_mode(p, lv.modal_points[q]))
                     p.moving_with.push_back(static_cast<int>(q));
         }
-        // A bow on a plain mass pushes it without moving the points that read it. (A finger
-        // moves them after its push: solve_finger().)
-        const auto plain_mode = [&](int s) { return lv.modal_point_of[s] < 0 && is_mode[s]; };
-        lv.modal_force_moves_all = false;
-        for (int b : lv.bows)
-            lv.modal_force_moves_all = lv.modal_force_moves_all || plain_mode(c.bows[b].bow) ||
-                                       plain_mode(c.bows[b].string);
     }
 }
 

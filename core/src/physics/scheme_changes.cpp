@@ -1,7 +1,7 @@
 #include "archet/physics/scheme_changes.hpp"
 
 #include <algorithm>
-#include <vector>
+#include <cstddef>
 
 #include "archet/common/scheme_revision.hpp"
 #include "archet/physics/chain_kernel.hpp"
@@ -16,17 +16,21 @@ bool has_long_modal_point(const CompiledLevel& level) {
                        [](const CompiledModalPoint& p) { return p.modes.size() > kModalSumLanes; });
 }
 
-// A finger that may touch a modal point and a plain mass another point reads (where it slides
-// to does not matter: any two of its masses side by side).
-bool has_finger_on_a_read_mass(const CompiledModel& model, const CompiledFinger& finger) {
-    const CompiledLevel& lv = model.levels[finger.level];
-    const std::vector<bool> is_mode = read_by_modal_points(lv);
-    const auto modal = [&](int s) { return lv.modal_point_of[s] >= 0; };
-    for (std::size_t i = 0; i + 1 < finger.along.size(); ++i) {
-        const int a = finger.along[i], b = finger.along[i + 1];
-        if ((modal(a) && !modal(b) && is_mode[b]) || (modal(b) && !modal(a) && is_mode[a]))
-            return true;
+// Where revision 4 left a modal point behind its modes when it was read: a finger whose touch
+// may push a modal point and then a plain mass a point reads (`along` in that order, wherever it
+// slides), and a bow on a plain mass a point reads (its force on it moved no point; over-flagged
+// where a push on a modal point after it moved them all).
+bool reads_a_point_stale_before_revision_5(const CompiledModel& model) {
+    for (const CompiledFinger& finger : model.fingers) {
+        const CompiledLevel& lv = model.levels[finger.level];
+        for (std::size_t i = 0; i + 1 < finger.along.size(); ++i)
+            if (lv.modal_point_of[finger.along[i]] >= 0 && lv.read_by_point[finger.along[i + 1]])
+                return true;
     }
+    for (const CompiledLevel& lv : model.levels)
+        for (int b : lv.bows)
+            if (lv.read_by_point[model.bows[b].bow] || lv.read_by_point[model.bows[b].string])
+                return true;
     return false;
 }
 
@@ -34,12 +38,8 @@ bool has_finger_on_a_read_mass(const CompiledModel& model, const CompiledFinger&
 
 SchemeChange scheme_change_since(const CompiledModel& model, int revision) {
     static_assert(kSchemeRevision == 5, "say here what the new revision changes");
-    // 5: a finger moves the points reading the plain mass it pushes.
-    if (revision < 5 &&
-        std::any_of(model.fingers.begin(), model.fingers.end(), [&](const CompiledFinger& finger) {
-            return has_finger_on_a_read_mass(model, finger);
-        }))
-        return SchemeChange::Fix;
+    // 5: a finger or a bow moves the points reading the plain mass it pushes.
+    if (revision < 5 && reads_a_point_stale_before_revision_5(model)) return SchemeChange::Fix;
     // 4: the friction's reciprocals; a take re-renders with the divisions it was played with
     // (Simulation::compute_as_of()), so nothing differs.
     const auto any_level = [&](bool (*changed)(const CompiledLevel&)) {

@@ -72,7 +72,7 @@ double Simulation::gesture_axis(GestureAxis axis, double t) const {
 
 void Simulation::compute_as_of(int revision) {
     static_assert(kSchemeRevision == 5, "say here how to compute as an older revision, if it can");
-    // Revision 5 is a fix (a finger's push reaching the modal points): it is not undone, and
+    // Revision 5 is a fix (a push reaching the modal points that read its mass): not undone, and
     // render --take says where the older take may differ (scheme_change_since()).
     if (revision < 1 || revision > kSchemeRevision)
         throw std::invalid_argument("scheme revision " + std::to_string(revision) +
@@ -240,10 +240,6 @@ void Simulation::apply_modal_force(CompiledLevel& lv, int point, double force) {
     double* xn = lv.x_next();
     const CompiledModalPoint& pushed = lv.modal_points[point];
     add_modal_force(pushed, lv.coeff.data(), xn, force);
-    if (lv.modal_force_moves_all) {
-        update_modal_points(lv);
-        return;
-    }
     for (int q : pushed.moving_with) {  // the others are where their modes are
         const CompiledModalPoint& p = lv.modal_points[q];
         xn[p.index] = modal_point_position(p, xn);

@@ -314,6 +314,7 @@ template <int W, bool kWithGrounds, bool kWithBody>
     if constexpr (kWithBody) {  // a bow's mass may be a modal point
         sim.push(audio, string, friction);
         sim.push(audio, bowed, -friction);
+        sim.follow_pushed_masses(audio, string, bowed);
     } else {
         xn[string] += cs * friction;
         xn[bowed] += cb * -friction;

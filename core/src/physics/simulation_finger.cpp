@@ -38,10 +38,7 @@ void Simulation::solve_finger(CompiledLevel& lv, CompiledFinger& finger) {
     const double f = -(k * (u_free + u_before) + zdt * (u_free - u_before)) / (2.0 + c * (k + zdt));
     push(lv, t.a, t.wa * f);
     push(lv, t.b, t.wb * f);
-    // A modal point may read a plain mass of the two (a wide bow's contact): it follows it. A
-    // force on a modal point has moved the points sharing its modes, not those reading a mass.
-    if (!lv.modal_points.empty() && (lv.modal_point_of[t.a] < 0 || lv.modal_point_of[t.b] < 0))
-        update_modal_points(lv);
+    follow_pushed_masses(lv, t.a, t.b);
 }
 
 // The finger's stored energy ¼k(u[n]² + u[n−1]²) and, after a step, the energy its damper took

@@ -13,9 +13,9 @@
 //   4  the friction solve, and the slip velocity it reports, multiply by the reciprocals of T
 //      and of the masses' response where they divided (physics/bow_solve.cpp); told to compute
 //      as of an older revision (Simulation::compute_as_of()), the solve divides
-//   5  a fix, not arithmetic: a finger touching a modal point and a plain mass moves the other
-//      points that read that mass before anything reads them (physics/simulation_finger.cpp);
-//      before, a bow on such a point read it where the finger's push had not yet moved it
+//   5  a fix, not arithmetic: a finger or a bow that pushes a plain mass a modal point reads
+//      moves that point before anything reads it (Simulation::follow_pushed_masses()); before,
+//      a bow could read such a point, and a step end with it, where the push had not moved it
 
 namespace archet {
 

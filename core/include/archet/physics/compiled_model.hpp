@@ -151,10 +151,9 @@ struct CompiledLevel {
     std::vector<int> fingers;  ///< indices into CompiledModel::fingers
     std::vector<CompiledModalPoint> modal_points;
     std::vector<int> modal_point_of;  ///< storage index → index into modal_points, or −1
-    /// A force on a modal point puts every point where its modes are, not only those sharing
-    /// its modes: where a bow's plain mass may have moved another point's modes since they
-    /// last followed them (plan_modal_moves()).
-    bool modal_force_moves_all = false;
+    /// Storage index → 1 for a plain mass that a modal point reads as one of its modes: after
+    /// a finger's or a bow's push on one, the points follow their modes (plan_modal_moves()).
+    std::vector<char> read_by_point;
     std::vector<int> touched;  ///< storage indices whose `external` must be cleared
     std::vector<int> watched;  ///< storage indices whose total link force is kept
     std::vector<double> watched_force;
@@ -184,9 +183,6 @@ void find_chain_lengths(CompiledLevel& level);
 /// Σ weight²·T²/m over a modal point's modes: its displacement per newton over a step, the
 /// `coeff` it keeps, again whenever a mode's mass changes.
 double modal_point_response(const CompiledLevel& lv, const CompiledModalPoint& point);
-
-/// For each storage index of `lv`, whether a modal point reads it as one of its modes.
-std::vector<bool> read_by_modal_points(const CompiledLevel& lv);
 
 /// A runtime-settable parameter resolved to its array slot.
 struct ParameterSlot {

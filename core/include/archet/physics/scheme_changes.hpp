@@ -10,16 +10,11 @@ namespace archet {
 /// (1 … kSchemeRevision), or none. From revision 2 on, a level whose chain loop takes its
 /// grounds folds them into the update's coefficients; from revision 3 on, a modal point of more
 /// than eight terms sums them in interleaved partial sums (both rounding: the same physics).
-/// From revision 5 on, a finger along a modal point and a plain mass that another point reads
-/// moves that point after its push (a fix). Revision 4's friction is not among them: a
+/// From revision 5 on, a finger or a bow that pushes a plain mass a modal point reads moves
+/// that point before anything reads it (a fix). Revision 4's friction is not among them: a
 /// simulation told to compute as of an older revision (Simulation::compute_as_of()) divides as
 /// that revision did.
 enum class SchemeChange { None, Rounding, Fix };
 SchemeChange scheme_change_since(const CompiledModel& model, int revision);
-
-/// Whether scheme_change_since() finds a change.
-inline bool computes_differently_since(const CompiledModel& model, int revision) {
-    return scheme_change_since(model, revision) != SchemeChange::None;
-}
 
 }  // namespace archet
