@@ -24,6 +24,7 @@
 #include "archet/physics/parameter_smoother.hpp"
 #include "archet/physics/renderer.hpp"
 #include "archet/physics/simulation.hpp"
+#include "second_bow.hpp"
 #include "test_support.hpp"
 
 namespace archet {
@@ -390,14 +391,7 @@ TEST(BowedChain, ShapesWithoutAPlaceInTheLoopRunTheGeneralStepAndSaySo) {
     EXPECT_EQ(misfit_of(hand_at_audio_rate), "gesture points run at audio rate");
 
     Model two_bows = shipped_string(220, 60);  // a second bow, resting on s40
-    Lia second = *two_bows.find_lia("friction");
-    for (const char* mass : {"bow", "bow_press"}) {
-        Mat copy = *two_bows.find_mat(mass);
-        copy.id += "2";
-        two_bows.mats.push_back(copy);
-    }
-    second.id = "friction2", second.from = "bow2", second.press = "bow_press2", second.to = "s40";
-    two_bows.lias.push_back(second);
+    test::add_second_bow(two_bows, "s40");
     EXPECT_EQ(misfit_of(two_bows), "it has no bow, or more than one");
 
     Model five_hand_links = shipped_string(220, 60);

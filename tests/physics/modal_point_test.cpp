@@ -20,6 +20,7 @@
 #include "archet/physics/modal_point_position.hpp"
 #include "archet/physics/scheme_changes.hpp"
 #include "archet/physics/simulation.hpp"
+#include "second_bow.hpp"
 
 namespace archet {
 namespace {
@@ -266,7 +267,7 @@ TEST(ModalPoint, AForceMovesThePointsSharingItsModes) {
     expect_points_where_their_modes_are(modal, 24000);
 }
 
-// A finger's push on a plain mass a point reads moves that point (follow_pushed_masses()): on
+// A finger's push on a plain mass a point reads moves that point (Simulation::push_pair()): on
 // the shipped fingered string, and with the finger halfway between the bridge and s1 where a
 // point of its own reads s1 alone and the hair reads s2–s4 (nothing else moves that point).
 TEST(ModalPoint, AFingersPushMovesThePointsReadingItsMass) {
@@ -300,15 +301,7 @@ TEST(ModalPoint, ABowsPushMovesThePointsReadingItsMass) {
     const CompiledModel compiled = compile(on_a_mode);
     EXPECT_EQ(scheme_change_since(compiled, 4), SchemeChange::Fix);
     EXPECT_EQ(scheme_change_since(compiled, 5), SchemeChange::None);
-    Lia second = *friction;
-    second.id = "friction2", second.to = "bridge";
-    for (const char* mass : {"bow", "bow_press"}) {
-        Mat copy = *on_a_mode.find_mat(mass);
-        copy.id += "2";
-        on_a_mode.mats.push_back(copy);
-    }
-    second.from = "bow2", second.press = "bow_press2";
-    on_a_mode.lias.push_back(second);
+    test::add_second_bow(on_a_mode, "bridge");
     validate_model(on_a_mode);
     expect_points_where_their_modes_are(on_a_mode, 24000);
 }

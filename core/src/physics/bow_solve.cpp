@@ -13,9 +13,7 @@ void Simulation::solve_bow(CompiledLevel& lv, CompiledBow& bow) {
     const double f = friction::solve_point_bow(
         bow, {x[b], xp[b], xn[b], response(lv, b), x[s], xp[s], xn[s], response(lv, s)}, lv.dt,
         1.0 / lv.dt, friction_divides_);
-    push(lv, s, f);
-    push(lv, b, -f);
-    follow_pushed_masses(lv, s, b);
+    push_pair(lv, s, f, b, -f);
     lv.external[s] += f;
     lv.external[b] -= f;
 }

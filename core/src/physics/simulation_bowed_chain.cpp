@@ -312,9 +312,7 @@ template <int W, bool kWithGrounds, bool kWithBody>
         frame.bow, {x[bowed], xp[bowed], xn[bowed], cb, x[string], xp[string], xn[string], cs},
         frame.dt, frame.inverse_dt, frame.divides);
     if constexpr (kWithBody) {  // a bow's mass may be a modal point
-        sim.push(audio, string, friction);
-        sim.push(audio, bowed, -friction);
-        sim.follow_pushed_masses(audio, string, bowed);
+        sim.push_pair(audio, string, friction, bowed, -friction);
     } else {
         xn[string] += cs * friction;
         xn[bowed] += cb * -friction;

@@ -36,9 +36,7 @@ void Simulation::solve_finger(CompiledLevel& lv, CompiledFinger& finger) {
     const double u_free = t.at(lv.x_next());
     const double u_before = t.at(lv.x_prev());
     const double f = -(k * (u_free + u_before) + zdt * (u_free - u_before)) / (2.0 + c * (k + zdt));
-    push(lv, t.a, t.wa * f);
-    push(lv, t.b, t.wb * f);
-    follow_pushed_masses(lv, t.a, t.b);
+    push_pair(lv, t.a, t.wa * f, t.b, t.wb * f);
 }
 
 // The finger's stored energy ¼k(u[n]² + u[n−1]²) and, after a step, the energy its damper took

@@ -14,7 +14,7 @@
 //      and of the masses' response where they divided (physics/bow_solve.cpp); told to compute
 //      as of an older revision (Simulation::compute_as_of()), the solve divides
 //   5  a fix, not arithmetic: a finger or a bow that pushes a plain mass a modal point reads
-//      moves that point before anything reads it (Simulation::follow_pushed_masses()); before,
+//      moves that point before anything reads it (Simulation::push_pair()); before,
 //      a bow could read such a point, and a step end with it, where the push had not moved it
 
 namespace archet {

@@ -131,7 +131,7 @@ class Simulation {
     void solve_finger(CompiledLevel& level, CompiledFinger& finger);
     double response(const CompiledLevel& level, int storage) const;
     void push(CompiledLevel& level, int storage, double force);
-    void follow_pushed_masses(CompiledLevel& level, int a, int b);
+    void push_pair(CompiledLevel& level, int a, double force_a, int b, double force_b);
     double finger_stored_energy(const CompiledLevel& level, const CompiledFinger& finger) const;
     double finger_dissipation(const CompiledLevel& level, const CompiledFinger& finger) const;
     void update_gesture_points(CompiledLevel& level);
@@ -240,10 +240,13 @@ inline void Simulation::push(CompiledLevel& lv, int s, double force) {
         apply_modal_force(lv, point, force);
 }
 
-// After a finger's or a bow's pushes on MATs a and b: where a modal point reads a plain one of
-// them (a wide bow's contact reads three string masses), the points follow their modes before
-// anything reads them. A push on a modal point has moved the points sharing its modes itself.
-inline void Simulation::follow_pushed_masses(CompiledLevel& lv, int a, int b) {
+// A finger's or a bow's two forces, on MATs a and b, pushed as push() does. Where a modal point
+// reads a plain one of them (a wide bow's contact reads three string masses), the points then
+// follow their modes before anything reads them; a push on a modal point has moved the points
+// sharing its modes itself.
+inline void Simulation::push_pair(CompiledLevel& lv, int a, double force_a, int b, double force_b) {
+    push(lv, a, force_a);
+    push(lv, b, force_b);
     if (lv.read_by_point[a] || lv.read_by_point[b]) update_modal_points(lv);
 }
 
