@@ -13,10 +13,12 @@ struct Tick {
 
 /// Where the link sees the hand now: along the line from its previous position to its newest,
 /// `done` of the way through the hand's period (seen_position() says why).
+[[gnu::always_inline]] inline double hand_seen_at(double from, double to, double done) {
+    return from + (to - from) * done;
+}
 [[gnu::always_inline]] inline double hand_seen_at(const double* hand_x_prev, const double* hand_x,
                                                   int index, double done) {
-    const double from = hand_x_prev[index], to = hand_x[index];
-    return from + (to - from) * done;
+    return hand_seen_at(hand_x_prev[index], hand_x[index], done);
 }
 
 /// The link's force from where it sees the hand now and where its end is, its state carried to

@@ -1,7 +1,7 @@
 // The step of a bowed chain: what step() does for that one shape, a bowed string (a chain of
 // masses at audio rate, with or without grounds, a body or other modal points and links besides
-// the chain's, one bow, a hand holding it through links from slower gesture points), with what
-// the general step asks at every tick asked once per block. The same operations in the same
+// the chain's, fingers, one bow, a hand holding it through links from slower gesture points), with
+// what the general step asks at every tick asked once per block. The same operations in the same
 // order, so the same bytes (bowed_chain_test.cpp holds it to step()).
 // Built for each instruction set as the chain loop is, with the chain's rounds inlined: the
 // build is chosen once per block, not at every tick.
@@ -18,6 +18,7 @@
 #include "friction_solve.hpp"
 #include "hand_link_tick.hpp"
 #include "level_forces.hpp"
+#include "velocity_run_output.hpp"
 
 namespace archet {
 
@@ -28,7 +29,6 @@ std::string Simulation::bowed_chain_shape_misfit() const {
     if (m.levels.empty() || m.levels[0].divider != 1) return "no level runs at the master clock";
     if (!m.controls.empty()) return "it has controls";
     const CompiledLevel& audio = m.levels[0];
-    if (!audio.fingers.empty()) return "it has a finger";
     if (!audio.gestures.empty()) return "gesture points run at audio rate";
     if (audio.bows.size() != 1 || m.bows.size() != 1) return "it has no bow, or more than one";
     if (m.hand_links > kMostHandLinks)
@@ -61,6 +61,8 @@ struct HandLinkState {
     const CompiledLevel* hand;
     double* hand_force;
     CompiledGesturePoint* gesture;
+    /// The hand's previous and newest positions: they change only when its level ticks.
+    double from = 0, to = 0;
 };
 
 }  // namespace
@@ -81,7 +83,8 @@ struct Simulation::BowedChainFrame {
     std::span<const CompiledModalPoint> modal_points;
     double string_response, bow_response, dt, inverse_dt;
     bool divides, grounds_in_loop;
-    bool body;  ///< links besides the chain's, or modal points
+    bool body;                            ///< links besides the chain's, or modal points
+    velocity_run_output::Run velocities;  ///< the outputs, when they are such a run
     int hands;
     HandLinkState hand[kMostHandLinks];
 };
@@ -96,7 +99,12 @@ struct Simulation::BowedChainLoop {
     [[gnu::always_inline]] static std::size_t ticks(Simulation& sim, BowedChainFrame& frame,
                                                     std::span<double> out);
     [[gnu::always_inline]] static void hand_links(Simulation& sim, BowedChainFrame& frame,
-                                                  const double* x);
+                                                  const double* x, bool slower);
+    /// The hand links into the frame for a block, and back into the model after it.
+    static void hold_hands(const Simulation& sim, BowedChainFrame& frame);
+    static void release_hands(const BowedChainFrame& frame);
+    /// Where the hand links' hands are, read again after their levels tick.
+    static void read_hands(BowedChainFrame& frame);
     template <int W, bool kWithGrounds, bool kWithBody>
     [[gnu::always_inline]] static void audio_level(Simulation& sim, BowedChainFrame& frame,
                                                    const double* x, const double* xp, double* xn);
@@ -180,17 +188,10 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build)
         .divides = friction_divides_,
         .grounds_in_loop = grounds_in_chain_loop(audio),
         .body = !audio.links.empty() || !audio.modal_points.empty(),
+        .velocities = velocity_run_output::find_run(model_),
         .hands = static_cast<int>(hand_plan_.size()),
         .hand = {}};
-    for (int i = 0; i < frame.hands; ++i) {
-        const HandLinkPlan& p = hand_plan_[i];
-        const CompiledCrossLink& l = *p.link;
-        frame.hand[i] = {p.link,          l.k,           l.zdt,        l.length,
-                         l.hand_sign,     p.hand_weight, l.hand_is_a,  l.d_prev,
-                         l.d_before,      l.force,       l.hand_seen,  l.hand_force_sum,
-                         l.hand_work_sum, p.end_index,   p.hand_index, p.hand_level_index,
-                         p.hand_level,    p.hand_force,  p.gesture};
-    }
+    BowedChainLoop::hold_hands(*this, frame);
     // What step() writes for a level of divider 1 at every tick.
     active_[0] = 1, countdown_[0] = 0, period_done_[0] = 1.0;
     std::size_t done = 0;
@@ -206,13 +207,7 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build)
             break;
     }
     model_.bows[0] = frame.bow;
-    for (int i = 0; i < frame.hands; ++i) {
-        const HandLinkState& l = frame.hand[i];
-        CompiledCrossLink& link = *l.link;
-        link.d_prev = l.d_prev, link.d_before = l.d_before, link.force = l.force;
-        link.hand_seen = l.hand_seen, link.hand_force_sum = l.hand_force_sum;
-        link.hand_work_sum = l.hand_work_sum;
-    }
+    BowedChainLoop::release_hands(frame);
     return done;
 }
 
@@ -239,7 +234,8 @@ template <int W, bool kWithGrounds, bool kWithBody>
     const int* const active = sim.active_.data();
     std::size_t done = 0;
     while (done < out.size()) {
-        sim.count_down_levels(1);
+        // Most ticks, no slower level ticks (the hand's ticks every 16th at 48 kHz).
+        const bool slower = sim.count_down_levels(1);
         const int now = audio.current;
         const double* const x = audio.buffer[now].data();
         const double* const xp = audio.buffer[CompiledLevel::before(now)].data();
@@ -251,17 +247,24 @@ template <int W, bool kWithGrounds, bool kWithBody>
         frame.bow.normal = normal;
         frame.ext[frame.press] -= normal;
         frame.ext[frame.surface] += normal;
-        for (int l = 1; l < levels; ++l)
-            if (active[l]) sim.compute_link_forces(level[l]);
-        hand_links(sim, frame, x);
+        if (slower)
+            for (int l = 1; l < levels; ++l)
+                if (active[l]) sim.compute_link_forces(level[l]);
+        hand_links(sim, frame, x, slower);
         // Phase 2: the audio level, then the slower levels; phase 3: x[n+1] becomes x[n].
         audio_level<W, kWithGrounds, kWithBody>(sim, frame, x, xp, xn);
-        for (int l = 1; l < levels; ++l)
-            if (active[l]) sim.integrate(level[l]);
-        for (int l = 0; l < levels; ++l)
-            if (active[l]) level[l].current = CompiledLevel::after(level[l].current);
+        if (slower) {
+            for (int l = 1; l < levels; ++l)
+                if (active[l]) sim.integrate(level[l]);
+            for (int l = 1; l < levels; ++l)
+                if (active[l]) level[l].current = CompiledLevel::after(level[l].current);
+            read_hands(frame);
+        }
+        audio.current = CompiledLevel::after(now);
         ++sim.tick_;
-        const double sample = sim.output();
+        const double sample = frame.velocities.count > 0
+                                  ? velocity_run_output::sound<W>(frame.velocities, xn, x)
+                                  : sim.output();
         out[done++] = sample;
         if (!std::isfinite(sample)) break;
     }
@@ -271,19 +274,64 @@ template <int W, bool kWithGrounds, bool kWithBody>
 // compute_hand_link_forces() for links that tick at every step, without accounts.
 [[gnu::always_inline]] inline void Simulation::BowedChainLoop::hand_links(Simulation& sim,
                                                                           BowedChainFrame& frame,
-                                                                          const double* x) {
+                                                                          const double* x,
+                                                                          bool slower) {
     const int* const active = sim.active_.data();
     double hand_work = 0;
     for (int i = 0; i < frame.hands; ++i) {
         HandLinkState& l = frame.hand[i];
-        const double at = hand_link::hand_seen_at(l.hand->x_prev(), l.hand->x(), l.hand_index,
-                                                  sim.period_done_[l.hand_level]);
+        const double at = hand_link::hand_seen_at(l.from, l.to, sim.period_done_[l.hand_level]);
         const hand_link::Tick t = hand_link::tick(l, at, x[l.end]);
         frame.ext[l.end] += t.end_force;
         hand_work += t.work;
-        if (active[l.hand_level]) hand_link::hand_over(l, l.hand_weight, *l.hand_force, *l.gesture);
+        if (slower && active[l.hand_level])
+            hand_link::hand_over(l, l.hand_weight, *l.hand_force, *l.gesture);
     }
     sim.hand_work_ += hand_work;
+}
+
+void Simulation::BowedChainLoop::hold_hands(const Simulation& sim, BowedChainFrame& frame) {
+    for (int i = 0; i < frame.hands; ++i) {
+        const HandLinkPlan& p = sim.hand_plan_[i];
+        const CompiledCrossLink& l = *p.link;
+        frame.hand[i] = {.link = p.link,
+                         .k = l.k,
+                         .zdt = l.zdt,
+                         .length = l.length,
+                         .hand_sign = l.hand_sign,
+                         .hand_weight = p.hand_weight,
+                         .hand_is_a = l.hand_is_a,
+                         .d_prev = l.d_prev,
+                         .d_before = l.d_before,
+                         .force = l.force,
+                         .hand_seen = l.hand_seen,
+                         .hand_force_sum = l.hand_force_sum,
+                         .hand_work_sum = l.hand_work_sum,
+                         .end = p.end_index,
+                         .hand_index = p.hand_index,
+                         .hand_level = p.hand_level_index,
+                         .hand = p.hand_level,
+                         .hand_force = p.hand_force,
+                         .gesture = p.gesture};
+    }
+    read_hands(frame);
+}
+
+void Simulation::BowedChainLoop::release_hands(const BowedChainFrame& frame) {
+    for (int i = 0; i < frame.hands; ++i) {
+        const HandLinkState& l = frame.hand[i];
+        CompiledCrossLink& link = *l.link;
+        link.d_prev = l.d_prev, link.d_before = l.d_before, link.force = l.force;
+        link.hand_seen = l.hand_seen, link.hand_force_sum = l.hand_force_sum;
+        link.hand_work_sum = l.hand_work_sum;
+    }
+}
+
+void Simulation::BowedChainLoop::read_hands(BowedChainFrame& frame) {
+    for (int i = 0; i < frame.hands; ++i) {
+        HandLinkState& l = frame.hand[i];
+        l.from = l.hand->x_prev()[l.hand_index], l.to = l.hand->x()[l.hand_index];
+    }
 }
 
 // integrate() and solve_bow() for the audio level of a bowed chain: the chain's rounds, W
@@ -306,6 +354,7 @@ template <int W, bool kWithGrounds, bool kWithBody>
         level_forces::pull_grounds(frame.grounds, x, xp, c, frame.ground, xn);
     if (kWithBody && !frame.modal_points.empty())
         level_forces::move_modal_points(frame.modal_points, c, ext, frame.held, xn);
+    for (int f : audio.fingers) sim.solve_finger(audio, sim.model_.fingers[f]);
     const int string = frame.string, bowed = frame.bowed;
     const double cs = frame.string_response, cb = frame.bow_response;
     const double friction = friction::solve_point_bow(

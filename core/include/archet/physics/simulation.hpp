@@ -142,8 +142,9 @@ class Simulation {
     /// every point of its body.
     void apply_modal_force(CompiledLevel& level, int point, double force);
     void account(CompiledLevel& level);
-    /// The countdowns of the levels from `first` on, at the start of a tick (see step()).
-    void count_down_levels(int first);
+    /// The countdowns of the levels from `first` on, at the start of a tick (see step()):
+    /// whether any of them ticks.
+    bool count_down_levels(int first);
     std::string bowed_chain_shape_misfit() const;
     bool runs_as_bowed_chain() const {
         return bowed_chain_ && !accounting_ && !model_.levels[0].has_chain_lengths;
@@ -184,17 +185,20 @@ class Simulation {
 
 // Inline: the bowed chain's loop counts down at every tick. Countdowns rather than tick % divider:
 // a 64-bit division per level costs more than the whole step of a small model.
-inline void Simulation::count_down_levels(int first) {
+inline bool Simulation::count_down_levels(int first) {
     const int levels = static_cast<int>(model_.levels.size());
     const CompiledLevel* const level = model_.levels.data();
+    bool any = false;
     for (int l = first; l < levels; ++l) {
         const bool ticks = countdown_[l] == 0;
         active_[l] = ticks;
+        any |= ticks;
         countdown_[l] = ticks ? level[l].divider - 1 : countdown_[l] - 1;
         // How far into its period a faster link sees this level (see seen_position()).
         period_done_[l] =
             ticks ? 1.0 : (level[l].divider - 1 - countdown_[l]) * level[l].inverse_divider;
     }
+    return any;
 }
 
 // Inline: the output and the probes read it at every step.

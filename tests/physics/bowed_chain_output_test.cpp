@@ -1,0 +1,90 @@
+// The bowed chain's loop takes the sound of a run of velocity outputs (a body's modes, as the
+// shipped strings radiate) a vector of divisions at a time: it must still give output()'s
+// bytes, in every build, for every length of run, and leave other outputs to output().
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "archet/builders/bowed_string.hpp"
+#include "archet/physics/chain_kernel.hpp"
+#include "archet/physics/compiled_model.hpp"
+#include "run_as_step.hpp"
+
+namespace archet {
+namespace {
+
+using test::expect_run_as_step;
+using test::wandering_bow;
+
+Model shipped_string() {
+    BowedStringOptions o;
+    o.pitch = 220, o.masses = 60;
+    return build_bowed_string(o);
+}
+
+// The string's masses s<first> … s<first + count − 1> as its outputs, each its velocity with a
+// gain of its own (distinct gains and speeds, so that adding them in another order would show).
+Model sounding_masses(int first, int count) {
+    Model m = shipped_string();
+    m.outputs.clear();
+    for (int k = 0; k < count; ++k)
+        m.outputs.push_back(
+            {"s" + std::to_string(first + k), Output::Signal::Velocity, 0.5 + 0.37 * k});
+    return m;
+}
+
+// Consecutive storage in output order: the shape the loop sums a vector at a time.
+bool in_storage_order(const Model& model) {
+    const CompiledModel compiled = compile(model);
+    for (std::size_t k = 0; k < compiled.outputs.size(); ++k)
+        if (compiled.outputs[k].mat.level != 0 ||
+            compiled.outputs[k].mat.index != compiled.outputs[0].mat.index + static_cast<int>(k))
+            return false;
+    return true;
+}
+
+void expect_in_every_build(const Model& model, int ticks) {
+    const Gesture bow = wandering_bow(11, 0.5);
+    for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
+        if (!chain_build_runs_here(build)) continue;
+        SCOPED_TRACE(chain_build_name(build));
+        expect_run_as_step(model, bow, {500, 1, 33}, ticks, 0, build);
+    }
+}
+
+TEST(BowedChainOutput, ARunOfVelocitiesSoundsAsOutputDoesInEveryBuild) {
+    const Model shipped = shipped_string();
+    ASSERT_EQ(shipped.outputs.size(), 6u);
+    ASSERT_TRUE(in_storage_order(shipped)) << "the body's modes: the shape this is about";
+    expect_in_every_build(shipped, 12000);
+    // One output, a run as long as the loop takes (8), and lengths that leave a vector part
+    // full on each build (3, 5, 7).
+    for (int count : {1, 3, 5, 7, 8}) {
+        SCOPED_TRACE(std::to_string(count) + " outputs");
+        const Model m = sounding_masses(10, count);
+        ASSERT_TRUE(in_storage_order(m));
+        expect_in_every_build(m, 6000);
+    }
+}
+
+TEST(BowedChainOutput, OtherOutputsSoundAsOutputDoes) {
+    // Too long a run, a run out of storage order, a gap, and other signals among velocities.
+    Model nine = sounding_masses(10, 9);
+    Model reversed = sounding_masses(10, 4);
+    std::swap(reversed.outputs[0], reversed.outputs[3]);
+    Model gap = sounding_masses(10, 4);
+    gap.outputs[2].element = "s20";
+    Model mixed = shipped_string();
+    mixed.outputs[1].signal = Output::Signal::Position;
+    mixed.outputs.push_back({"bridge", Output::Signal::Force, 0.01});
+    for (const Model* m : {&nine, &reversed, &gap, &mixed}) {
+        ASSERT_FALSE(in_storage_order(*m) && m->outputs.size() <= 8 &&
+                     m->outputs[1].signal == Output::Signal::Velocity);
+        expect_in_every_build(*m, 6000);
+    }
+}
+
+}  // namespace
+}  // namespace archet
