@@ -73,7 +73,7 @@ TEST(ModalPoint, UpToEightTermsAddInOrder) {
 
 TEST(ModalPoint, LongerSumsAddEightInterleavedPartialSumsInAFixedTree) {
     std::mt19937_64 random(2);
-    for (std::size_t n : {9, 15, 16, 17, 23, 60, 61, 200})
+    for (std::size_t n : {9, 10, 11, 12, 13, 14, 15, 16, 17, 23, 60, 61, 62, 200})
         for (int trial = 0; trial < 100; ++trial) {
             const PointAndStorage in_order = random_point(n, true, random);
             double lane[8] = {};
