@@ -32,7 +32,7 @@ template <int W>
 }
 
 // The plain build: the last terms and the tree lane by lane.
-double run_sum_lanes(const double* weight, std::size_t n, const double* x) {
+double sum_plain(const double* weight, std::size_t n, const double* x) {
     Doubles2 partial[kModalSumLanes / 2] = {};
     const std::size_t k = add_rounds<2>(partial, weight, n, x);
     double lane[kModalSumLanes];
@@ -42,9 +42,9 @@ double run_sum_lanes(const double* weight, std::size_t n, const double* x) {
 }
 
 // AVX-512 and AVX2: the last terms (fewer than eight, into the first partial sums) read by
-// masked loads, which neither read nor fault past the run, and the tree in the registers, each
-// of its sums the scalar tree's (a + b is b + a to the bit).
-ARCHET_TARGET_AVX512 double run_sum_avx512(const double* weight, std::size_t n, const double* x) {
+// masked loads, which neither read nor fault past the run, and the tree in the registers: the
+// lanes it keeps add the scalar tree's operands in its order.
+ARCHET_TARGET_AVX512 double sum_avx512(const double* weight, std::size_t n, const double* x) {
     Doubles8 partial[1] = {};
     const std::size_t k = add_rounds<8>(partial, weight, n, x);
     if (k < n) {
@@ -59,8 +59,8 @@ ARCHET_TARGET_AVX512 double run_sum_avx512(const double* weight, std::size_t n, 
     return quads[0] + quads[4];
 }
 
-__attribute__((target("avx2"))) double run_sum_avx2(const double* weight, std::size_t n,
-                                                    const double* x) {
+__attribute__((target("avx2"))) double sum_avx2(const double* weight, std::size_t n,
+                                                const double* x) {
     Doubles4 partial[2] = {};
     const std::size_t k = add_rounds<4>(partial, weight, n, x);
     for (std::size_t v = 0; v < 2 && k + v * 4 < n; ++v) {
@@ -113,7 +113,7 @@ struct Build {
     RunMove move;
 };
 constexpr Build kBuilds[] = {
-    {run_sum_lanes, move_plain}, {run_sum_avx2, move_avx2}, {run_sum_avx512, move_avx512}};
+    {sum_plain, move_plain}, {sum_avx2, move_avx2}, {sum_avx512, move_avx512}};
 
 const Build& build_here(ChainBuild build) {
     if (!chain_build_runs_here(build)) throw std::logic_error("modal build not run here");

@@ -83,8 +83,8 @@ struct Simulation::BowedChainFrame {
     std::span<const CompiledModalPoint> modal_points;
     double string_response, bow_response, dt, inverse_dt;
     bool divides, grounds_in_loop;
-    bool body;                            ///< links besides the chain's, or modal points
-    velocity_run_output::Run velocities;  ///< the outputs, when they are such a run
+    bool body;               ///< links besides the chain's, or modal points
+    VelocityRun velocities;  ///< the outputs, when they are such a run
     int hands;
     HandLinkState hand[kMostHandLinks];
 };
@@ -151,7 +151,8 @@ std::size_t Simulation::run_in(std::span<double> out, ChainBuild build) {
 }
 
 // step() for the shape bowed_chain_misfit() accepts: the audio level ticks at every step, its
-// one bow solves after its links, grounds and modal points, and its hand links tick with it.
+// one bow solves after its links, grounds, modal points and fingers, and its hand links tick
+// with it.
 // The slower levels step as in step().
 std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build) {
     CompiledLevel& audio = model_.levels[0];
@@ -188,7 +189,7 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build)
         .divides = friction_divides_,
         .grounds_in_loop = grounds_in_chain_loop(audio),
         .body = !audio.links.empty() || !audio.modal_points.empty(),
-        .velocities = velocity_run_output::find_run(model_),
+        .velocities = find_velocity_run(model_),
         .hands = static_cast<int>(hand_plan_.size()),
         .hand = {}};
     BowedChainLoop::hold_hands(*this, frame);
@@ -234,7 +235,7 @@ template <int W, bool kWithGrounds, bool kWithBody>
     const int* const active = sim.active_.data();
     std::size_t done = 0;
     while (done < out.size()) {
-        // Most ticks, no slower level ticks (the hand's ticks every 16th at 48 kHz).
+        // Most ticks, no slower level ticks (the hand's, at the default divider, every 16th).
         const bool slower = sim.count_down_levels(1);
         const int now = audio.current;
         const double* const x = audio.buffer[now].data();
@@ -271,7 +272,8 @@ template <int W, bool kWithGrounds, bool kWithBody>
     return done;
 }
 
-// compute_hand_link_forces() for links that tick at every step, without accounts.
+// compute_hand_link_forces() for links that tick at every step, without accounts; `slower`:
+// whether any slower level ticks now (when none does, no hand hands a link's sums over).
 [[gnu::always_inline]] inline void Simulation::BowedChainLoop::hand_links(Simulation& sim,
                                                                           BowedChainFrame& frame,
                                                                           const double* x,
@@ -334,8 +336,8 @@ void Simulation::BowedChainLoop::read_hands(BowedChainFrame& frame) {
     }
 }
 
-// integrate() and solve_bow() for the audio level of a bowed chain: the chain's rounds, W
-// MATs a vector, then the other forces.
+// integrate(), solve_finger() and solve_bow() for the audio level of a bowed chain: the chain's
+// rounds, W MATs a vector, then the other forces.
 template <int W, bool kWithGrounds, bool kWithBody>
 [[gnu::always_inline]] inline void Simulation::BowedChainLoop::audio_level(
     Simulation& sim, BowedChainFrame& frame, const double* x, const double* xp, double* xn) {
@@ -354,7 +356,7 @@ template <int W, bool kWithGrounds, bool kWithBody>
         level_forces::pull_grounds(frame.grounds, x, xp, c, frame.ground, xn);
     if (kWithBody && !frame.modal_points.empty())
         level_forces::move_modal_points(frame.modal_points, c, ext, frame.held, xn);
-    for (int f : audio.fingers) sim.solve_finger(audio, sim.model_.fingers[f]);
+    for (int finger : audio.fingers) sim.solve_finger(audio, sim.model_.fingers[finger]);
     const int string = frame.string, bowed = frame.bowed;
     const double cs = frame.string_response, cb = frame.bow_response;
     const double friction = friction::solve_point_bow(

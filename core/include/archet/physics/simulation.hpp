@@ -46,8 +46,8 @@ class Simulation {
     std::size_t run(std::span<double> out, ChainBuild build);
     /// Why run() steps this model with the general step, or "" when it runs it as a bowed chain:
     /// a chain of masses at audio rate, with or without grounds, a body and other modal points
-    /// and links, with one bow held by at most four hand links from slower gesture points, no
-    /// controls, no fingers or gesture points at audio rate, no links between rate levels but
+    /// and links and fingers, with one bow held by at most four hand links from slower gesture
+    /// points, no controls, no gesture points at audio rate, no links between rate levels but
     /// the hand's. Energy accounts (enable_accounting()) and chain rest lengths also take the
     /// general step (a length set back to 0 counts as none after refresh_uniform_runs()).
     std::string bowed_chain_misfit() const;
