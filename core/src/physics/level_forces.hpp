@@ -59,10 +59,25 @@ struct GroundArrays {
     }
 }
 
+/// A modal point where its modes put it.
+[[gnu::always_inline]] inline void follow_modes(const CompiledModalPoint& point, double* xn) {
+    xn[point.index] = modal_point_position(point, xn);
+}
+
 /// Every modal point where its modes put it.
 [[gnu::always_inline]] inline void follow_modes(std::span<const CompiledModalPoint> points,
                                                 double* xn) {
-    for (const CompiledModalPoint& p : points) xn[p.index] = modal_point_position(p, xn);
+    for (const CompiledModalPoint& p : points) follow_modes(p, xn);
+}
+
+/// Each modal point's force moves its modes.
+[[gnu::always_inline]] inline void move_points_modes(std::span<const CompiledModalPoint> points,
+                                                     const double* c, const double* ext,
+                                                     const double* held, double* xn) {
+    for (const CompiledModalPoint& p : points) {
+        const double force = ext[p.index] + held[p.index];
+        if (force != 0.0) add_modal_force(p, c, xn, force);
+    }
 }
 
 /// The modal points' share of the update: each point's force moves its modes, then every point
@@ -70,10 +85,7 @@ struct GroundArrays {
 [[gnu::always_inline]] inline void move_modal_points(std::span<const CompiledModalPoint> points,
                                                      const double* c, const double* ext,
                                                      const double* held, double* xn) {
-    for (const CompiledModalPoint& p : points) {
-        const double force = ext[p.index] + held[p.index];
-        if (force != 0.0) add_modal_force(p, c, xn, force);
-    }
+    move_points_modes(points, c, ext, held, xn);
     follow_modes(points, xn);
 }
 

@@ -6,7 +6,9 @@
 // Built for each instruction set as the chain loop is, with the chain's rounds inlined: the
 // build is chosen once per block, not at every tick.
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -85,6 +87,11 @@ struct Simulation::BowedChainFrame {
     bool divides, grounds_in_loop;
     bool body;               ///< links besides the chain's, or modal points
     VelocityRun velocities;  ///< the outputs, when they are such a run
+    /// The modal points that nothing reads before the bow's push (neither of the bow's masses,
+    /// on no finger's way), a bit each (of the first 64): they follow their modes after it, or
+    /// not at all when its push has made them follow (`push_moves_late`, a friction not 0).
+    std::uint64_t late = 0;
+    bool push_moves_late = false;
     int hands;
     HandLinkState hand[kMostHandLinks];
 };
@@ -105,6 +112,11 @@ struct Simulation::BowedChainLoop {
     static void release_hands(const BowedChainFrame& frame);
     /// Where the hand links' hands are, read again after their levels tick.
     static void read_hands(BowedChainFrame& frame);
+    /// Which modal points follow their modes only after the bow's push.
+    static void plan_late_points(const Simulation& sim, BowedChainFrame& frame);
+    [[gnu::always_inline]] static bool is_late(const BowedChainFrame& frame, std::size_t point) {
+        return point < 64 && (frame.late >> point & 1u);
+    }
     template <int W, bool kWithGrounds, bool kWithBody>
     [[gnu::always_inline]] static void audio_level(Simulation& sim, BowedChainFrame& frame,
                                                    const double* x, const double* xp, double* xn);
@@ -193,6 +205,7 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build)
         .hands = static_cast<int>(hand_plan_.size()),
         .hand = {}};
     BowedChainLoop::hold_hands(*this, frame);
+    BowedChainLoop::plan_late_points(*this, frame);
     // What step() writes for a level of divider 1 at every tick.
     active_[0] = 1, countdown_[0] = 0, period_done_[0] = 1.0;
     std::size_t done = 0;
@@ -329,6 +342,26 @@ void Simulation::BowedChainLoop::release_hands(const BowedChainFrame& frame) {
     }
 }
 
+void Simulation::BowedChainLoop::plan_late_points(const Simulation& sim, BowedChainFrame& frame) {
+    const CompiledLevel& audio = frame.audio;
+    const std::size_t points = std::min<std::size_t>(audio.modal_points.size(), 64);
+    std::uint64_t late = points == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << points) - 1;
+    auto read = [&](int s) {
+        const int p = audio.modal_point_of[s];
+        if (p >= 0 && p < 64) late &= ~(std::uint64_t{1} << p);
+    };
+    read(frame.string), read(frame.bowed);
+    for (int finger : audio.fingers)
+        for (int s : sim.model_.fingers[finger].along) read(s);
+    frame.late = late;
+    const int pushed = audio.modal_point_of[frame.string];
+    if (pushed < 0) return;
+    std::uint64_t moved = 0;
+    for (int q : audio.modal_points[pushed].moving_with)
+        if (q < 64) moved |= std::uint64_t{1} << q;
+    frame.push_moves_late = (late & ~moved) == 0;
+}
+
 void Simulation::BowedChainLoop::read_hands(BowedChainFrame& frame) {
     for (int i = 0; i < frame.hands; ++i) {
         HandLinkState& l = frame.hand[i];
@@ -354,8 +387,13 @@ template <int W, bool kWithGrounds, bool kWithBody>
     level_forces::add_touched(frame.touched, c, ext, frame.held, xn);
     if constexpr (!kWithGrounds)
         level_forces::pull_grounds(frame.grounds, x, xp, c, frame.ground, xn);
-    if (kWithBody && !frame.modal_points.empty())
-        level_forces::move_modal_points(frame.modal_points, c, ext, frame.held, xn);
+    // move_modal_points(), the points that nothing reads before the bow's push left to after it
+    // (every point ends where its modes are, whenever it follows them).
+    if (kWithBody && !frame.modal_points.empty()) {
+        level_forces::move_points_modes(frame.modal_points, c, ext, frame.held, xn);
+        for (std::size_t p = 0; p < frame.modal_points.size(); ++p)
+            if (!is_late(frame, p)) level_forces::follow_modes(frame.modal_points[p], xn);
+    }
     for (int finger : audio.fingers) sim.solve_finger(audio, sim.model_.fingers[finger]);
     const int string = frame.string, bowed = frame.bowed;
     const double cs = frame.string_response, cb = frame.bow_response;
@@ -364,6 +402,9 @@ template <int W, bool kWithGrounds, bool kWithBody>
         frame.dt, frame.inverse_dt, frame.divides);
     if constexpr (kWithBody) {  // a bow's mass may be a modal point
         sim.push_pair(audio, string, friction, bowed, -friction);
+        if (frame.late != 0 && !(frame.push_moves_late && friction != 0.0))
+            for (std::size_t p = 0; p < frame.modal_points.size(); ++p)
+                if (is_late(frame, p)) level_forces::follow_modes(frame.modal_points[p], xn);
     } else {
         xn[string] += cs * friction;
         xn[bowed] += cb * -friction;
