@@ -16,7 +16,6 @@
 namespace archet {
 namespace {
 
-using test::expect_run_as_step;
 using test::wandering_bow;
 
 Model shipped_string() {
@@ -42,12 +41,7 @@ int velocity_run_length(const Model& model) {
 }
 
 void expect_in_every_build(const Model& model, int ticks) {
-    const Gesture bow = wandering_bow(11, 0.5);
-    for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
-        if (!chain_build_runs_here(build)) continue;
-        SCOPED_TRACE(chain_build_name(build));
-        expect_run_as_step(model, bow, {500, 1, 33}, ticks, 0, build);
-    }
+    test::expect_run_as_step_in_every_build(model, wandering_bow(11, 0.5), {500, 1, 33}, ticks);
 }
 
 TEST(BowedChainOutput, ARunOfVelocitiesSoundsAsOutputDoesInEveryBuild) {

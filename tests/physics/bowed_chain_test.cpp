@@ -31,6 +31,7 @@ namespace archet {
 namespace {
 
 using test::expect_run_as_step;
+using test::expect_run_as_step_in_every_build;
 using test::same_bytes;
 using test::state_of;
 using test::wandering_bow;
@@ -326,14 +327,10 @@ TEST(BowedChain, RunGivesStepsBytesWithAFinger) {
     o.paper = true, o.masses = 60, o.finger_position = 0.75;
     const Model paper = build_bowed_string(o);
     const Gesture bow = wandering_bow(9, 0.5);
-    for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
-        if (!chain_build_runs_here(build)) continue;
-        SCOPED_TRACE(chain_build_name(build));
-        expect_run_as_step(fingered, bow, {480, 1, 7}, 12000, 0, build);
-        expect_run_as_step(under_the_hair, bow, {333}, 12000, 0, build);
-        expect_run_as_step(at_the_bridge, bow, {500}, 12000, 0, build);
-        expect_run_as_step(paper, bow, {777}, 12000, 0, build);
-    }
+    expect_run_as_step_in_every_build(fingered, bow, {480, 1, 7}, 12000);
+    expect_run_as_step_in_every_build(under_the_hair, bow, {333}, 12000);
+    expect_run_as_step_in_every_build(at_the_bridge, bow, {500}, 12000);
+    expect_run_as_step_in_every_build(paper, bow, {777}, 12000);
     expect_run_follows_changes(fingered, {{"finger", "position", 0.8},
                                           {"finger", "pressure", 0.5},
                                           {"finger", "position", 1.2},

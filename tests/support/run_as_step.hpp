@@ -74,4 +74,14 @@ inline void expect_run_as_step(const Model& model, const Gesture& gesture, std::
     EXPECT_GT(sounding, ticks / 2) << model.name << " was silent: the comparison proves little";
 }
 
+/// expect_run_as_step() in each build of the loop this CPU runs (plain, AVX2, AVX-512).
+inline void expect_run_as_step_in_every_build(const Model& model, const Gesture& gesture,
+                                              const std::vector<int>& blocks, int ticks) {
+    for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
+        if (!chain_build_runs_here(build)) continue;
+        SCOPED_TRACE(chain_build_name(build));
+        expect_run_as_step(model, gesture, blocks, ticks, 0, build);
+    }
+}
+
 }  // namespace archet::test
