@@ -110,8 +110,16 @@ struct Simulation::BowedChainLoop {
     /// The hand links into the frame for a block, and back into the model after it.
     static void hold_hands(const Simulation& sim, BowedChainFrame& frame);
     static void release_hands(const BowedChainFrame& frame);
-    /// Where the hand links' hands are, read again after their levels tick.
-    static void read_hands(BowedChainFrame& frame);
+    /// Where the hand links' hands are, read again after their levels tick. Inlined into each
+    /// build: called out of the AVX-512 loop, its legacy SSE loads ran while the upper halves
+    /// of the vector registers were in use (no vzeroupper before the call), which on an Intel
+    /// Xeon (Emerald Rapids) cost a seventh of the paper string's time.
+    [[gnu::always_inline]] static void read_hands(BowedChainFrame& frame) {
+        for (int i = 0; i < frame.hands; ++i) {
+            HandLinkState& l = frame.hand[i];
+            l.from = l.hand->x_prev()[l.hand_index], l.to = l.hand->x()[l.hand_index];
+        }
+    }
     /// Which modal points follow their modes only after the bow's push.
     static void plan_late_points(const Simulation& sim, BowedChainFrame& frame);
     [[gnu::always_inline]] static bool is_late(const BowedChainFrame& frame, std::size_t point) {
@@ -360,13 +368,6 @@ void Simulation::BowedChainLoop::plan_late_points(const Simulation& sim, BowedCh
     for (int q : audio.modal_points[pushed].moving_with)
         if (q < 64) moved |= std::uint64_t{1} << q;
     frame.push_moves_late = (late & ~moved) == 0;
-}
-
-void Simulation::BowedChainLoop::read_hands(BowedChainFrame& frame) {
-    for (int i = 0; i < frame.hands; ++i) {
-        HandLinkState& l = frame.hand[i];
-        l.from = l.hand->x_prev()[l.hand_index], l.to = l.hand->x()[l.hand_index];
-    }
 }
 
 // integrate(), solve_finger() and solve_bow() for the audio level of a bowed chain: the chain's
