@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev nlohmann-json3-dev libcli11-dev libsndfile1-dev
+  libeigen3-dev nlohmann-json3-dev libsimdjson-dev libcli11-dev libsndfile1-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   qt6-base-dev libqcustomplot-dev
   libjack-jackd2-dev librtaudio-dev jackd2 libevdev-dev libsdl2-dev

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "archet/common/printable_text.hpp"
+#include "fast_json.hpp"
 
 namespace archet {
 
@@ -29,6 +30,19 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 const char* type_name(const nlohmann::ordered_json& v) {
     return v.type_name();
 }
+const char* type_name(const FastJson& v) {
+    return v.type_name();
+}
+
+// Calls f with each key of an object, in the file's order.
+template <class F>
+void for_each_key(const nlohmann::ordered_json& object, F&& f) {
+    for (auto it = object.begin(); it != object.end(); ++it) f(it.key());
+}
+template <class F>
+void for_each_key(const FastJson& object, F&& f) {
+    object.for_each_member([&](const FastJsonMember& m) { f(m.key()); });
+}
 }  // namespace
 
 std::string closest_word(const std::string& word, const std::set<std::string>& candidates) {
@@ -41,107 +55,133 @@ std::string closest_word(const std::string& word, const std::set<std::string>& c
     return best;
 }
 
-JsonObjectReader::JsonObjectReader(const nlohmann::ordered_json& object, std::string where)
+template <class Value>
+BasicJsonObjectReader<Value>::BasicJsonObjectReader(const Value& object, std::string where)
     : object_(object), where_(std::move(where)) {
+    known_.reserve(16);  // an element's keys, without growing the list as they are asked for
     if (!object_.is_object())
         throw InputError(where_,
                          std::string("expected a JSON object, found ") + type_name(object_));
 }
 
-bool JsonObjectReader::has(const std::string& key) const {
-    return object_.contains(key);
+template <class Value>
+bool BasicJsonObjectReader<Value>::has(const std::string& key) const {
+    if constexpr (kViews)
+        return object_.contains(key.c_str());
+    else
+        return object_.contains(key);
 }
 
-void JsonObjectReader::ask(const std::string& key) {
+template <class Value>
+void BasicJsonObjectReader<Value>::ask(const std::string& key) {
     if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.push_back(key);
 }
 
-const nlohmann::ordered_json& JsonObjectReader::get(const std::string& key) {
-    const nlohmann::ordered_json* v = optional(key);
+template <class Value>
+auto BasicJsonObjectReader<Value>::get(const std::string& key) -> Ref {
+    Found v = optional(key);
     if (!v) throw InputError(where_, "missing key " + quoted_text(key));
     return *v;
 }
 
-const nlohmann::ordered_json* JsonObjectReader::optional(const std::string& key) {
+template <class Value>
+auto BasicJsonObjectReader<Value>::optional(const std::string& key) -> Found {
     ask(key);
-    auto it = object_.find(key);
-    return it == object_.end() ? nullptr : &*it;
+    if constexpr (kViews) {
+        return object_.find(key);
+    } else {
+        auto it = object_.find(key);
+        return it == object_.end() ? nullptr : &*it;
+    }
 }
 
-double JsonObjectReader::number(const std::string& key) {
+template <class Value>
+double BasicJsonObjectReader<Value>::number(const std::string& key) {
     return checked_number(key, get(key));
 }
 
-double JsonObjectReader::checked_number(const std::string& key,
-                                        const nlohmann::ordered_json& v) const {
+template <class Value>
+double BasicJsonObjectReader<Value>::checked_number(const std::string& key, const Value& v) const {
     if (!v.is_number())
         throw InputError(where_, quoted_text(key) + " must be a number, found " + type_name(v));
-    const double x = v.get<double>();
+    const double x = v.template get<double>();
     if (!std::isfinite(x)) throw InputError(where_, quoted_text(key) + " must be a finite number");
     return x;
 }
 
-double JsonObjectReader::number(const std::string& key, double fallback) {
-    const nlohmann::ordered_json* v = optional(key);
+template <class Value>
+double BasicJsonObjectReader<Value>::number(const std::string& key, double fallback) {
+    const Found v = optional(key);
     return v ? checked_number(key, *v) : fallback;
 }
 
-int JsonObjectReader::integer(const std::string& key, int fallback) {
-    const nlohmann::ordered_json* found = optional(key);
+template <class Value>
+int BasicJsonObjectReader<Value>::integer(const std::string& key, int fallback) {
+    const Found found = optional(key);
     if (!found) return fallback;
     const auto& v = *found;
     if (!v.is_number_integer())
         throw InputError(where_, quoted_text(key) + " must be an integer, found " + type_name(v));
     const bool fits = v.is_number_unsigned()
-                          ? v.get<std::uint64_t>() <= std::numeric_limits<int>::max()
-                          : v.get<std::int64_t>() >= std::numeric_limits<int>::min() &&
-                                v.get<std::int64_t>() <= std::numeric_limits<int>::max();
+                          ? v.template get<std::uint64_t>() <= std::numeric_limits<int>::max()
+                          : v.template get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                                v.template get<std::int64_t>() <= std::numeric_limits<int>::max();
     if (!fits)
         throw InputError(where_, key + " " + v.dump() +
                                      " is out of range: a whole number here lies between "
                                      "-2147483648 and 2147483647");
-    return v.get<int>();
+    return v.template get<int>();
 }
 
-std::string JsonObjectReader::text(const std::string& key) {
+template <class Value>
+std::string BasicJsonObjectReader<Value>::text(const std::string& key) {
     return checked_text(key, get(key));
 }
 
-std::string JsonObjectReader::checked_text(const std::string& key,
-                                           const nlohmann::ordered_json& v) const {
+template <class Value>
+std::string BasicJsonObjectReader<Value>::checked_text(const std::string& key,
+                                                       const Value& v) const {
     if (!v.is_string())
         throw InputError(where_, quoted_text(key) + " must be a string, found " + type_name(v));
-    return v.get<std::string>();
+    return v.template get<std::string>();
 }
 
-std::string JsonObjectReader::text(const std::string& key, const std::string& fallback) {
-    const nlohmann::ordered_json* v = optional(key);
+template <class Value>
+std::string BasicJsonObjectReader<Value>::text(const std::string& key,
+                                               const std::string& fallback) {
+    const Found v = optional(key);
     return v ? checked_text(key, *v) : fallback;
 }
 
-const nlohmann::ordered_json& JsonObjectReader::array(const std::string& key) {
-    const auto& v = get(key);
+template <class Value>
+auto BasicJsonObjectReader<Value>::array(const std::string& key) -> Ref {
+    Ref v = get(key);
     if (!v.is_array())
         throw InputError(where_, quoted_text(key) + " must be an array, found " + type_name(v));
     return v;
 }
 
-const nlohmann::ordered_json& JsonObjectReader::object(const std::string& key) {
-    const auto& v = get(key);
+template <class Value>
+auto BasicJsonObjectReader<Value>::object(const std::string& key) -> Ref {
+    Ref v = get(key);
     if (!v.is_object())
         throw InputError(where_, quoted_text(key) + " must be an object, found " + type_name(v));
     return v;
 }
 
-void JsonObjectReader::finish() const {
-    for (auto it = object_.begin(); it != object_.end(); ++it) {
-        if (std::find(known_.begin(), known_.end(), it.key()) != known_.end()) continue;
-        std::string message = "unknown key " + quoted_text(it.key());
+template <class Value>
+void BasicJsonObjectReader<Value>::finish() const {
+    for_each_key(object_, [&](const std::string& key) {
+        if (std::find(known_.begin(), known_.end(), key) != known_.end()) return;
+        std::string message = "unknown key " + quoted_text(key);
         const std::string hint =
-            closest_word(it.key(), std::set<std::string>(known_.begin(), known_.end()));
+            closest_word(key, std::set<std::string>(known_.begin(), known_.end()));
         if (!hint.empty()) message += "; did you mean " + quoted_text(hint) + "?";
         throw InputError(where_, message);
-    }
+    });
 }
+
+template class BasicJsonObjectReader<nlohmann::ordered_json>;
+template class BasicJsonObjectReader<FastJson>;
 
 }  // namespace archet

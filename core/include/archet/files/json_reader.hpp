@@ -4,17 +4,28 @@
 // model file is an error rather than a silently ignored parameter.
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "archet/common/input_error.hpp"
 
 namespace archet {
 
-class JsonObjectReader {
+/// Reads one object of a document that nlohmann::ordered_json or simdjson (FastJson, for model
+/// and gesture files) parsed. Values it finds come back as references into an nlohmann document
+/// and as views (held by value) into a simdjson one.
+template <class Value>
+class BasicJsonObjectReader {
+    static constexpr bool kViews = !std::is_same_v<Value, nlohmann::ordered_json>;
+
   public:
-    JsonObjectReader(const nlohmann::ordered_json& object, std::string where);
+    using Ref = std::conditional_t<kViews, Value, const Value&>;
+    using Found = std::conditional_t<kViews, std::optional<Value>, const Value*>;
+
+    BasicJsonObjectReader(const Value& object, std::string where);
 
     bool has(const std::string& key) const;
     double number(const std::string& key);
@@ -22,25 +33,27 @@ class JsonObjectReader {
     int integer(const std::string& key, int fallback);
     std::string text(const std::string& key);
     std::string text(const std::string& key, const std::string& fallback);
-    const nlohmann::ordered_json& array(const std::string& key);
-    const nlohmann::ordered_json& object(const std::string& key);
-    const nlohmann::ordered_json* optional(const std::string& key);
+    Ref array(const std::string& key);
+    Ref object(const std::string& key);
+    Found optional(const std::string& key);
 
     /// Throws if the object holds a key none of the calls above asked for.
     void finish() const;
     const std::string& where() const { return where_; }
 
   private:
-    const nlohmann::ordered_json& get(const std::string& key);
+    Ref get(const std::string& key);
     /// Notes a key as one this object may hold (for finish()).
     void ask(const std::string& key);
-    double checked_number(const std::string& key, const nlohmann::ordered_json& v) const;
-    std::string checked_text(const std::string& key, const nlohmann::ordered_json& v) const;
+    double checked_number(const std::string& key, const Value& v) const;
+    std::string checked_text(const std::string& key, const Value& v) const;
 
-    const nlohmann::ordered_json& object_;
+    const Value& object_;
     std::string where_;
     std::vector<std::string> known_;  ///< the keys asked for: a handful, searched in order
 };
+
+using JsonObjectReader = BasicJsonObjectReader<nlohmann::ordered_json>;
 
 /// The closest of `candidates` to `word` by edit distance, or "" when none is close.
 std::string closest_word(const std::string& word, const std::set<std::string>& candidates);
