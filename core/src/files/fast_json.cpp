@@ -7,23 +7,31 @@ namespace archet {
 
 namespace {
 
-// Whether any object under `value` holds a key twice: a handful of keys an object, compared
-// pairwise; the walk keeps its own stack, so nesting costs no recursion.
+bool is_container(simdjson::dom::element e) {
+    return e.type() == simdjson::dom::element_type::ARRAY ||
+           e.type() == simdjson::dom::element_type::OBJECT;
+}
+
+// Whether any object under `value` holds a key twice: an element's handful of keys, compared
+// pairwise (as nlohmann's ordered map finds them). The walk keeps its own stack of the arrays
+// and objects still to look into, so nesting costs no recursion and numbers no memory.
 bool has_repeated_key(simdjson::dom::element value) {
-    std::vector<simdjson::dom::element> pending{value};
+    std::vector<simdjson::dom::element> pending;
+    if (is_container(value)) pending.push_back(value);
     std::vector<std::string_view> keys;
     while (!pending.empty()) {
         const simdjson::dom::element e = pending.back();
         pending.pop_back();
         if (e.type() == simdjson::dom::element_type::ARRAY) {
-            for (simdjson::dom::element item : simdjson::dom::array(e)) pending.push_back(item);
-        } else if (e.type() == simdjson::dom::element_type::OBJECT) {
-            keys.clear();
-            for (simdjson::dom::key_value_pair m : simdjson::dom::object(e)) {
-                if (std::find(keys.begin(), keys.end(), m.key) != keys.end()) return true;
-                keys.push_back(m.key);
-                pending.push_back(m.value);
-            }
+            for (simdjson::dom::element item : simdjson::dom::array(e))
+                if (is_container(item)) pending.push_back(item);
+            continue;
+        }
+        keys.clear();
+        for (simdjson::dom::key_value_pair m : simdjson::dom::object(e)) {
+            if (std::find(keys.begin(), keys.end(), m.key) != keys.end()) return true;
+            keys.push_back(m.key);
+            if (is_container(m.value)) pending.push_back(m.value);
         }
     }
     return false;
@@ -49,7 +57,15 @@ const char* FastJson::type_name() const {
 }
 
 std::size_t FastJson::size() const {
-    if (is_array()) return simdjson::dom::array(element_).size();
+    if (is_array()) {
+        // simdjson's count stops at 0xFFFFFF: past it, count them.
+        const simdjson::dom::array array(element_);
+        std::size_t count = array.size();
+        if (count < 0xFFFFFF) return count;
+        count = 0;
+        for ([[maybe_unused]] simdjson::dom::element item : array) ++count;
+        return count;
+    }
     if (is_object()) return simdjson::dom::object(element_).size();
     return type() == Type::NULL_VALUE ? 0 : 1;
 }

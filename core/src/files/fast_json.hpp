@@ -7,6 +7,7 @@
 
 #include <simdjson.h>
 
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -39,8 +40,12 @@ class FastJson {
     requires std::is_integral_v<Index> FastJson operator[](Index i) const {
         return FastJson(element_.at(static_cast<std::size_t>(i)).value());
     }
-    /// Object member `key` (the object must hold it).
-    FastJson operator[](const char* key) const { return *find(key); }
+    /// Object member `key`; the caller checked it is there (contains()).
+    FastJson operator[](const char* key) const {
+        const std::optional<FastJson> member = find(key);
+        assert(member);
+        return *member;
+    }
     bool contains(const char* key) const { return find(key).has_value(); }
     std::optional<FastJson> find(std::string_view key) const;
 
@@ -52,8 +57,10 @@ class FastJson {
             return double(element_);
         else if constexpr (std::is_same_v<T, std::uint64_t>)
             return std::uint64_t(element_);
-        else
+        else {
+            static_assert(std::is_same_v<T, int> || std::is_same_v<T, std::int64_t>);
             return static_cast<T>(int64());  // after the caller's range check, as nlohmann
+        }
     }
     /// The value as JSON text (error messages).
     std::string dump() const { return simdjson::minify(element_); }
@@ -103,16 +110,20 @@ void FastJson::for_each_member(F&& f) const {
         f(FastJsonMember{m.key, FastJson(m.value)});
 }
 
-/// A parsed document and the parser whose memory its values live in.
+/// A parsed document and the parser whose memory its values live in (so it stays put).
 struct FastJsonDocument {
+    FastJsonDocument() = default;
+    FastJsonDocument(const FastJsonDocument&) = delete;
+    FastJsonDocument& operator=(const FastJsonDocument&) = delete;
+
     simdjson::dom::parser parser;
     FastJson root;
 };
 
 /// Parses `text` into `document`, or returns false where nlohmann must read it instead: a
-/// syntax error or number beyond range (whose message nlohmann words), a byte-order mark
-/// (which nlohmann skips) or an object with a key twice (nlohmann keeps the last, simdjson the
-/// first).
+/// syntax error (nlohmann words the message), a number beyond double range, an integer beyond
+/// 64 bits (nlohmann reads it as a double), nesting deeper than 1,024, a byte-order mark (which
+/// nlohmann skips) or an object with a key twice (nlohmann keeps the last, simdjson the first).
 bool parse_fast_json(const std::string& text, FastJsonDocument& document);
 
 }  // namespace archet

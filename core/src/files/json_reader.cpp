@@ -67,7 +67,7 @@ BasicJsonObjectReader<Value>::BasicJsonObjectReader(const Value& object, std::st
 template <class Value>
 bool BasicJsonObjectReader<Value>::has(const std::string& key) const {
     if constexpr (kViews)
-        return object_.contains(key.c_str());
+        return object_.find(key).has_value();
     else
         return object_.contains(key);
 }

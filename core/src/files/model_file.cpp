@@ -129,12 +129,21 @@ Json parse_json(const std::string& text, const std::string& source) {
 // else by nlohmann, which words the errors of what simdjson refuses.
 template <class Read>
 auto read_document(const std::string& text, const std::string& source, Read&& read) {
-    FastJsonDocument fast;
-    if (parse_fast_json(text, fast)) return read(fast.root);
+    {
+        FastJsonDocument fast;  // freed before nlohmann parses
+        if (parse_fast_json(text, fast)) return read(fast.root);
+    }
     return read(parse_json(text, source));
 }
 
 }  // namespace
+
+bool parses_fast(const std::string& text) {
+    FastJsonDocument fast;
+    return parse_fast_json(text, fast);
+}
+
+namespace {}  // namespace
 
 Model parse_model(const std::string& text, const std::string& source) {
     return read_document(text, source,

@@ -26,6 +26,8 @@ class BasicJsonObjectReader {
     using Found = std::conditional_t<kViews, std::optional<Value>, const Value*>;
 
     BasicJsonObjectReader(const Value& object, std::string where);
+    /// It keeps a reference to the object: never one to a temporary.
+    BasicJsonObjectReader(Value&& object, std::string where) = delete;
 
     bool has(const std::string& key) const;
     double number(const std::string& key);

@@ -21,6 +21,11 @@ std::string format_model(const Model& model);
 Gesture parse_gesture(const std::string& text, const std::string& source = "gesture");
 std::string format_gesture(const Gesture& gesture);
 
+/// Whether the two parsers above read `text` with simdjson, the fast one, rather than nlohmann
+/// (which reads what simdjson refuses or would read otherwise; docs/architecture.md): for the
+/// tests and fuzzers that hold the two to the same result.
+bool parses_fast(const std::string& text);
+
 Model load_model_file(const std::filesystem::path& path);
 Gesture load_gesture_file(const std::filesystem::path& path);
 
