@@ -10,23 +10,13 @@
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/physics/compiled_model.hpp"
-
-namespace {
-
-// What reading `text` gives: the model written out again, or the error's words.
-std::string outcome(const std::string& text) {
-    try {
-        return archet::format_model(archet::parse_model(text, "fuzz"));
-    } catch (const archet::InputError& e) {
-        return e.what();
-    }
-}
-
-}  // namespace
+#include "parsers_agree.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
-    if (archet::parses_fast(text) && outcome(text) != outcome("\xEF\xBB\xBF" + text))
+    if (!parsers_agree(text, [](const std::string& t) {
+            return archet::format_model(archet::parse_model(t, "fuzz"));
+        }))
         __builtin_trap();
     try {
         archet::Model model = archet::parse_model(text, "fuzz");

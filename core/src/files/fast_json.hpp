@@ -68,9 +68,12 @@ class FastJson {
     class Iterator;  ///< over an array's elements
     Iterator begin() const;
     Iterator end() const;
-    /// Calls f with each member of an object, in the file's order (key() and value()).
+    /// Calls f with each key of an object, in the file's order.
     template <class F>
-    void for_each_member(F&& f) const;
+    void for_each_key(F&& f) const {
+        for (simdjson::dom::key_value_pair m : simdjson::dom::object(element_))
+            f(std::string(m.key));
+    }
 
   private:
     using Type = simdjson::dom::element_type;
@@ -95,20 +98,6 @@ class FastJson::Iterator {
   private:
     simdjson::dom::array::iterator at_;
 };
-
-/// A member of an object.
-struct FastJsonMember {
-    std::string_view key_text;
-    FastJson member;
-    std::string key() const { return std::string(key_text); }
-    FastJson value() const { return member; }
-};
-
-template <class F>
-void FastJson::for_each_member(F&& f) const {
-    for (simdjson::dom::key_value_pair m : simdjson::dom::object(element_))
-        f(FastJsonMember{m.key, FastJson(m.value)});
-}
 
 /// A parsed document and the parser whose memory its values live in (so it stays put).
 struct FastJsonDocument {

@@ -41,7 +41,7 @@ void for_each_key(const nlohmann::ordered_json& object, F&& f) {
 }
 template <class F>
 void for_each_key(const FastJson& object, F&& f) {
-    object.for_each_member([&](const FastJsonMember& m) { f(m.key()); });
+    object.for_each_key(f);
 }
 }  // namespace
 
