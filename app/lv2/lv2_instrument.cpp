@@ -97,19 +97,25 @@ void Instrument::drive_hand() {
     sim_.set_device_position(hand_);
 }
 
+// In runs up to the hand's next tick, where it is driven on (a tick at a time while a glide
+// moves a parameter): Simulation::run() then takes a bowed string's own loop.
 void Instrument::render(float* out, std::uint32_t frames) {
     apply_round(frames / sim_.sample_rate());
-    for (std::uint32_t i = 0; i < frames; ++i) {
+    for (std::uint32_t i = 0; i < frames;) {
         if (blown_up_) {
-            out[i] = 0.0f;
-            continue;
+            std::fill(out + i, out + frames, 0.0f);
+            return;
         }
         smoother_.advance(sim_);
         if (sim_.tick() % haptic_divider_ == 0) drive_hand();
-        sim_.step();
-        const double y = sim_.output();
-        blown_up_ = !std::isfinite(y);
-        out[i] = limiter_.process(y);
+        std::uint64_t length = std::min<std::uint64_t>(frames - i, sound_.size());
+        length = std::min(length, haptic_divider_ - sim_.tick() % haptic_divider_);
+        if (smoother_.active() > 0) length = 1;
+        const std::size_t ran = sim_.run({sound_.data(), length});
+        for (std::size_t k = 0; k < ran; ++k, ++i) {
+            blown_up_ = !std::isfinite(sound_[k]);
+            out[i] = limiter_.process(sound_[k]);
+        }
     }
 }
 

@@ -4,6 +4,7 @@
 // string's damping scale. Built off the audio thread (the plugin's worker, or instantiate);
 // then everything it does in run() is real-time safe: no allocation, no lock, no I/O.
 
+#include <array>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -67,7 +68,8 @@ class Instrument {
     int glide_samples_ = 480;
     double bow_position_ = 0, bow_request_ = 0;
     std::uint64_t model_id_ = 0;
-    std::vector<double> state_;  ///< room for continue_from()'s hand-over
+    std::vector<double> state_;       ///< room for continue_from()'s hand-over
+    std::array<double, 64> sound_{};  ///< a run's sound (render())
     bool blown_up_ = false;
 };
 

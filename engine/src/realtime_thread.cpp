@@ -198,42 +198,80 @@ void RealtimeThread::rt_mute(float* from, float* to) {
     std::fill(from, to, 0.0f);
 }
 
+// What happens before the step at the first tick of a run: the glides move on, the driven bow
+// and the take's gesture at the hand's ticks, the haptic device.
+void RealtimeThread::rt_before_run(Simulation& sim, LoadedModel& m) {
+    rt_smoother_.advance(sim);
+    if (rt_drive_speed_ != 0 && sim.tick() % m.haptic_divider == 0) rt_drive_bow(sim, m);
+    if (m.haptic) m.haptic->before_step(sim, rt_pad_, rt_device_time());
+    if (rt_recording_ && sim.tick() % m.haptic_divider == 0)  // the points read it now
+        rt_recording_->gesture(sim.time() + m.haptic_dt, sim.device_position());
+}
+
+// How many ticks, up to `left`, run in one call from the current tick (after rt_before_run()):
+// up to the next that asks for something before its step (a glide's, the hand's tick) or after
+// it (the scopes' stored energy), so that Simulation::run() takes a bowed string's own loop.
+int RealtimeThread::rt_run_length(const Simulation& sim, const LoadedModel& m, int left) const {
+    if (rt_smoother_.active() > 0) return 1;
+    const std::uint64_t tick = sim.tick();
+    std::uint64_t ticks = std::min<std::uint64_t>(left, kMostTicksARun);
+    if (rt_drive_speed_ != 0 || rt_recording_)
+        ticks = std::min(ticks, m.haptic_divider - tick % m.haptic_divider);
+    if (m.haptic) ticks = std::min(ticks, m.haptic->ticks_to_link_tick(tick));
+    if (m.has_energy_probe)
+        ticks = std::min(ticks, rt_recording_ ? 1 : kEnergyProbeEvery - tick % kEnergyProbeEvery);
+    return static_cast<int>(ticks);
+}
+
+// The block in runs (rt_run_length()); after each tick, its probe frame, the take's sample,
+// the cross-fade, the studio's fade and the limiter, as a tick at a time would.
 void RealtimeThread::rt_run_block(LoadedModel& m, float* out, int frames, int channels) {
     const DenormalGuard no_denormals;
     Simulation& sim = *m.simulation;
     const std::size_t probes = sim.probe_count();
     float* const end = out + static_cast<std::ptrdiff_t>(frames) * channels;
-    for (int i = 0; i < frames; ++i) {
-        rt_smoother_.advance(sim);
-        if (rt_drive_speed_ != 0 && sim.tick() % m.haptic_divider == 0) rt_drive_bow(sim, m);
-        if (m.haptic) m.haptic->before_step(sim, rt_pad_, rt_device_time());
-        if (rt_recording_ && sim.tick() % m.haptic_divider == 0)  // the points read it now
-            rt_recording_->gesture(sim.time() + m.haptic_dt, sim.device_position());
-        sim.step();
-        ++rt_device_ticks_;
-        ProbeFrame f;
-        f.tick = sim.tick();
-        f.count = static_cast<std::uint32_t>(probes);
-        f.reserved = 0;
-        // The stored energy is a sum over every element, nearly as costly as the step: the scopes
-        // get it at every ipc::kEnergyProbeEvery-th sample and hold it in between; a take
-        // records it at every sample.
-        if (m.has_energy_probe && (rt_recording_ || f.tick % ipc::kEnergyProbeEvery == 0))
-            m.held_energy = sim.stored_energy();
-        for (std::size_t p = 0; p < probes; ++p)
-            f.values[p] =
-                sim.model().probes[p].kind == ProbeKind::Energy ? m.held_energy : sim.probe(p);
-        f.output = sim.output();
-        // A take holds the model's own output, before the cross-fade and the studio's fade:
-        // what `render --take` reproduces (a non-finite one ends the take, see TakeRecorder).
-        if (rt_recording_) rt_recording_->sample(sim.time(), f.output, f.values, f.count);
-        if (rt_fading_from_) f.output = rt_cross_fade(f.output);
-        f.output = rt_studio_fade(f.output);
-        if (!std::isfinite(f.output))
-            return rt_mute(out + static_cast<std::ptrdiff_t>(i) * channels, end);
-        const float y = rt_limiter_->process(f.output);
-        for (int c = 0; c < channels; ++c) out[i * channels + c] = y;
-        rt_probes_.try_push(f);
+    for (int i = 0; i < frames;) {
+        rt_before_run(sim, m);
+        const int length = rt_run_length(sim, m, frames - i);
+        // A simulated hand moves on at each tick: it reads nothing of the model in between.
+        if (m.haptic)
+            for (int k = 1; k < length; ++k)
+                m.haptic->between_link_ticks(
+                    rt_pad_, static_cast<double>(rt_device_ticks_ + k) / sample_rate_,
+                    1.0 / sim.sample_rate());
+        const std::uint64_t first = sim.tick();
+        const std::size_t ran = sim.run({rt_sound_.data(), static_cast<std::size_t>(length)},
+                                        {.values = rt_rows_.data(), .energy = false});
+        rt_device_ticks_ += ran;
+        for (std::size_t k = 0; k < ran; ++k, ++i) {
+            ProbeFrame f;
+            f.tick = first + k + 1;
+            f.count = static_cast<std::uint32_t>(probes);
+            f.reserved = 0;
+            // The stored energy is a sum over every element, nearly as costly as the step: the
+            // scopes get it at every ipc::kEnergyProbeEvery-th sample and hold it in between; a
+            // take records it at every sample. Runs end at those ticks.
+            if (m.has_energy_probe && k + 1 == ran &&
+                (rt_recording_ || f.tick % kEnergyProbeEvery == 0))
+                m.held_energy = sim.stored_energy();
+            const double* const row = rt_rows_.data() + k * probes;
+            for (std::size_t p = 0; p < probes; ++p)
+                f.values[p] =
+                    sim.model().probes[p].kind == ProbeKind::Energy ? m.held_energy : row[p];
+            f.output = rt_sound_[k];
+            // A take holds the model's own output, before the cross-fade and the studio's fade:
+            // what `render --take` reproduces (a non-finite one ends the take, see TakeRecorder).
+            if (rt_recording_)
+                rt_recording_->sample(static_cast<double>(f.tick) / sim.sample_rate(), f.output,
+                                      f.values, f.count);
+            if (rt_fading_from_) f.output = rt_cross_fade(f.output);
+            f.output = rt_studio_fade(f.output);
+            if (!std::isfinite(f.output))
+                return rt_mute(out + static_cast<std::ptrdiff_t>(i) * channels, end);
+            const float y = rt_limiter_->process(f.output);
+            for (int c = 0; c < channels; ++c) out[i * channels + c] = y;
+            rt_probes_.try_push(f);
+        }
     }
     bridge_.tick.store(sim.tick(), std::memory_order_relaxed);
     const double energy = sim.stored_energy();

@@ -11,6 +11,7 @@
 // are set by the control thread before the device starts, then only read; `bridge_` is shared
 // (ThreadBridge). The nrt_ functions are the control thread's, for after the device stopped.
 
+#include <array>
 #include <cstdint>
 #include <memory>
 
@@ -57,6 +58,8 @@ class RealtimeThread final : public AudioRenderer {
     bool rt_continue_into(LoadedModel& next);
     double rt_studio_fade(double output);
     void rt_mute(float* from, float* to);
+    void rt_before_run(Simulation& sim, LoadedModel& m);
+    int rt_run_length(const Simulation& sim, const LoadedModel& m, int left) const;
     void rt_run_block(LoadedModel& m, float* out, int frames, int channels);
     void rt_publish_shape(const LoadedModel& m);
     double rt_device_time() const { return static_cast<double>(rt_device_ticks_) / sample_rate_; }
@@ -93,6 +96,11 @@ class RealtimeThread final : public AudioRenderer {
     std::uint64_t rt_waiting_generation_ = 0;  ///< the model it was made for
     TakeRecorder* rt_recording_ = nullptr;     ///< the take being fed
     ParameterSmoother rt_smoother_;
+    /// A run's sound and probe rows (Simulation::run()): runs end at the next tick that asks
+    /// for something between steps, at most this many ticks on.
+    static constexpr std::uint64_t kMostTicksARun = 64;
+    std::array<double, kMostTicksARun> rt_sound_{};
+    std::array<double, kMostTicksARun * ipc::kMaxProbes> rt_rows_{};
 };
 
 }  // namespace archet

@@ -11,12 +11,15 @@ HapticLoop::HapticLoop(HapticDevice& device, SimulatedHand* hand, const Simulati
 }
 
 void HapticLoop::before_step(Simulation& sim, GestureSample target, double device_time) {
-    if (hand_) {
-        hand_->set_target(target);
-        hand_->advance(device_time, 1.0 / sim.sample_rate());
-    }
+    between_link_ticks(target, device_time, 1.0 / sim.sample_rate());
     if (sim.tick() % static_cast<std::uint64_t>(divider_) == 0)
         link_.tick(sim, device_time, period_);
+}
+
+void HapticLoop::between_link_ticks(GestureSample target, double device_time, double dt) {
+    if (!hand_) return;
+    hand_->set_target(target);
+    hand_->advance(device_time, dt);
 }
 
 }  // namespace archet

@@ -10,6 +10,7 @@
 #include <signal.h>
 #include <sndfile.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -49,6 +50,16 @@ void expect_replayed(const std::filesystem::path& dir, const char* why) {
         << why;
 }
 
+// Re-renders the take's probes and expects its probes.csv to the byte, times included.
+void expect_probes_replayed(const std::filesystem::path& dir) {
+    const auto r =
+        test::run_archet({"render", "--take", (dir / "take").string(), "--probes",
+                          (dir / "again.csv").string(), "-o", (dir / "again-too.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "again.csv"), test::read_file(dir / "take" / "probes.csv"))
+        << "the take's probes re-render to the byte, times included";
+}
+
 TEST(EngineTake, StartedMidPerformanceReRendersToTheByte) {
     const auto dir = test::temp_dir("engine-take");
     EngineSession engine;
@@ -76,12 +87,35 @@ TEST(EngineTake, StartedMidPerformanceReRendersToTheByte) {
     EXPECT_GT(take.frames, 20000u);
     expect_replayed(dir, "the re-rendered take differs");
     // Its probes too, the energy at every sample (the scopes get it at every 16th).
-    const auto r =
-        test::run_archet({"render", "--take", (dir / "take").string(), "--probes",
-                          (dir / "again.csv").string(), "-o", (dir / "again-too.wav").string()});
-    ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_EQ(test::read_file(dir / "again.csv"), test::read_file(dir / "take" / "probes.csv"))
-        << "the take's probes re-render to the byte, times included";
+    expect_probes_replayed(dir);
+}
+
+// Without an energy probe to read at every sample, the engine runs the string in runs of up to
+// the hand's next tick (Simulation::run(), the bowed chain's own loop, reading the probes):
+// the take still re-renders tick by tick to the byte, its sound and every probe.
+TEST(EngineTake, PlayedInRunsReRendersToTheByte) {
+    const auto dir = test::temp_dir("engine-take-runs");
+    nlohmann::json model = read_json(test::resource("models/bowed-string-220.json"));
+    auto& probes = model["probes"];
+    probes.erase(std::remove_if(probes.begin(), probes.end(),
+                                [](const nlohmann::json& p) { return p["kind"] == "energy"; }),
+                 probes.end());
+    ASSERT_GE(probes.size(), 8u);
+    std::ofstream(dir / "string.json") << model.dump(2);
+    EngineSession engine;
+    ASSERT_TRUE(engine.start_file(dir / "string.json"));
+    engine.bow(0.3);
+    const auto started = engine.link().start_take((dir / "take").string());
+    ASSERT_TRUE(engine.await(StatusKind::Take, [&](const StatusFrame& f) {
+        return f.sequence == started && std::string(f.text).rfind("recording ", 0) == 0;
+    })) << (engine.errors().empty() ? "" : engine.errors()[0]);
+    engine.bow(0.5);
+    engine.link().stop_take();
+    std::string said;
+    ASSERT_TRUE(engine.await_take_written(&said)) << said;
+    EXPECT_EQ(engine.realtime_allocations(), 0u);
+    expect_replayed(dir, "the re-rendered take differs");
+    expect_probes_replayed(dir);
 }
 
 TEST(EngineTake, RefusesAFolderThatHoldsFiles) {

@@ -20,11 +20,17 @@ void render(Simulation& sim, const RenderOptions& options,
     while (done < options.frames) {
         const std::size_t frames = static_cast<std::size_t>(
             std::min<std::uint64_t>(options.block_frames, options.frames - done));
-        if (probe_count == 0 && !options.before_step) {
-            // Nothing to read or do between steps: the block in one call, which a bowed chain
-            // runs in its own loop (Simulation::run() stops after a sample that is not finite).
-            const std::size_t ran = sim.run({audio.data(), frames});
-            if (ran < frames || !std::isfinite(audio[ran - 1])) throw_blow_up(sim);
+        if (!options.before_step) {
+            // Nothing to do between steps: the block in one call, which a bowed chain runs in
+            // its own loop (Simulation::run() stops after a tick whose sound or probes are not
+            // finite, where the steps below stop).
+            const Simulation::ProbeRows rows{.values = probe_count ? probes.data() : nullptr};
+            const std::size_t ran = sim.run({audio.data(), frames}, rows);
+            const double* const last_row = probes.data() + (ran - 1) * probe_count;
+            if (ran < frames || !std::isfinite(audio[ran - 1]) ||
+                !std::all_of(last_row, last_row + probe_count,
+                             [](double v) { return std::isfinite(v); }))
+                throw_blow_up(sim);
         } else {
             for (std::size_t i = 0; i < frames; ++i) {
                 if (options.before_step) options.before_step(sim);

@@ -92,6 +92,7 @@ struct Simulation::BowedChainFrame {
     /// not at all when its push has made them follow (`push_moves_late`, a friction not 0).
     std::uint64_t late = 0;
     bool push_moves_late = false;
+    ProbeRows probes;  ///< read after each tick when it has values
     int hands;
     HandLinkState hand[kMostHandLinks];
 };
@@ -107,9 +108,16 @@ struct Simulation::BowedChainLoop {
                                                     std::span<double> out);
     [[gnu::always_inline]] static void hand_links(Simulation& sim, BowedChainFrame& frame,
                                                   const double* x, bool slower);
-    /// The hand links into the frame for a block, and back into the model after it.
+    /// The hand links into the frame for a block, and back into the model after it (and
+    /// before the stored energy is read).
     static void hold_hands(const Simulation& sim, BowedChainFrame& frame);
-    static void release_hands(const BowedChainFrame& frame);
+    [[gnu::always_inline]] static void release_hands(const BowedChainFrame& frame);
+    /// read_probe_row() in the loop, inline: a call out of it spills the vector registers the
+    /// loop keeps its constants in (that took half again the time of the 110 Hz string). The
+    /// bow's numbers come from the frame's copy; the stored energy, a sum over the whole model,
+    /// is read after the frame is written back.
+    [[gnu::always_inline]] static bool read_probes(Simulation& sim, BowedChainFrame& frame,
+                                                   std::size_t tick);
     /// Where the hand links' hands are, read again after their levels tick. Inlined into each
     /// build: called out of the AVX-512 loop, its legacy SSE loads ran while the upper halves
     /// of the vector registers were in use (no vzeroupper before the call), which on an Intel
@@ -151,21 +159,27 @@ std::size_t Simulation::BowedChainLoop::plain(Simulation& sim, BowedChainFrame& 
 }
 
 std::size_t Simulation::run(std::span<double> out) {
-    return run_in(out, chosen_chain_build());
+    return run_in(out, chosen_chain_build(), {});
 }
 
 std::size_t Simulation::run(std::span<double> out, ChainBuild build) {
     if (!chain_build_runs_here(build)) throw std::logic_error("chain build not run here");
-    return run_in(out, build);
+    return run_in(out, build, {});
 }
 
-std::size_t Simulation::run_in(std::span<double> out, ChainBuild build) {
+std::size_t Simulation::run(std::span<double> out, ProbeRows probes) {
+    return run_in(out, chosen_chain_build(), probes);
+}
+
+std::size_t Simulation::run_in(std::span<double> out, ChainBuild build, ProbeRows probes) {
     if (out.empty()) return 0;  // (the loop below marks the audio level as ticking)
-    if (runs_as_bowed_chain()) return run_bowed_chain(out, build);
+    if (model_.probes.empty()) probes.values = nullptr;
+    if (runs_as_bowed_chain()) return run_bowed_chain(out, build, probes);
     for (std::size_t i = 0; i < out.size(); ++i) {
         step();
         out[i] = output();
-        if (!std::isfinite(out[i])) return i + 1;
+        const bool probes_finite = !probes.values || read_probe_row(probes, i);
+        if (!std::isfinite(out[i]) || !probes_finite) return i + 1;
     }
     return out.size();
 }
@@ -174,7 +188,7 @@ std::size_t Simulation::run_in(std::span<double> out, ChainBuild build) {
 // one bow solves after its links, grounds, modal points and fingers, and its hand links tick
 // with it.
 // The slower levels step as in step().
-std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build) {
+std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build, ProbeRows probes) {
     CompiledLevel& audio = model_.levels[0];
     const CompiledBow& bow = model_.bows[0];
     BowedChainFrame frame{
@@ -210,6 +224,7 @@ std::size_t Simulation::run_bowed_chain(std::span<double> out, ChainBuild build)
         .grounds_in_loop = grounds_in_chain_loop(audio),
         .body = !audio.links.empty() || !audio.modal_points.empty(),
         .velocities = find_velocity_run(model_),
+        .probes = probes,
         .hands = static_cast<int>(hand_plan_.size()),
         .hand = {}};
     BowedChainLoop::hold_hands(*this, frame);
@@ -287,8 +302,9 @@ template <int W, bool kWithGrounds, bool kWithBody>
         const double sample = frame.velocities.count > 0
                                   ? velocity_run_output::sound<W>(frame.velocities, xn, x)
                                   : sim.output();
+        const bool probes_finite = !frame.probes.values || read_probes(sim, frame, done);
         out[done++] = sample;
-        if (!std::isfinite(sample)) break;
+        if (!std::isfinite(sample) || !probes_finite) break;
     }
     return done;
 }
@@ -340,7 +356,56 @@ void Simulation::BowedChainLoop::hold_hands(const Simulation& sim, BowedChainFra
     read_hands(frame);
 }
 
-void Simulation::BowedChainLoop::release_hands(const BowedChainFrame& frame) {
+[[gnu::always_inline]] inline bool Simulation::BowedChainLoop::read_probes(Simulation& sim,
+                                                                           BowedChainFrame& frame,
+                                                                           std::size_t tick) {
+    // Everything read once: the row's stores could otherwise alias all of it.
+    const std::size_t count = sim.model_.probes.size();
+    const CompiledProbe* const probes = sim.model_.probes.data();
+    const CompiledLevel* const levels = sim.model_.levels.data();
+    double* __restrict const row = frame.probes.values + tick * count;
+    const CompiledBow& bow = frame.bow;
+    bool finite = true;
+    for (std::size_t i = 0; i < count; ++i) {
+        const CompiledProbe& p = probes[i];
+        const CompiledLevel& level = levels[p.mat.level];
+        double value = 0;
+        switch (p.kind) {
+            case ProbeKind::Position:
+                value = level.x()[p.mat.index];
+                break;
+            case ProbeKind::Velocity:
+                value = (level.x()[p.mat.index] - level.x_prev()[p.mat.index]) / level.dt;
+                break;
+            case ProbeKind::Force:
+                value = level.watched_force[p.watched];
+                break;
+            case ProbeKind::NormalForce:  // the loop's one bow
+                value = bow.normal;
+                break;
+            case ProbeKind::FrictionForce:
+                value = bow.friction;
+                break;
+            case ProbeKind::SlipVelocity:
+                value = bow.slip_velocity;
+                break;
+            case ProbeKind::Energy:
+                if (!frame.probes.energy) continue;
+                sim.model_.bows[0] = frame.bow;
+                release_hands(frame);
+                value = sim.stored_energy();
+                break;
+            case ProbeKind::PowerIn:
+                value = sim.power_in();
+                break;
+        }
+        row[i] = value;
+        finite = finite && std::isfinite(value);
+    }
+    return finite;
+}
+
+inline void Simulation::BowedChainLoop::release_hands(const BowedChainFrame& frame) {
     for (int i = 0; i < frame.hands; ++i) {
         const HandLinkState& l = frame.hand[i];
         CompiledCrossLink& link = *l.link;

@@ -16,13 +16,6 @@ GestureSample Simulation::device_force() const {
     return f;
 }
 
-double Simulation::power_in() const {
-    double p = 0;
-    for (const auto& lv : model_.levels)
-        for (const auto& g : lv.gestures) p += g.power;
-    return p;
-}
-
 double Simulation::probe(std::size_t i) const {
     const CompiledProbe& p = model_.probes[i];
     switch (p.kind) {
@@ -44,6 +37,18 @@ double Simulation::probe(std::size_t i) const {
             return power_in();
     }
     return 0;
+}
+
+bool Simulation::read_probe_row(ProbeRows probes, std::size_t tick) const {
+    const std::size_t count = model_.probes.size();
+    double* const row = probes.values + tick * count;
+    bool finite = true;
+    for (std::size_t p = 0; p < count; ++p)
+        if (probes.energy || model_.probes[p].kind != ProbeKind::Energy) {
+            row[p] = probe(p);
+            finite = finite && std::isfinite(row[p]);
+        }
+    return finite;
 }
 
 }  // namespace archet

@@ -44,6 +44,18 @@ class Simulation {
     /// run() with the bowed chain's loop in a given build (tests and benchmarks): it must run
     /// on this CPU (chain_build_runs_here()).
     std::size_t run(std::span<double> out, ChainBuild build);
+    /// Where run() also writes the probes after each tick: out.size() rows of probe_count()
+    /// values, row i what probe() reads after tick i. The stored energy is a sum over every
+    /// element, nearly a step's cost: its probes' columns are written only with `energy`,
+    /// and left as they were without it (the engine reads it every 16th tick and holds it).
+    struct ProbeRows {
+        double* values = nullptr;
+        bool energy = true;
+    };
+    /// run() that also reads the probes after each tick: the same bytes as step(), output()
+    /// and probe() at every tick, and for a bowed chain the same loop. Stops also after a tick
+    /// whose probes read something not finite.
+    std::size_t run(std::span<double> out, ProbeRows probes);
     /// Why run() steps this model with the general step, or "" when it runs it as a bowed chain:
     /// a chain of masses at audio rate, with or without grounds, a body and other modal points
     /// and links and fingers, with one bow held by at most four hand links from slower gesture
@@ -151,8 +163,11 @@ class Simulation {
     }
     struct BowedChainFrame;  ///< what run_bowed_chain() holds over a block
     struct BowedChainLoop;   ///< its ticks, built per instruction set
-    std::size_t run_in(std::span<double> out, ChainBuild build);  ///< run() in that build
-    std::size_t run_bowed_chain(std::span<double> out, ChainBuild build);
+    /// run() in that build, reading the probes into `probes` when it has values.
+    std::size_t run_in(std::span<double> out, ChainBuild build, ProbeRows probes);
+    std::size_t run_bowed_chain(std::span<double> out, ChainBuild build, ProbeRows probes);
+    /// Row `tick` of `probes` (see ProbeRows), after that tick: whether all it read is finite.
+    bool read_probe_row(ProbeRows probes, std::size_t tick) const;
     static constexpr int kMostHandLinks = 4;  ///< the bowed chain's loop holds them in its frame
     double gesture_axis(GestureAxis axis, double t) const;
 
@@ -205,6 +220,14 @@ inline bool Simulation::count_down_levels(int first) {
 inline double Simulation::velocity(MatSlot s) const {
     const CompiledLevel& lv = model_.levels[s.level];
     return (lv.x()[s.index] - lv.x_prev()[s.index]) / lv.dt;
+}
+
+// Inline: read by the bowed chain's loop as a probe.
+inline double Simulation::power_in() const {
+    double p = 0;
+    for (const auto& lv : model_.levels)
+        for (const auto& g : lv.gestures) p += g.power;
+    return p;
 }
 
 // Inline: read after every step, by the bowed chain's loop too.
