@@ -233,15 +233,16 @@ void RealtimeThread::rt_run_block(LoadedModel& m, float* out, int frames, int ch
     for (int i = 0; i < frames;) {
         rt_before_run(sim, m);
         const int length = rt_run_length(sim, m, frames - i);
-        // A simulated hand moves on at each tick: it reads nothing of the model in between.
-        if (m.haptic)
-            for (int k = 1; k < length; ++k)
-                m.haptic->between_link_ticks(
-                    rt_pad_, static_cast<double>(rt_device_ticks_ + k) / sample_rate_,
-                    1.0 / sim.sample_rate());
         const std::uint64_t first = sim.tick();
         const std::size_t ran = sim.run({rt_sound_.data(), static_cast<std::size_t>(length)},
                                         {.values = rt_rows_.data(), .energy = false});
+        // A simulated hand moves on at each tick the run ran (it stops after one that is not
+        // finite): the hand and the model read nothing of each other between the link's ticks.
+        if (m.haptic)
+            for (std::size_t k = 1; k < ran; ++k)
+                m.haptic->between_link_ticks(
+                    rt_pad_, static_cast<double>(rt_device_ticks_ + k) / sample_rate_,
+                    1.0 / sim.sample_rate());
         rt_device_ticks_ += ran;
         for (std::size_t k = 0; k < ran; ++k, ++i) {
             ProbeFrame f;

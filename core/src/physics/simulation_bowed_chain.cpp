@@ -368,17 +368,18 @@ void Simulation::BowedChainLoop::hold_hands(const Simulation& sim, BowedChainFra
     bool finite = true;
     for (std::size_t i = 0; i < count; ++i) {
         const CompiledProbe& p = probes[i];
-        const CompiledLevel& level = levels[p.mat.level];
         double value = 0;
         switch (p.kind) {
             case ProbeKind::Position:
-                value = level.x()[p.mat.index];
+                value = levels[p.mat.level].x()[p.mat.index];
                 break;
-            case ProbeKind::Velocity:
+            case ProbeKind::Velocity: {
+                const CompiledLevel& level = levels[p.mat.level];
                 value = (level.x()[p.mat.index] - level.x_prev()[p.mat.index]) / level.dt;
                 break;
+            }
             case ProbeKind::Force:
-                value = level.watched_force[p.watched];
+                value = levels[p.mat.level].watched_force[p.watched];
                 break;
             case ProbeKind::NormalForce:  // the loop's one bow
                 value = bow.normal;
