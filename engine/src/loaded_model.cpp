@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <limits>
+#include <vector>
 
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
@@ -35,7 +36,8 @@ constexpr double kInstrumentationSlowdown = 1;
 constexpr double kInstrumentationSlowdown = 1;
 #endif
 
-constexpr int kCostSamples = 2048, kCostChunk = 8;
+// A chunk is one of the engine's runs at their longest with an energy probe (kEnergyProbeEvery).
+constexpr int kCostSamples = 2048, kCostChunk = static_cast<int>(ipc::kEnergyProbeEvery);
 constexpr double kCostSeconds = 0.02, kCostShare = 0.7;
 
 }  // namespace
@@ -62,25 +64,29 @@ std::unique_ptr<LoadedModel> nrt_prepare_model(const Model& model, double sample
     return loaded;
 }
 
-// A copy of the model is stepped for at most kCostSamples samples or kCostSeconds: its fastest
-// chunk's time per sample is what the model needs at least. Above kCostShare of the device's
-// time per sample it cannot keep up and is refused.
+// A copy of the model is played for at most kCostSamples samples or kCostSeconds as the
+// real-time thread plays it (a run of ticks reading every probe, then the stored energy for the
+// scopes when the model has an energy probe): its fastest chunk's time per sample is what the
+// model needs at least. Above kCostShare of the device's time per sample it cannot keep up and
+// is refused.
 void nrt_check_cost(const std::string& path, const LoadedModel& loaded, double sample_rate,
                     int block_frames) {
     const DenormalGuard no_denormals;
     Simulation copy(loaded.resolver);
     copy.set_gesture_track(nullptr);
+    std::vector<double> sound(kCostChunk), rows(kCostChunk * copy.probe_count());
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
     double best = std::numeric_limits<double>::infinity();  // s per sample
     for (int done = 0; done < kCostSamples;) {
         const auto t0 = clock::now();
-        int n = 0;
-        for (; n < kCostChunk && done + n < kCostSamples; ++n) copy.step();
+        const std::size_t n = copy.run(sound, {.values = rows.data(), .energy = false});
+        if (loaded.has_energy_probe) (void)copy.stored_energy();
         const auto t1 = clock::now();
-        done += n;
+        done += static_cast<int>(n);
         best = std::min(best, std::chrono::duration<double>(t1 - t0).count() / n);
-        if (std::chrono::duration<double>(t1 - start).count() > kCostSeconds) break;
+        if (n < sound.size() || std::chrono::duration<double>(t1 - start).count() > kCostSeconds)
+            break;
     }
     const double needs = best / kInstrumentationSlowdown, budget = 1.0 / sample_rate;
     if (needs <= kCostShare * budget) return;
