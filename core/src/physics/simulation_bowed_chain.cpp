@@ -113,7 +113,7 @@ struct Simulation::BowedChainLoop {
     static void hold_hands(const Simulation& sim, BowedChainFrame& frame);
     [[gnu::always_inline]] static void release_hands(const BowedChainFrame& frame);
     /// read_probe_row() in the loop, inline: a call out of it spills the vector registers the
-    /// loop keeps its constants in (that took half again the time of the 110 Hz string). The
+    /// loop keeps its constants in (that nearly doubled the 110 Hz string's time). The
     /// bow's numbers come from the frame's copy; the stored energy, a sum over the whole model,
     /// is read after the frame is written back.
     [[gnu::always_inline]] static bool read_probes(Simulation& sim, BowedChainFrame& frame,
