@@ -33,7 +33,7 @@ void render(Simulation& sim, const RenderOptions& options,
                 throw_blow_up(sim);
         } else {
             for (std::size_t i = 0; i < frames; ++i) {
-                if (options.before_step) options.before_step(sim);
+                options.before_step(sim);
                 sim.step();
                 audio[i] = sim.output();
                 if (!std::isfinite(audio[i])) throw_blow_up(sim);
