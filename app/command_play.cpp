@@ -4,6 +4,8 @@
 
 #include <time.h>
 
+#include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -13,6 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <thread>
+#include <vector>
 
 #include "archet/audio_output.hpp"
 #include "archet/common/denormal_guard.hpp"
@@ -64,7 +67,8 @@ int run_live(const PlayArguments& a) {
     return run_live_play(live);
 }
 
-// The real-time side of `play`: steps the model a block at a time into the device's buffer.
+// The real-time side of `play`: fills the device's buffer a block at a time, running the model
+// in runs of ticks up to the hand's next (so that a bowed string runs its own loop).
 class Player final : public AudioRenderer {
   public:
     Player(Simulation& sim, double budget_ns, const Gesture* gesture, const HapticChoice& haptic,
@@ -84,26 +88,30 @@ class Player final : public AudioRenderer {
         const DenormalGuard no_denormals;
         const std::int64_t start = monotonic_ns();
         const std::uint64_t first = sim_.tick();
-        for (int i = 0; i < frames; ++i) {
-            // A device: a simulated hand follows the gesture, the link closes the loop. One
-            // model for the whole run: its time is the device's clock.
+        for (int i = 0; i < frames;) {
+            before_run();
+            const std::size_t length = run_length(frames - i);
+            const std::size_t ran =
+                take_ ? sim_.run({sound_.data(), length}, {.values = rows_.data(), .energy = true})
+                      : sim_.run({sound_.data(), length});
+            // A simulated hand moves on at each tick the run ran: it and the model read nothing
+            // of each other between the link's ticks (HapticLoop::between_link_ticks()).
             if (haptic_loop_)
-                haptic_loop_->before_step(
-                    sim_, gesture_ ? gesture_->at(sim_.time()) : GestureSample{}, sim_.time());
-            if (take_ && sim_.tick() % haptic_divider_ == 0) {
-                // The gesture points read their next position now, at time + their period.
-                const double t_next = sim_.time() + haptic_dt_;
-                take_->gesture(t_next, played(t_next));
+                for (std::size_t k = 1; k < ran; ++k) {
+                    const double t =
+                        static_cast<double>(sim_.tick() - ran + k) / sim_.sample_rate();
+                    haptic_loop_->between_link_ticks(target(t), t, 1.0 / sim_.sample_rate());
+                }
+            for (std::size_t k = 0; k < ran; ++k, ++i) {
+                if (take_) {
+                    const std::uint64_t tick = sim_.tick() - ran + k + 1;
+                    take_->sample(static_cast<double>(tick) / sim_.sample_rate(), sound_[k],
+                                  rows_.data() + k * sim_.probe_count(),
+                                  std::min(sim_.probe_count(), ipc::kMaxProbes));
+                }
+                const float y = limiter_.process(sound_[k]);
+                for (int c = 0; c < channels; ++c) out[i * channels + c] = y;
             }
-            sim_.step();
-            if (take_) {
-                double probes[ipc::kMaxProbes];
-                const std::size_t count = std::min(sim_.probe_count(), ipc::kMaxProbes);
-                for (std::size_t p = 0; p < count; ++p) probes[p] = sim_.probe(p);
-                take_->sample(sim_.time(), sim_.output(), probes, count);
-            }
-            const float y = limiter_.process(sim_.output());
-            for (int c = 0; c < channels; ++c) out[i * channels + c] = y;
         }
         // Ticks of the haptic level (the gesture link) in this block, and whether the block was
         // late: rendering it took longer than it lasts.
@@ -119,7 +127,33 @@ class Player final : public AudioRenderer {
     const OutputLimiter& limiter() const { return limiter_; }
 
   private:
+    // Before the first tick of a run: the haptic device, and the take's gesture at the hand's
+    // ticks (the gesture points read their next position then, at time + their period).
+    void before_run() {
+        // One model for the whole performance: its time is the device's clock.
+        if (haptic_loop_) haptic_loop_->before_step(sim_, target(sim_.time()), sim_.time());
+        if (take_ && sim_.tick() % haptic_divider_ == 0) {
+            const double t_next = sim_.time() + haptic_dt_;
+            take_->gesture(t_next, played(t_next));
+        }
+    }
+    // How many ticks, up to `left`, run in one call of Simulation::run() (so that a bowed string
+    // runs its own loop): up to the next tick at which the haptic link or the take's gesture
+    // read something before the step.
+    std::size_t run_length(int left) const {
+        std::uint64_t ticks = std::min<std::uint64_t>(left, kMostTicksARun);
+        if (haptic_loop_) ticks = std::min(ticks, haptic_loop_->ticks_to_link_tick(sim_.tick()));
+        if (take_) ticks = std::min(ticks, haptic_divider_ - sim_.tick() % haptic_divider_);
+        return ticks;
+    }
+    // Where a simulated hand is asked to go at t: the gesture file, else nowhere.
+    GestureSample target(double t) const { return gesture_ ? gesture_->at(t) : GestureSample{}; }
+
+    static constexpr std::uint64_t kMostTicksARun = 64;
     Simulation& sim_;
+    std::array<double, kMostTicksARun> sound_{};
+    std::vector<double> rows_ =
+        std::vector<double>(kMostTicksARun * sim_.probe_count());  ///< probes
     OutputLimiter limiter_;
     double budget_ns_;
     std::uint64_t haptic_divider_ = 1;  ///< the gesture points' level (see hand_level())

@@ -66,12 +66,16 @@ void expect_reproduced(const std::vector<std::string>& play_extra, const std::st
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(dir / "take" / "take.wav"))
         << "the re-rendered take differs";
-    // And in one command, from the take's own description.
-    r = test::run_archet(
-        {"render", "--take", (dir / "take").string(), "-o", (dir / "replayed.wav").string()});
+    // And in one command, from the take's own description, every probe too: `play` runs the
+    // string in runs up to the hand's next tick (Simulation::run()), the re-render tick by tick.
+    r = test::run_archet({"render", "--take", (dir / "take").string(), "-o",
+                          (dir / "replayed.wav").string(), "--probes",
+                          (dir / "replayed.csv").string()});
     ASSERT_EQ(r.status, 0) << r.err;
     EXPECT_EQ(test::read_file(dir / "replayed.wav"), test::read_file(dir / "take" / "take.wav"))
         << "render --take differs";
+    EXPECT_EQ(test::read_file(dir / "replayed.csv"), test::read_file(dir / "take" / "probes.csv"))
+        << "the take's probes re-render to the byte, times included";
     EXPECT_EQ(read_json(dir / "take" / "take.json")["scheme"], kSchemeRevision);
     EXPECT_EQ(r.err.find("scheme revision"), std::string::npos) << r.err;
     // And it was a real take: bowed, with probes for every sample.

@@ -5,11 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <numbers>
 #include <random>
 #include <thread>
+#include <vector>
 
 #include "archet/evdev_device.hpp"
 #include "archet/files/model_file.hpp"
@@ -259,6 +262,53 @@ TEST(Haptics, TheSimulatedHandGoesOnReportingAcrossAModelSwap) {
     EXPECT_NEAR(second.device_position().slide, hand.read().slide, 1e-9)
         << "and the new model's gesture points follow it";
     EXPECT_GT(std::abs(second.model().bows[0].friction), 0.01) << "the new model is bowed";
+}
+
+// The engine and `play` run a bowed string in runs up to the haptic link's next tick
+// (Simulation::run()), and move a simulated hand on for the run's other ticks after it
+// (HapticLoop::between_link_ticks()). That is the same as a hand moved before every step: the
+// same sound, to the byte, and the hand where it would have been, after every run.
+TEST(Haptics, AHandMovedOnAfterARunIsWhereItIsMovedTickByTick) {
+    Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    model.gesture.reset();
+    const auto moving = [](double t) {
+        return GestureSample{-0.05 + 0.1 * t + 0.01 * std::sin(31.0 * t), 0.0015};
+    };
+    SimulatedHand tick_hand, run_hand;
+    Simulation by_tick(compile(model)), in_runs(compile(model));
+    HapticLoop by_tick_loop(tick_hand, &tick_hand, by_tick),
+        in_runs_loop(run_hand, &run_hand, in_runs);
+    const double dt = 1.0 / in_runs.sample_rate();
+    std::vector<double> sound(64);
+    int runs_longer_than_a_tick = 0;
+    while (in_runs.tick() < static_cast<std::uint64_t>(0.5 * in_runs.sample_rate())) {
+        in_runs_loop.before_step(in_runs, moving(in_runs.time()), in_runs.time());
+        const std::uint64_t first = in_runs.tick();
+        const std::size_t length =
+            std::min<std::uint64_t>(sound.size(), in_runs_loop.ticks_to_link_tick(first));
+        ASSERT_EQ(in_runs.run({sound.data(), length}), length);
+        for (std::size_t k = 1; k < length; ++k) {
+            const double t = static_cast<double>(first + k) / in_runs.sample_rate();
+            in_runs_loop.between_link_ticks(moving(t), t, dt);
+        }
+        runs_longer_than_a_tick += length > 1;
+        for (std::size_t k = 0; k < length; ++k) {
+            by_tick_loop.before_step(by_tick, moving(by_tick.time()), by_tick.time());
+            by_tick.step();
+            const double expected = by_tick.output();
+            ASSERT_EQ(std::memcmp(&sound[k], &expected, sizeof expected), 0)
+                << "tick " << by_tick.tick();
+        }
+        const HapticReading read = run_hand.read(), read_by_tick = tick_hand.read();
+        const GestureSample at = run_hand.position(), at_by_tick = tick_hand.position();
+        ASSERT_EQ(std::memcmp(&read, &read_by_tick, sizeof read), 0)
+            << "what the hand reports after tick " << in_runs.tick();
+        ASSERT_EQ(std::memcmp(&at, &at_by_tick, sizeof at), 0)
+            << "where the hand is after tick " << in_runs.tick();
+    }
+    EXPECT_GT(runs_longer_than_a_tick, 1000) << "it ran in runs";
+    EXPECT_EQ(in_runs.bowed_chain_misfit(), "") << "in the bowed string's own loop";
+    EXPECT_GT(std::abs(in_runs.model().bows[0].friction), 0.01) << "the hand bowed the string";
 }
 
 }  // namespace
