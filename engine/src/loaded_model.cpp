@@ -56,8 +56,9 @@ std::unique_ptr<LoadedModel> nrt_prepare_model(const Model& model, double sample
     for (const std::string& id : string_points(model))
         if (loaded->shape.size() < ipc::kMaxShapePoints)
             loaded->shape.push_back(loaded->resolver.mat_slots.at(id));
-    for (const CompiledProbe& p : loaded->resolver.probes)
-        loaded->has_energy_probe = loaded->has_energy_probe || p.kind == ProbeKind::Energy;
+    for (std::size_t p = loaded->resolver.probes.size(); p-- > 0;)
+        if (loaded->resolver.probes[p].kind == ProbeKind::Energy)
+            loaded->has_energy_probe = true, loaded->energy_probe = p;
     loaded->held_energy = loaded->simulation->stored_energy();  // until its first reading
     loaded->sequence = sequence;
     loaded->generation = generation;

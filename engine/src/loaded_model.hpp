@@ -26,6 +26,7 @@ struct LoadedModel {
     std::uint64_t haptic_divider = 1;  ///< the gesture points' level, for takes
     double haptic_dt = 0;
     bool has_energy_probe = false;  ///< any probe of kind Energy
+    std::size_t energy_probe = 0;   ///< the first of them, when there is one
     double held_energy = 0;         ///< J, the last stored energy the scopes were given
     std::uint64_t generation = 0;   ///< which load of the control thread it comes from
     std::uint32_t sequence = 0;

@@ -210,7 +210,8 @@ void RealtimeThread::rt_before_run(Simulation& sim, LoadedModel& m) {
 
 // How many ticks, up to `left`, run in one call from the current tick (after rt_before_run()):
 // up to the next that asks for something before its step (a glide's, the hand's tick) or after
-// it (the scopes' stored energy), so that Simulation::run() takes a bowed string's own loop.
+// it (the scopes' stored energy, which a take records at every tick and the run then reads),
+// so that Simulation::run() takes a bowed string's own loop.
 int RealtimeThread::rt_run_length(const Simulation& sim, const LoadedModel& m, int left) const {
     if (rt_smoother_.active() > 0) return 1;
     const std::uint64_t tick = sim.tick();
@@ -218,8 +219,8 @@ int RealtimeThread::rt_run_length(const Simulation& sim, const LoadedModel& m, i
     if (rt_drive_speed_ != 0 || rt_recording_)
         ticks = std::min(ticks, m.haptic_divider - tick % m.haptic_divider);
     if (m.haptic) ticks = std::min(ticks, m.haptic->ticks_to_link_tick(tick));
-    if (m.has_energy_probe)
-        ticks = std::min(ticks, rt_recording_ ? 1 : kEnergyProbeEvery - tick % kEnergyProbeEvery);
+    if (m.has_energy_probe && !rt_recording_)
+        ticks = std::min(ticks, kEnergyProbeEvery - tick % kEnergyProbeEvery);
     return static_cast<int>(ticks);
 }
 
@@ -234,8 +235,10 @@ void RealtimeThread::rt_run_block(LoadedModel& m, float* out, int frames, int ch
         rt_before_run(sim, m);
         const int length = rt_run_length(sim, m, frames - i);
         const std::uint64_t first = sim.tick();
+        // A take records the stored energy at every tick: the run reads it then.
+        const bool energy_each_tick = rt_recording_ != nullptr;
         const std::size_t ran = sim.run({rt_sound_.data(), static_cast<std::size_t>(length)},
-                                        {.values = rt_rows_.data(), .energy = false});
+                                        {.values = rt_rows_.data(), .energy = energy_each_tick});
         // A simulated hand moves on at each tick the run ran (it stops after one that is not
         // finite): the hand and the model read nothing of each other between the link's ticks.
         if (m.haptic)
@@ -250,12 +253,13 @@ void RealtimeThread::rt_run_block(LoadedModel& m, float* out, int frames, int ch
             f.count = static_cast<std::uint32_t>(probes);
             f.reserved = 0;
             // The stored energy is a sum over every element, nearly as costly as the step: the
-            // scopes get it at every ipc::kEnergyProbeEvery-th sample and hold it in between; a
-            // take records it at every sample. Runs end at those ticks.
-            if (m.has_energy_probe && k + 1 == ran &&
-                (rt_recording_ || f.tick % kEnergyProbeEvery == 0))
-                m.held_energy = sim.stored_energy();
+            // scopes get it at every ipc::kEnergyProbeEvery-th sample, where runs end, and hold
+            // it in between; a take records it at every sample.
             const double* const row = rt_rows_.data() + k * probes;
+            if (m.has_energy_probe && energy_each_tick)
+                m.held_energy = row[m.energy_probe];
+            else if (m.has_energy_probe && k + 1 == ran && f.tick % kEnergyProbeEvery == 0)
+                m.held_energy = sim.stored_energy();
             for (std::size_t p = 0; p < probes; ++p)
                 f.values[p] =
                     sim.model().probes[p].kind == ProbeKind::Energy ? m.held_energy : row[p];

@@ -86,12 +86,13 @@ TEST(EngineTake, StartedMidPerformanceReRendersToTheByte) {
     EXPECT_GT(take.start_tick, 10000u);
     EXPECT_GT(take.frames, 20000u);
     expect_replayed(dir, "the re-rendered take differs");
-    // Its probes too, the energy at every sample (the scopes get it at every 16th).
+    // Its probes too, the energy at every sample, which the engine's runs read while it records
+    // (the scopes get it at every 16th).
     expect_probes_replayed(dir);
 }
 
-// Without an energy probe to read at every sample, the engine runs the string in runs of up to
-// the hand's next tick (Simulation::run(), the bowed chain's own loop, reading the probes):
+// The engine runs the string in runs of up to the hand's next tick (Simulation::run(), the
+// bowed chain's own loop, reading the probes); without an energy probe, they read no energy:
 // the take still re-renders tick by tick to the byte, its sound and every probe.
 TEST(EngineTake, PlayedInRunsReRendersToTheByte) {
     const auto dir = test::temp_dir("engine-take-runs");
