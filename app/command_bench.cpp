@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "archet/ipc/segment_layout.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/physics/blow_up.hpp"
+#include "archet/physics/chain_build_choice.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
@@ -32,8 +34,23 @@ struct BenchArguments {
     int chain = 0;
     double seconds = 2.0;
     bool json = false;
-    bool probes = false;  ///< read every probe after each step, as the engine does
+    bool probes = false;                  ///< read every probe after each step, as the engine does
+    std::string chain_build = "fastest";  ///< or a build's name (chain_build_name())
 };
+
+// The build of the bowed chain's loop `name` asks for, or none for "fastest" (timed on a copy
+// of the model once the bow plays).
+std::optional<ChainBuild> asked_chain_build(const std::string& name) {
+    if (name == "fastest") return std::nullopt;
+    for (ChainBuild b : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
+        if (name != chain_build_name(b)) continue;
+        if (!chain_build_runs_here(b))
+            throw InputError("--chain-build", name + " does not run on this CPU (it runs up to " +
+                                                  chain_build_name(chosen_chain_build()) + ")");
+        return b;
+    }
+    throw InputError("--chain-build", "is fastest, avx512, avx2 or plain, not " + name);
+}
 
 // With --probes, what the engine's real-time thread reads after each step for the scopes:
 // every probe, the stored energy (a sum over the whole model) at every
@@ -64,6 +81,7 @@ int run_bench(const BenchArguments& a) {
     if (a.model.empty() == (a.chain == 0))
         throw InputError("bench", "give either a MODEL file or --chain N");
     if (!(a.seconds > 0 && a.seconds <= 600)) throw InputError("--seconds", "must be in (0, 600]");
+    const std::optional<ChainBuild> asked_build = asked_chain_build(a.chain_build);
     Model model;
     if (a.chain > 0) {
         model = build_bowed_chain(a.chain);
@@ -100,6 +118,8 @@ int run_bench(const BenchArguments& a) {
         sink += block.back();
     };
     for (std::uint64_t done = 0; done < warm; done += batch) run_batch();
+    // Chosen once the bow plays, as the engine, `render` and `play` choose it.
+    sim.set_chain_build(asked_build ? *asked_build : fastest_chain_build(sim));
     // Several rounds, reporting the median (and the best): one long window on a shared
     // machine measures its neighbours as much as the model.
     using clock = std::chrono::steady_clock;
@@ -133,14 +153,14 @@ int run_bench(const BenchArguments& a) {
             "\"step\": \"%s\", \"step_reason\": \"%s\", \"checksum\": %.17g}\n",
             model.name.c_str(), ns, best, load, model.mats.size(), model.lias.size(),
             sim.sample_rate(), static_cast<unsigned long long>(steps),
-            chain_build_name(chosen_chain_build()), step_kind.c_str(), misfit.c_str(), sink);
+            chain_build_name(sim.chain_build()), step_kind.c_str(), misfit.c_str(), sink);
     } else {
         std::printf(
             "%s: %zu masses, %zu links: %.2f ns per sample (median of %d rounds, best %.2f), "
             "%.2f ns per mass, real-time load %.2f %% at %.0f Hz (%s chain loop, %s step%s)\n",
             model.name.c_str(), model.mats.size(), model.lias.size(), ns, kRounds, best,
             ns / model.mats.size(), 100 * load, sim.sample_rate(),
-            chain_build_name(chosen_chain_build()), step_kind.c_str(),
+            chain_build_name(sim.chain_build()), step_kind.c_str(),
             a.probes ? ", probes read" : "");
         if (!misfit.empty()) std::printf("  (the general step: %s)\n", misfit.c_str());
     }
@@ -160,6 +180,10 @@ void add_bench_command(CLI::App& app, Action& action) {
     cmd->add_flag("--probes", a->probes,
                   "Also read the model's probes after each step as the engine does for its "
                   "scopes (the stored energy at every 16th step)");
+    cmd->add_option("--chain-build", a->chain_build,
+                    "The bowed chain loop's build: fastest (timed on a copy of the model, as "
+                    "the engine, render and play choose it), avx512, avx2 or plain")
+        ->capture_default_str();
     cmd->add_flag("--json", a->json,
                   "Print one JSON object: ns_per_sample, realtime_load, masses, links");
     cmd->callback([&action, a] { action = [a] { return run_bench(*a); }; });

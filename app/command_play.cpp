@@ -29,6 +29,7 @@
 #include "archet/interruption.hpp"
 #include "archet/midi_ports.hpp"
 #include "archet/output_limiter.hpp"
+#include "archet/physics/chain_build_choice.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
 #include "archet/realtime_allocations.hpp"
@@ -191,6 +192,7 @@ int run_play(const PlayArguments& a) {
     // Without a device the gesture file plays the gesture points directly; with one, it moves
     // the hand that holds the device.
     sim.set_gesture_track(gesture && !haptic.device ? &*gesture : nullptr);
+    sim.set_chain_build(fastest_chain_build(sim));
     std::unique_ptr<TakeRecorder> take;
     if (!a.take.empty()) {
         std::vector<std::string> probes;

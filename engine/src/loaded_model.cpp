@@ -10,6 +10,7 @@
 #include "archet/common/input_error.hpp"
 #include "archet/ipc/segment_layout.hpp"
 #include "archet/model/string_points.hpp"
+#include "archet/physics/chain_build_choice.hpp"
 
 namespace archet {
 
@@ -49,6 +50,7 @@ std::unique_ptr<LoadedModel> nrt_prepare_model(const Model& model, double sample
     loaded->resolver = compile(model, sample_rate);  // the device's clock is the master
     loaded->simulation = std::make_unique<Simulation>(loaded->resolver);
     loaded->simulation->set_gesture_track(nullptr);  // live: the device or the pad plays it
+    loaded->simulation->set_chain_build(fastest_chain_build(*loaded->simulation));
     if (haptic.device) loaded->haptic.emplace(*haptic.device, haptic.hand, *loaded->simulation);
     if (const CompiledLevel* hand = hand_level(loaded->resolver))
         loaded->haptic_divider = static_cast<std::uint64_t>(hand->divider),
@@ -75,6 +77,7 @@ void nrt_check_cost(const std::string& path, const LoadedModel& loaded, double s
     const DenormalGuard no_denormals;
     Simulation copy(loaded.resolver);
     copy.set_gesture_track(nullptr);
+    copy.set_chain_build(loaded.simulation->chain_build());
     std::vector<double> sound(kCostChunk), rows(kCostChunk * copy.probe_count());
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();

@@ -102,6 +102,7 @@ TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
         {{"new", "bowed-string", "--pitch", "-5", "-o", out}, "--pitch"},
         {{"new", "bowed-string", "--bow-position", "0.7", "-o", out}, "beta must be in (0, 0.5)"},
         {{"bench"}, "give either a MODEL file or --chain N"},
+        {{"bench", model, "--chain-build", "sse9"}, "is fastest, avx512, avx2 or plain, not sse9"},
         {{"frobnicate"}, "subcommand"},
         // Output where nothing can be written: under a plain file, or in /proc (even as root).
         {{"render", model, "-o", (dir / "plain.txt" / "x.wav").string()}, "Not a directory"},

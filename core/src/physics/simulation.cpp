@@ -28,7 +28,8 @@ double envelope_at(const std::vector<std::pair<double, double>>& e, double t) {
 }
 }  // namespace
 
-Simulation::Simulation(CompiledModel model) : model_(std::move(model)) {
+Simulation::Simulation(CompiledModel model)
+    : model_(std::move(model)), chain_build_(chosen_chain_build()) {
     active_.assign(model_.levels.size(), 0);
     countdown_.assign(model_.levels.size(), 0);
     period_done_.assign(model_.levels.size(), 1.0);

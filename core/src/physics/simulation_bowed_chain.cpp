@@ -159,7 +159,7 @@ std::size_t Simulation::BowedChainLoop::plain(Simulation& sim, BowedChainFrame& 
 }
 
 std::size_t Simulation::run(std::span<double> out) {
-    return run_in(out, chosen_chain_build(), {});
+    return run_in(out, chain_build_, {});
 }
 
 std::size_t Simulation::run(std::span<double> out, ChainBuild build) {
@@ -168,7 +168,12 @@ std::size_t Simulation::run(std::span<double> out, ChainBuild build) {
 }
 
 std::size_t Simulation::run(std::span<double> out, ProbeRows probes) {
-    return run_in(out, chosen_chain_build(), probes);
+    return run_in(out, chain_build_, probes);
+}
+
+void Simulation::set_chain_build(ChainBuild build) {
+    if (!chain_build_runs_here(build)) throw std::logic_error("chain build not run here");
+    chain_build_ = build;
 }
 
 std::size_t Simulation::run_in(std::span<double> out, ChainBuild build, ProbeRows probes) {

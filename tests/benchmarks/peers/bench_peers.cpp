@@ -2,9 +2,9 @@
 // each round renders a quarter second on every contender in turn, and the medians over the
 // rounds are compared, so that a slower moment of the machine falls on all of them alike.
 //   archet paper    the paper's chaplet: link damping alone, bridges, a point bow
-//                   (`archet new bowed-string --pitch 220 --masses 60 --paper`), which
-//                   Simulation::run() steps in the bowed chain's loop (the other two take the
-//                   general step)
+//                   (`archet new bowed-string --pitch 220 --masses 60 --paper`); all three
+//                   run in Simulation::run(), the bowed chain's loop, in the build of it that
+//                   fastest_chain_build() finds fastest here, as the engine and `render` do
 //   archet bare     the shipped string without its body: losses to its rest points too, and a
 //                   bow spread over three masses
 //   archet + body   the shipped string (`archet new bowed-string --pitch 220 --masses 60`)
@@ -32,6 +32,7 @@
 
 #include "archet/common/denormal_guard.hpp"
 #include "archet/model/gesture.hpp"
+#include "archet/physics/chain_build_choice.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
@@ -77,8 +78,11 @@ class ArchetString {
           sim_(archet::compile(archet::build_bowed_string(archet::peers::string_options(string)),
                                kSampleRate)) {
         sim_.set_gesture_track(&stroke_);
+        // The build of the chain loop the engine, `render` and `play` would run it in here.
+        sim_.set_chain_build(archet::fastest_chain_build(sim_));
     }
     void render(double* out, int count) { sim_.run({out, static_cast<std::size_t>(count)}); }
+    archet::ChainBuild chain_build() const { return sim_.chain_build(); }
 
   private:
     archet::Gesture stroke_;
@@ -214,9 +218,12 @@ int main() {
     auto add = [&](std::string name, std::function<void(double*, int)> render) {
         contenders.push_back({std::move(name), std::move(render), {}, 0.0, 0, true});
     };
-    add("archet paper", renderer(std::make_shared<ArchetString>(PeerString::Paper)));
-    add("archet bare", renderer(std::make_shared<ArchetString>(PeerString::Bare)));
-    add("archet + body", renderer(std::make_shared<ArchetString>(PeerString::Body)));
+    const auto paper = std::make_shared<ArchetString>(PeerString::Paper);
+    const auto bare = std::make_shared<ArchetString>(PeerString::Bare);
+    const auto body = std::make_shared<ArchetString>(PeerString::Body);
+    add("archet paper", renderer(paper));
+    add("archet bare", renderer(bare));
+    add("archet + body", renderer(body));
     add_floor<false>("floor", add);
     add_floor<true>("floor fused", add);
 #if ARCHET_PEER_FAUST
@@ -249,9 +256,10 @@ int main() {
 
     std::printf(
         "%d interleaved rounds of %d samples at %.0f Hz, blocks of %d, one core; "
-        "Archet's chain loop: %s\n\n",
-        kRounds, kRoundSamples, kSampleRate, kBlock,
-        archet::chain_build_name(archet::chosen_chain_build()));
+        "Archet's chain loop: %s for paper, %s bare, %s + body\n\n",
+        kRounds, kRoundSamples, kSampleRate, kBlock, archet::chain_build_name(paper->chain_build()),
+        archet::chain_build_name(bare->chain_build()),
+        archet::chain_build_name(body->chain_build()));
     std::printf("%-16s %10s %10s %10s\n", "contender", "ns/sample", "best", "rms out");
     std::map<std::string, double> ns;
     for (const auto& c : contenders) {

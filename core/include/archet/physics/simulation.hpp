@@ -27,6 +27,7 @@ class Simulation {
     /// Plays a gesture track: each gesture point reads it at its own ticks. The gesture
     /// must outlive the simulation's use of it.
     void set_gesture_track(const Gesture* gesture);
+    const Gesture* gesture_track() const { return track_; }
     /// Live device positions (used when no track is set).
     void set_device_position(GestureSample position) { device_ = position; }
     GestureSample device_position() const { return device_; }
@@ -44,6 +45,11 @@ class Simulation {
     /// run() with the bowed chain's loop in a given build (tests and benchmarks): it must run
     /// on this CPU (chain_build_runs_here()).
     std::size_t run(std::span<double> out, ChainBuild build);
+    /// The build of the bowed chain's loop that run() takes from here on (at first the widest
+    /// this CPU runs; fastest_chain_build() finds the fastest for the model): every build gives
+    /// the same bytes. It must run on this CPU.
+    void set_chain_build(ChainBuild build);
+    ChainBuild chain_build() const { return chain_build_; }
     /// Where run() also writes the probes after each tick: out.size() rows of probe_count()
     /// values, row i what probe() reads after tick i. The stored energy is a sum over every
     /// element, nearly a step's cost: its probes' columns are written only with `energy`,
@@ -180,6 +186,7 @@ class Simulation {
     bool friction_divides_ = false;  ///< as before scheme revision 4 (compute_as_of())
     /// The model's shape is a bowed chain's (run()), found once: its structure never changes.
     bool bowed_chain_ = false;
+    ChainBuild chain_build_;  ///< run()'s (set_chain_build())
     std::vector<double> dissipated_;
     /// Per level: does it tick this step. (int, not char: a char store may alias anything.)
     std::vector<int> active_;
