@@ -5,6 +5,7 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <unsupported/Eigen/FFT>
 
@@ -16,6 +17,7 @@
 #include "archet/model/model_validation.hpp"
 #include "archet/model/model_variants.hpp"
 #include "archet/model/string_points.hpp"
+#include "archet/physics/chain_build_choice.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
 
@@ -190,35 +192,69 @@ MapGrid MapGrid::parse(const std::string& text) {
     return g;
 }
 
+namespace {
+
+// The variant's own probes replaced by the one a map reads after every tick, the slip velocity
+// of its bow: run() reads it in the bowed chain's loop (probes change nothing of the motion).
+void read_slip_only(Model& variant) {
+    const auto bow = std::find_if(variant.lias.begin(), variant.lias.end(),
+                                  [](const Lia& l) { return l.kind == LiaKind::BowFriction; });
+    if (bow == variant.lias.end()) throw InputError(variant.name, "has no bow to play a map with");
+    variant.probes = {{"slip_velocity", ProbeKind::SlipVelocity, bow->id}};
+}
+
+}  // namespace
+
 MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t index, double pitch,
-                        std::vector<double>* whole) {
+                        std::vector<double>* whole, std::optional<ChainBuild> build) {
     MapPoint p;
     p.index = index;
     p.force = grid.force(index);
     p.position = grid.position(index);
     Model variant = model;
     set_variant_parameter(variant, "bow.position", p.position);
+    read_slip_only(variant);
     validate_model(variant);
     if (!(pitch > 0)) pitch = first_mode(variant);
     const Gesture stroke = steady_bow_gesture(grid.speed, p.force / press_stiffness(variant),
                                               grid.duration + 0.4);  // lifts after `duration`
     Simulation sim(compile(variant));
     sim.set_gesture_track(&stroke);
+    if (build) sim.set_chain_build(*build);
     const DenormalGuard no_denormals;
     const auto total = static_cast<std::size_t>(grid.duration * sim.sample_rate());
     const std::size_t from = total / 2;  // the attack is over by half-way
     std::vector<double> slip, sound;
     slip.reserve(total - from), sound.reserve(total - from);
     if (whole) whole->clear();
-    for (std::size_t i = 0; i < total; ++i) {
-        sim.step();
-        if (whole) whole->push_back(sim.output());
-        if (i < from) continue;
-        slip.push_back(sim.model().bows[0].slip_velocity);
-        sound.push_back(sim.output());
+    // In blocks through run(), a bowed string's own loop; one that is not finite stops a block
+    // after that tick, and the next goes on from there as the steps would.
+    constexpr std::size_t kBlock = 4096;
+    std::vector<double> block(kBlock), slips(kBlock);
+    for (std::size_t done = 0; done < total;) {
+        const std::size_t length = std::min(kBlock, total - done);
+        const std::size_t ran = sim.run({block.data(), length}, {.values = slips.data()});
+        for (std::size_t k = 0; k < ran; ++k) {
+            if (whole) whole->push_back(block[k]);
+            if (done + k < from) continue;
+            slip.push_back(slips[k]);
+            sound.push_back(block[k]);
+        }
+        done += ran;
     }
     p.analysis = classify_regime(slip, sound, sim.sample_rate(), pitch);
     return p;
+}
+
+ChainBuild fastest_build_for_map(const Model& model, const MapGrid& grid) {
+    Model variant = model;
+    set_variant_parameter(variant, "bow.position", grid.position(0));
+    read_slip_only(variant);
+    const Gesture stroke = steady_bow_gesture(grid.speed, grid.force(0) / press_stiffness(variant),
+                                              grid.duration + 0.4);
+    Simulation sim(compile(variant));
+    sim.set_gesture_track(&stroke);
+    return fastest_chain_build(sim);
 }
 
 std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs, int shard,
@@ -233,10 +269,15 @@ std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs
         set_variant_parameter(check, "bow.position", beta);
         press_stiffness(check);
     }
+    // The build of the bowed chain's loop that plays the first point fastest plays them all (they
+    // differ in the bow's place and force alone), found before the threads start.
+    const ChainBuild build = fastest_build_for_map(model, grid);
     return sweep_grid<MapPoint>(
         model.name, grid.size(), jobs, shard, shards,
-        [&](std::size_t index) { return play_map_point(model, grid, index, pitch); }, progress,
-        cancel);
+        [&](std::size_t index) {
+            return play_map_point(model, grid, index, pitch, nullptr, build);
+        },
+        progress, cancel);
 }
 
 HelmholtzPitch helmholtz_pitch(const std::vector<MapPoint>& points) {

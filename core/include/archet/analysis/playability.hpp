@@ -5,11 +5,13 @@
 
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "archet/analysis/modal_analysis.hpp"
 #include "archet/model/model.hpp"
+#include "archet/physics/chain_kernel.hpp"
 
 namespace archet {
 
@@ -59,8 +61,14 @@ struct MapGrid {
 
 /// Plays one grid point on `model` (a bowed string with a hand on each axis). `pitch` is the
 /// string's first mode (0: found by modal analysis). With `sound`, the whole stroke's output.
+/// `build`: the bowed chain loop's (Simulation::set_chain_build()), else the widest here.
 MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t index,
-                        double pitch = 0, std::vector<double>* sound = nullptr);
+                        double pitch = 0, std::vector<double>* sound = nullptr,
+                        std::optional<ChainBuild> build = std::nullopt);
+
+/// The build of the bowed chain's loop that plays the map's first point fastest
+/// (fastest_chain_build()).
+ChainBuild fastest_build_for_map(const Model& model, const MapGrid& grid);
 
 /// Plays the points of `grid` whose index % shards == shard on `jobs` threads, calling
 /// `progress(done, total)` from the caller's thread as they finish. Sorted by index. Setting
