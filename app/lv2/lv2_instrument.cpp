@@ -64,7 +64,7 @@ Instrument::Instrument(Model model, double sample_rate, double bow_position)
         haptic_divider_ = static_cast<std::uint64_t>(hand->divider), haptic_dt_ = hand->dt;
     glide_samples_ = static_cast<int>(std::lround(0.01 * sample_rate));  // 10 ms, as the engine
     state_.resize(sim_.state_size());
-    sim_.set_chain_build(fastest_chain_build(sim_));  // on the worker's thread, as the rest
+    sim_.set_chain_build(fastest_chain_build(sim_));  // never on the audio thread, as the rest
 }
 
 void Instrument::set_controls(double bow_force, double bow_speed, double damping_scale) {

@@ -132,7 +132,7 @@ BENCHMARK(BM_Validate)->Arg(5000)->Arg(10000)->Unit(benchmark::kMillisecond);
 // What the engine's control thread does to swap a model in (control_thread.cpp, nrt_load), up
 // to the pointer it hands the real-time thread: parse the file, validate, compile, and build
 // the Simulation from a copy (the engine keeps the compiled model to resolve parameters), and
-// time the chain loop's builds on a further copy to choose the fastest. Its cost check steps
+// time the chain loop's builds on it to choose the fastest. Its cost check steps
 // another copy for at most 20 ms; the hand-over itself is one atomic exchange, taken at the
 // next block boundary.
 void BM_ModelSwap(benchmark::State& state) {

@@ -194,8 +194,7 @@ MapGrid MapGrid::parse(const std::string& text) {
 
 namespace {
 
-// The variant's own probes replaced by the one a map reads after every tick, the slip velocity
-// of its bow: run() reads it in the bowed chain's loop (probes change nothing of the motion).
+// The variant's probes replaced by its bow's slip velocity (map_stroke()).
 void read_slip_only(Model& variant) {
     const auto bow = std::find_if(variant.lias.begin(), variant.lias.end(),
                                   [](const Lia& l) { return l.kind == LiaKind::BowFriction; });
@@ -205,19 +204,24 @@ void read_slip_only(Model& variant) {
 
 }  // namespace
 
+MapStroke map_stroke(const Model& model, const MapGrid& grid, std::size_t index) {
+    Model variant = model;
+    set_variant_parameter(variant, "bow.position", grid.position(index));
+    read_slip_only(variant);
+    validate_model(variant);
+    Gesture stroke = steady_bow_gesture(grid.speed, grid.force(index) / press_stiffness(variant),
+                                        grid.duration + 0.4);  // lifts after `duration`
+    return {std::move(variant), std::move(stroke)};
+}
+
 MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t index, double pitch,
                         std::vector<double>* whole, std::optional<ChainBuild> build) {
     MapPoint p;
     p.index = index;
     p.force = grid.force(index);
     p.position = grid.position(index);
-    Model variant = model;
-    set_variant_parameter(variant, "bow.position", p.position);
-    read_slip_only(variant);
-    validate_model(variant);
+    const auto [variant, stroke] = map_stroke(model, grid, index);
     if (!(pitch > 0)) pitch = first_mode(variant);
-    const Gesture stroke = steady_bow_gesture(grid.speed, p.force / press_stiffness(variant),
-                                              grid.duration + 0.4);  // lifts after `duration`
     Simulation sim(compile(variant));
     sim.set_gesture_track(&stroke);
     if (build) sim.set_chain_build(*build);
@@ -247,11 +251,7 @@ MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t ind
 }
 
 ChainBuild fastest_build_for_map(const Model& model, const MapGrid& grid) {
-    Model variant = model;
-    set_variant_parameter(variant, "bow.position", grid.position(0));
-    read_slip_only(variant);
-    const Gesture stroke = steady_bow_gesture(grid.speed, grid.force(0) / press_stiffness(variant),
-                                              grid.duration + 0.4);
+    const auto [variant, stroke] = map_stroke(model, grid, 0);
     Simulation sim(compile(variant));
     sim.set_gesture_track(&stroke);
     return fastest_chain_build(sim);

@@ -11,7 +11,7 @@
 namespace archet {
 
 namespace {
-constexpr std::uint64_t kFramesWorthChoosingABuild = 48000;  ///< a second at 48 kHz
+constexpr std::uint64_t kFramesWorthChoosingABuild = 48000;  ///< the few ms of trials ≪ the render
 }  // namespace
 
 void render(Simulation& sim, const RenderOptions& options,
@@ -21,8 +21,8 @@ void render(Simulation& sim, const RenderOptions& options,
     const std::size_t probe_count = options.with_probes ? sim.probe_count() : 0;
     std::vector<double> audio(options.block_frames);
     std::vector<double> probes(options.block_frames * probe_count);
-    // A long render runs the fastest build of the bowed chain's loop here: a few milliseconds
-    // to find it, the same bytes.
+    // A long render runs the fastest build of the bowed chain's loop here (timed at its start):
+    // a few milliseconds to find it, the same bytes.
     if (!options.before_step && options.frames >= kFramesWorthChoosingABuild)
         sim.set_chain_build(fastest_chain_build(sim));
     std::uint64_t done = 0;

@@ -1,6 +1,7 @@
 // The state of a running simulation as a flat list of numbers, in one fixed order, so that a
 // take started mid-performance can be re-rendered from exactly where it began.
 
+#include <algorithm>
 #include <type_traits>
 
 #include "archet/physics/chain_kernel.hpp"
@@ -67,6 +68,9 @@ void Simulation::load_state(const double* in) {
     for_each_state(*this,
                    [&](auto& v) { v = static_cast<std::remove_reference_t<decltype(v)>>(*in++); });
     for (auto& lv : model_.levels) {  // the masses, grounds and chain links loaded
+        // The zeros the chain loop reads past the storage, which a blown-up run may have left
+        // not finite (fastest_chain_build() puts back a state after trials that may blow up).
+        for (auto& buffer : lv.buffer) std::fill(buffer.begin() + lv.size + 2, buffer.end(), 0.0);
         hold_fixed_tail(lv);
         fold_grounds(lv);
         find_uniform_runs(lv);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "archet/analysis/modal_analysis.hpp"
+#include "archet/model/gesture.hpp"
 #include "archet/model/model.hpp"
 #include "archet/physics/chain_kernel.hpp"
 
@@ -58,6 +59,16 @@ struct MapGrid {
     std::string describe() const;
     static MapGrid parse(const std::string& description);
 };
+
+/// What a grid point plays: `model` with its bow at the point's position and, for its probes, the
+/// bow's slip velocity alone (what a map reads after every tick, which Simulation::run() reads in
+/// the bowed chain's loop; probes change nothing of the motion), and the steady stroke at the
+/// point's force.
+struct MapStroke {
+    Model variant;
+    Gesture stroke;
+};
+MapStroke map_stroke(const Model& model, const MapGrid& grid, std::size_t index);
 
 /// Plays one grid point on `model` (a bowed string with a hand on each axis). `pitch` is the
 /// string's first mode (0: found by modal analysis). With `sound`, the whole stroke's output.

@@ -1,7 +1,7 @@
 #pragma once
 // Which build of the bowed chain's loop runs a model fastest on this CPU, found by timing the
-// builds on a copy of it, as FFTW's planner times its candidates. Every build gives the same
-// bytes, and which is fastest depends on the model as much as on the CPU: on an Intel Xeon
+// builds on the simulation itself, as FFTW's planner times its candidates. Every build gives the
+// same bytes, and which is fastest depends on the model as much as on the CPU: on an Intel Xeon
 // (Emerald Rapids) the paper's 60-mass chaplet ran in 0.85 of its AVX-512 time with AVX2, where
 // a 1,024-mass chain took 1.3 times as long (512-bit arithmetic leaves the step's scalar work
 // two ports of three).
