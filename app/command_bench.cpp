@@ -118,7 +118,7 @@ int run_bench(const BenchArguments& a) {
         sink += block.back();
     };
     for (std::uint64_t done = 0; done < warm; done += batch) run_batch();
-    // Chosen once the bow plays, as the engine, `render` and `play` choose it.
+    // Chosen once the bow plays (the engine and `play` choose for a model as it is loaded).
     sim.set_chain_build(asked_build ? *asked_build : fastest_chain_build(sim));
     // Several rounds, reporting the median (and the best): one long window on a shared
     // machine measures its neighbours as much as the model.

@@ -19,7 +19,7 @@ constexpr std::size_t kFewestTicks = 16, kMostTicks = 4096;
 
 using Clock = std::chrono::steady_clock;
 
-// Seconds for one run of `ticks`, or infinity if the copy blew up.
+// Seconds for one run of `ticks`, or infinity if it blew up.
 double timed_run(Simulation& sim, std::vector<double>& sound, std::size_t ticks, ChainBuild build) {
     const auto start = Clock::now();
     const std::size_t ran = sim.run({sound.data(), ticks}, build);
@@ -63,4 +63,5 @@ ChainBuild fastest_chain_build(Simulation& sim) {
     sim.load_state(state.data());
     return fastest;
 }
+
 }  // namespace archet

@@ -27,7 +27,6 @@ class Simulation {
     /// Plays a gesture track: each gesture point reads it at its own ticks. The gesture
     /// must outlive the simulation's use of it.
     void set_gesture_track(const Gesture* gesture);
-    const Gesture* gesture_track() const { return track_; }
     /// Live device positions (used when no track is set).
     void set_device_position(GestureSample position) { device_ = position; }
     GestureSample device_position() const { return device_; }
