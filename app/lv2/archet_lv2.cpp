@@ -22,6 +22,7 @@
 #include <cstring>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -74,15 +75,17 @@ struct Plugin {
     double bow_built = 0;   ///< β last given to the worker (not asked again if it fails)
     // The worker's (and instantiate's, restore's):
     Model base;
+    std::optional<ChainBuild> base_build;  ///< timed when the base was loaded, kept by rebuilds
     std::uint64_t model_id = 1;
     std::mutex path_mutex;  ///< the worker and state save
     std::string model_path;
 };
 
 // Off the audio thread: a model file checked and compiled, or nothing (said on stderr).
-Instrument* build(Plugin& p, const Model& model, double bow_position) {
+Instrument* build(Plugin& p, const Model& model, double bow_position,
+                  std::optional<ChainBuild> chain_build = std::nullopt) {
     try {
-        auto instrument = std::make_unique<Instrument>(model, p.rate, bow_position);
+        auto instrument = std::make_unique<Instrument>(model, p.rate, bow_position, chain_build);
         instrument->set_model_id(p.model_id);
         return instrument.release();
     } catch (const std::exception& e) {
@@ -102,6 +105,7 @@ Instrument* load(Plugin& p, const std::string& path, double bow_position) {
             return nullptr;
         }
         p.base = std::move(model);
+        p.base_build = fresh->chain_build();
         const std::lock_guard lock(p.path_mutex);
         p.model_path = path;
         return fresh;
@@ -269,7 +273,7 @@ LV2_Worker_Status work(LV2_Handle handle, LV2_Worker_Respond_Function respond,
             fresh = load(p, w.path, w.bow_position);
             break;
         case Work::Rebuild:
-            fresh = build(p, p.base, w.bow_position);
+            fresh = build(p, p.base, w.bow_position, p.base_build);
             break;
     }
     // Answered even when nothing was built, so that run() may ask again.

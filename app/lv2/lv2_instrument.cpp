@@ -47,7 +47,8 @@ double largest_damping_scale(const Model& model, const std::vector<ParameterName
 
 }  // namespace
 
-Instrument::Instrument(Model model, double sample_rate, double bow_position)
+Instrument::Instrument(Model model, double sample_rate, double bow_position,
+                       std::optional<ChainBuild> build)
     : model_(prepared(std::move(model), bow_position)),
       sim_(compile(model_, sample_rate)),
       performer_(midi::default_midi_mapping(), midi::performed_model(model_)),
@@ -64,7 +65,7 @@ Instrument::Instrument(Model model, double sample_rate, double bow_position)
         haptic_divider_ = static_cast<std::uint64_t>(hand->divider), haptic_dt_ = hand->dt;
     glide_samples_ = static_cast<int>(std::lround(0.01 * sample_rate));  // 10 ms, as the engine
     state_.resize(sim_.state_size());
-    sim_.set_chain_build(fastest_chain_build(sim_));  // never on the audio thread, as the rest
+    sim_.set_chain_build(build ? *build : fastest_chain_build(sim_));  // never on the audio thread
 }
 
 void Instrument::set_controls(double bow_force, double bow_speed, double damping_scale) {

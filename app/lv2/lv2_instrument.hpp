@@ -6,12 +6,14 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "archet/midi/midi_performer.hpp"
 #include "archet/model/model.hpp"
 #include "archet/output_limiter.hpp"
+#include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/parameter_smoother.hpp"
 #include "archet/physics/simulation.hpp"
 
@@ -20,8 +22,11 @@ namespace archet::lv2 {
 class Instrument {
   public:
     /// Compiles `model` at `sample_rate` with the bow at β = `bow_position` (0: the model's
-    /// own). Throws InputError when it cannot be played from MIDI (no bow, unstable).
-    Instrument(Model model, double sample_rate, double bow_position);
+    /// own), its bowed chain loop in `build`, else in the one fastest_chain_build() times (a
+    /// bow moved along the string keeps the model's). Throws InputError when it cannot be played
+    /// from MIDI (no bow, unstable).
+    Instrument(Model model, double sample_rate, double bow_position,
+               std::optional<ChainBuild> build = std::nullopt);
 
     // ---- real-time ----
     void receive(const midi::MidiMessage& message) { performer_.receive(message); }
@@ -36,6 +41,7 @@ class Instrument {
     /// The simulation stopped being finite: silent until replaced.
     bool blown_up() const { return blown_up_; }
     double bow_position() const { return bow_position_; }
+    ChainBuild chain_build() const { return sim_.chain_build(); }
     /// What it plays, for its probes (tests read the bow's slip velocity).
     const Simulation& simulation() const { return sim_; }
     /// A bow position MIDI asked for since the last call (CC 4), or 0.

@@ -113,6 +113,18 @@ TEST(Lv2Instrument, ANoteIsBowedInHelmholtzMotionAtItsPitch) {
                 a.pitch_cents);
 }
 
+// An instrument times the builds of its loop unless it is given one: the plugin gives a bow
+// moved along the string the build its model was timed to, so that the move waits for no trials.
+TEST(Lv2Instrument, RunsInTheBuildItIsGiven) {
+    const Model model = load_model_file(std::string(ARCHET_LV2_BUNDLE) + "/default.json");
+    for (ChainBuild build : {ChainBuild::Avx512, ChainBuild::Avx2, ChainBuild::Plain}) {
+        if (!chain_build_runs_here(build)) continue;
+        EXPECT_EQ(lv2::Instrument(model, 48000, 0.12, build).chain_build(), build)
+            << chain_build_name(build);
+    }
+    EXPECT_TRUE(chain_build_runs_here(lv2::Instrument(model, 48000, 0.12).chain_build()));
+}
+
 TEST(Lv2, ANoteIsPlayedAtItsPitchWithoutAllocatingAndLiftedAtItsEnd) {
     Lv2Host host(ARCHET_LV2_BUNDLE);
     ASSERT_TRUE(host.ready());
