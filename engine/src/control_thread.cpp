@@ -211,6 +211,7 @@ void ControlThread::nrt_load(const CommandFrame& c, const std::string& path) {
         nrt_check_cost(path, *loaded, sample_rate_, output_->buffer_frames());
         loaded->generation = ++generation_;  // only once it compiled
         current_resolver_ = loaded->resolver;
+        current_build_ = loaded->simulation->chain_build();
         current_model_ = std::move(model);
         current_name_ = current_model_.name;
         glided_slots_.clear();  // the new model's slots are its own
@@ -352,7 +353,8 @@ void ControlThread::nrt_collect_retired() {
 // The real-time thread muted the model; a fresh copy of the current one replaces it.
 void ControlThread::nrt_recover_from_blowup() {
     delete bridge_.pending.exchange(
-        nrt_prepare_model(current_model_, sample_rate_, haptic_, 0, generation_).release());
+        nrt_prepare_model(current_model_, sample_rate_, haptic_, 0, generation_, current_build_)
+            .release());
     publisher_.nrt_publish(
         StatusKind::Blowup, 0,
         "energy runaway or non-finite output: muted within the block, model reset");

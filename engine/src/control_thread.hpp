@@ -26,6 +26,7 @@
 #include "archet/midi/midi_performer.hpp"
 #include "archet/model/model.hpp"
 #include "archet/model/parameter_name.hpp"
+#include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "realtime_thread.hpp"
 #include "status_publisher.hpp"
@@ -108,6 +109,8 @@ class ControlThread {
     // The view of the model the studio last loaded, for names and checks.
     Model current_model_;
     CompiledModel current_resolver_;
+    /// Its bowed chain loop's build, timed when it was loaded: its bow moves keep it.
+    std::optional<ChainBuild> current_build_;
     /// The slots parameter changes have glided in this model, with their names.
     std::vector<std::pair<ParameterSlot, std::string>> glided_slots_;
     std::string current_name_;

@@ -74,7 +74,8 @@ void ControlThread::nrt_move_bow(double beta) {
         const Lia* was = bow_module_of(current_model_);
         if (!bow || !was || bowed_centre(moved, *bow) == bowed_centre(current_model_, *was)) return;
         validate_model(moved);
-        auto loaded = nrt_prepare_model(moved, sample_rate_, haptic_, 0, generation_);
+        auto loaded =
+            nrt_prepare_model(moved, sample_rate_, haptic_, 0, generation_, current_build_);
         loaded->continues = true;
         loaded->handover.resize(loaded->simulation->state_size());
         loaded->generation = ++generation_;

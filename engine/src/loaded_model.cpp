@@ -45,12 +45,13 @@ constexpr double kCostSeconds = 0.02, kCostShare = 0.7;
 
 std::unique_ptr<LoadedModel> nrt_prepare_model(const Model& model, double sample_rate,
                                                const HapticChoice& haptic, std::uint32_t sequence,
-                                               std::uint64_t generation) {
+                                               std::uint64_t generation,
+                                               std::optional<ChainBuild> build) {
     auto loaded = std::make_unique<LoadedModel>();
     loaded->resolver = compile(model, sample_rate);  // the device's clock is the master
     loaded->simulation = std::make_unique<Simulation>(loaded->resolver);
     loaded->simulation->set_gesture_track(nullptr);  // live: the device or the pad plays it
-    loaded->simulation->set_chain_build(fastest_chain_build(*loaded->simulation));
+    loaded->simulation->set_chain_build(build ? *build : fastest_chain_build(*loaded->simulation));
     if (haptic.device) loaded->haptic.emplace(*haptic.device, haptic.hand, *loaded->simulation);
     if (const CompiledLevel* hand = hand_level(loaded->resolver))
         loaded->haptic_divider = static_cast<std::uint64_t>(hand->divider),
@@ -58,9 +59,11 @@ std::unique_ptr<LoadedModel> nrt_prepare_model(const Model& model, double sample
     for (const std::string& id : string_points(model))
         if (loaded->shape.size() < ipc::kMaxShapePoints)
             loaded->shape.push_back(loaded->resolver.mat_slots.at(id));
-    for (std::size_t p = loaded->resolver.probes.size(); p-- > 0;)
-        if (loaded->resolver.probes[p].kind == ProbeKind::Energy)
+    for (std::size_t p = 0; p < loaded->resolver.probes.size(); ++p)
+        if (loaded->resolver.probes[p].kind == ProbeKind::Energy) {
             loaded->has_energy_probe = true, loaded->energy_probe = p;
+            break;
+        }
     loaded->held_energy = loaded->simulation->stored_energy();  // until its first reading
     loaded->sequence = sequence;
     loaded->generation = generation;

@@ -13,6 +13,7 @@
 #include "archet/haptic_choice.hpp"
 #include "archet/haptic_loop.hpp"
 #include "archet/model/model.hpp"
+#include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
 
@@ -42,9 +43,12 @@ struct LoadedModel {
 
 /// Control thread: compiles a validated model at the device's rate into what the real-time
 /// thread runs; `sequence` is the load command it answers, `generation` the load it counts as.
+/// Its bowed chain loop runs in `build`, else in the one fastest_chain_build() times (the same
+/// model again, or with its bow moved, keeps the build it was timed to).
 std::unique_ptr<LoadedModel> nrt_prepare_model(const Model& model, double sample_rate,
                                                const HapticChoice& haptic, std::uint32_t sequence,
-                                               std::uint64_t generation);
+                                               std::uint64_t generation,
+                                               std::optional<ChainBuild> build = std::nullopt);
 
 /// Control thread: throws an InputError naming `path` when stepping the model takes more than
 /// its share of the device's time per sample (it would xrun on every block of `block_frames`).
