@@ -33,10 +33,10 @@ struct MapArguments : SweepOptions {
 };
 
 void write_png(const std::string& path, const MapGrid& grid, const std::vector<MapPoint>& points,
-               const Model& model) {
+               const SchellengLines& lines) {
     const FigureApplication app;
     ui::PlayabilityFigure figure;
-    figure.show_map(grid, points, model);
+    figure.show_map(grid, points, lines);
     if (!figure.save(QString::fromStdString(path)))
         throw InputError(path, "could not write the figure");
 }
@@ -78,16 +78,16 @@ int run_map(const MapArguments& a) {
     const Model model = load_validated_model(a.model, {});
     const int jobs = a.threads();
     const bool show = ::isatty(STDERR_FILENO);
-    const auto points =
+    const PlayedMap map =
         play_map(model, grid, jobs, shard, shards, [&](std::size_t done, std::size_t total) {
             if (show) std::fprintf(stderr, "\rmap %zu / %zu", done, total);
         });
     if (show) std::fputc('\n', stderr);
-    write_file_atomically(a.output, format_map(grid, points, model));
-    if (!a.png.empty()) write_png(a.png, grid, points, model);
-    print_summary(points);
-    std::cout << "wrote " << a.output << " (" << points.size() << " of " << grid.size() << " points"
-              << (shards > 1 ? ", shard " + a.shard : std::string()) << ")\n";
+    write_file_atomically(a.output, format_map(grid, map.points, map.lines));
+    if (!a.png.empty()) write_png(a.png, grid, map.points, map.lines);
+    print_summary(map.points);
+    std::cout << "wrote " << a.output << " (" << map.points.size() << " of " << grid.size()
+              << " points" << (shards > 1 ? ", shard " + a.shard : std::string()) << ")\n";
     return 0;
 }
 
@@ -105,8 +105,9 @@ int run_merge(const MapArguments& a) {
         points.insert(points.end(), p.begin(), p.end());
     }
     check_shards_cover(points, grid->size(), a.parts.front());
-    write_file_atomically(a.output, format_map(*grid, points, model));
-    if (!a.png.empty()) write_png(a.png, *grid, points, model);
+    const SchellengLines lines = schelleng_lines(model);
+    write_file_atomically(a.output, format_map(*grid, points, lines));
+    if (!a.png.empty()) write_png(a.png, *grid, points, lines);
     print_summary(points);
     std::cout << "wrote " << a.output << " (" << points.size() << " points from " << a.parts.size()
               << " shards)\n";

@@ -77,7 +77,8 @@ TEST(PlayabilityMap, TheShippedStringShowsSchellengsPicture) {
     grid.force_min = 0.002, grid.force_max = 2.0, grid.force_steps = 10;
     grid.position_min = 0.08, grid.position_max = 0.2, grid.position_steps = 3;
     grid.duration = 1.0;
-    const auto points = play_map(model, grid, 2);
+    const PlayedMap map = play_map(model, grid, 2);
+    const std::vector<MapPoint>& points = map.points;
     ASSERT_EQ(points.size(), grid.size());
     std::string picture;
     std::vector<double> lowest_helmholtz;
@@ -151,6 +152,33 @@ TEST(PlayabilityMap, APointPlaysTheStepsBytesInEveryBuild) {
         for (auto field : {&RegimeAnalysis::slips_per_period, &RegimeAnalysis::pitch_cents,
                            &RegimeAnalysis::slip_share, &RegimeAnalysis::centroid})
             EXPECT_EQ(std::memcmp(&(got.analysis.*field), &(expected.*field), 8), 0);
+    }
+}
+
+// A map analyses the model's modes once, for its points' pitch and Schelleng's lines: what the
+// points find is what each finds against its own variant's modes (the bow's place does not move
+// them), and the lines are the model's.
+TEST(PlayabilityMap, ReadsThePitchAndTheLinesFromOneAnalysisOfTheModel) {
+    const Model model = load_model_file(test::resource("models/bowed-string-220-paper.json"));
+    MapGrid grid;
+    grid.force_min = 0.05, grid.force_max = 0.5, grid.force_steps = 2;
+    grid.position_min = 0.07, grid.position_max = 0.18, grid.position_steps = 2;
+    grid.duration = 0.3;
+    const PlayedMap map = play_map(model, grid, 2);
+    EXPECT_EQ(map.first_mode, analyse_modes(model).fundamental);
+    const SchellengLines lines = schelleng_lines(model);
+    EXPECT_GT(lines.impedance, 0);
+    EXPECT_EQ(map.lines.impedance, lines.impedance);
+    EXPECT_EQ(map.lines.resistance, lines.resistance);
+    EXPECT_EQ(map.lines.friction_drop, lines.friction_drop);
+    ASSERT_EQ(map.points.size(), grid.size());
+    for (const MapPoint& point : map.points) {
+        SCOPED_TRACE(point.index);
+        const MapPoint alone = play_map_point(model, grid, point.index);  // its variant's modes
+        EXPECT_EQ(point.analysis.regime, alone.analysis.regime);
+        for (auto field : {&RegimeAnalysis::slips_per_period, &RegimeAnalysis::pitch_cents,
+                           &RegimeAnalysis::slip_share, &RegimeAnalysis::centroid})
+            EXPECT_EQ(std::memcmp(&(point.analysis.*field), &(alone.analysis.*field), 8), 0);
     }
 }
 

@@ -476,6 +476,14 @@ TEST(PlayabilityPanelTest, ComputesInTheBackgroundMarksTheGestureAndPlaysAClicke
     panel.listen(7);
     EXPECT_TRUE(test::wait_until([&] { return panel.player().position() > 1000u; }, 60000));
     panel.player().stop();
+    // What it says of the point is what the map found there.
+    const QString heard = QString("(%1 slips per period, %2 cents)")
+                              .arg(p.analysis.slips_per_period, 0, 'f', 2)
+                              .arg(p.analysis.pitch_cents, 0, 'f', 1);
+    bool told = false;
+    for (const QLabel* label : panel.findChildren<QLabel*>())
+        told = told || label->text().contains(heard);
+    EXPECT_TRUE(told) << heard.toStdString();
     // Where the string plays in Helmholtz motion, the message says how flat it plays against
     // the string's first mode.
     MapGrid helmholtz;
@@ -560,7 +568,7 @@ TEST(PlayabilityFigureTest, TheLegendNamesEachRegimeInWords) {
     }
     PlayabilityFigure figure;
     figure.resize(1000, 700);
-    figure.show_map(grid, points, model);
+    figure.show_map(grid, points, schelleng_lines(model));
     std::set<QString> names;
     QCPLegend& legend = *figure.plot().legend;
     for (int i = 0; i < legend.itemCount(); ++i)

@@ -66,7 +66,7 @@ PlayabilityFigure::PlayabilityFigure(QWidget* parent) : QWidget(parent) {
 }
 
 void PlayabilityFigure::show_map(const MapGrid& grid, const std::vector<MapPoint>& points,
-                                 const Model& model) {
+                                 const SchellengLines& lines) {
     points_ = points;
     plot_->clearGraphs();
     // One scatter per regime, so that the legend names the colours.
@@ -85,7 +85,6 @@ void PlayabilityFigure::show_map(const MapGrid& grid, const std::vector<MapPoint
     }
     // Schelleng's lines, from the model's own string.
     QVector<double> beta, low, high;
-    const SchellengLines lines = schelleng_lines(model);
     for (int i = 0; i <= 100; ++i) {
         const double b = grid.position_min * 0.9 +
                          (grid.position_max * 1.1 - grid.position_min * 0.9) * i / 100.0;

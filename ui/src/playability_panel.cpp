@@ -54,7 +54,7 @@ PlayabilityPanel::PlayabilityPanel(
     connect(figure_, &PlayabilityFigure::point_clicked, this, &PlayabilityPanel::listen);
     // The player's bow moves while the map is shown: its cross follows.
     connect(refresh_, &QTimer::timeout, this, [this] {
-        if (!points_.empty() && isVisible())
+        if (!map_.points.empty() && isVisible())
             figure_->mark(gesture_point_ ? gesture_point_() : std::nullopt);
     });
     refresh_->start(200);
@@ -63,7 +63,7 @@ PlayabilityPanel::PlayabilityPanel(
 void PlayabilityPanel::set_model(const Model& model) {
     model_ = model;
     ++freshness_.model;
-    if (!points_.empty() && !busy()) message_->setText(model_changed_text());
+    if (!map_.points.empty() && !busy()) message_->setText(model_changed_text());
 }
 
 void PlayabilityPanel::set_grid(const MapGrid& g) {
@@ -102,22 +102,22 @@ void PlayabilityPanel::compute() {
                 &control.cancel_flag());
         },
         // Clicks play points of the grid the figure shows, which changes only now.
-        [this, grid, model = model_, edit = freshness_.model](std::vector<MapPoint> points) {
+        [this, grid, model = model_, edit = freshness_.model](PlayedMap map) {
             grid_ = grid, shown_model_ = model, freshness_.shown = edit;
-            finished(std::move(points), {});
+            finished(std::move(map), {});
         },
         [this](const QString& error) { finished({}, error); });
 }
 
-void PlayabilityPanel::finished(std::vector<MapPoint> points, QString error) {
+void PlayabilityPanel::finished(PlayedMap map, QString error) {
     compute_->setEnabled(true), cancel_button_->setEnabled(false);
     if (!error.isEmpty()) {
         message_->setText(error);
     } else {
-        points_ = std::move(points);
-        figure_->show_map(grid_, points_, shown_model_);
+        map_ = std::move(map);
+        figure_->show_map(grid_, map_.points, map_.lines);
         figure_->mark(gesture_point_ ? gesture_point_() : std::nullopt);
-        const HelmholtzPitch pitch = helmholtz_pitch(points_);
+        const HelmholtzPitch pitch = helmholtz_pitch(map_.points);
         const QString flattening =
             pitch.points == 0 ? QString()
                               : tr(", playing %1 to %2 cents against the string's first mode")
@@ -127,18 +127,18 @@ void PlayabilityPanel::finished(std::vector<MapPoint> points, QString error) {
             freshness_.note(tr("%1 of %2 points in Helmholtz motion%3; the cross is where you "
                                "bow now. Click a point to hear it.")
                                 .arg(pitch.points)
-                                .arg(points_.size())
+                                .arg(map_.points.size())
                                 .arg(flattening)));
     }
     emit computed(error);
 }
 
 void PlayabilityPanel::listen(long index) {
-    if (index < 0 || static_cast<std::size_t>(index) >= points_.size()) return;
+    if (index < 0 || static_cast<std::size_t>(index) >= map_.points.size()) return;
     try {
         std::vector<double> sound;
-        const MapPoint p =
-            play_map_point(shown_model_, grid_, static_cast<std::size_t>(index), 0, &sound);
+        const MapPoint p = play_map_point(shown_model_, grid_, static_cast<std::size_t>(index),
+                                          map_.first_mode, &sound);
         player_.play(sound, shown_model_.sample_rate);
         message_->setText(
             freshness_.note(tr("β %1, %2 N: %3 (%4 slips per period, %5 cents) — playing on %6")

@@ -107,10 +107,10 @@ double press_stiffness(const Model& model) {
                          bow.press + "\")");
 }
 
-double first_mode(const Model& model) {
-    const double f1 = analyse_modes(model).fundamental;
-    if (!(f1 > 0)) throw InputError(model.name, "has no string mode to measure pitch against");
-    return f1;
+double first_mode(const Model& model, const ModalAnalysis& modes) {
+    if (!(modes.fundamental > 0))
+        throw InputError(model.name, "has no string mode to measure pitch against");
+    return modes.fundamental;
 }
 
 }  // namespace
@@ -221,7 +221,7 @@ MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t ind
     p.force = grid.force(index);
     p.position = grid.position(index);
     const auto [variant, stroke] = map_stroke(model, grid, index);
-    if (!(pitch > 0)) pitch = first_mode(variant);
+    if (!(pitch > 0)) pitch = first_mode(variant, analyse_modes(variant));
     Simulation sim(compile(variant));
     sim.set_gesture_track(&stroke);
     if (build) sim.set_chain_build(*build);
@@ -257,12 +257,17 @@ ChainBuild fastest_build_for_map(const Model& model, const MapGrid& grid) {
     return fastest_chain_build(sim);
 }
 
-std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs, int shard,
-                               int shards,
-                               const std::function<void(std::size_t, std::size_t)>& progress,
-                               const std::atomic<bool>* cancel) {
+PlayedMap play_map(const Model& model, const MapGrid& grid, int jobs, int shard, int shards,
+                   const std::function<void(std::size_t, std::size_t)>& progress,
+                   const std::atomic<bool>* cancel) {
     shard_points(grid.size(), shard, shards);  // a bad shard is refused before anything runs
-    const double pitch = first_mode(model);    // the bow's position does not move the modes
+    bow_module(model);  // a model without a bow is told so before its modes are analysed
+    PlayedMap map;
+    // One analysis for the points' pitch and the lines (the bow's position does not move the
+    // modes).
+    const ModalAnalysis modes = analyse_modes(model);
+    map.first_mode = first_mode(model, modes);
+    map.lines = schelleng_lines(model, modes);
     // Every variant is checked before the threads start.
     for (double beta : {grid.position_min, grid.position_max}) {
         Model check = model;
@@ -272,12 +277,13 @@ std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs
     // The build of the bowed chain's loop that plays the first point fastest plays them all (they
     // differ in the bow's place and force alone), found before the threads start.
     const ChainBuild build = fastest_build_for_map(model, grid);
-    return sweep_grid<MapPoint>(
+    map.points = sweep_grid<MapPoint>(
         model.name, grid.size(), jobs, shard, shards,
         [&](std::size_t index) {
-            return play_map_point(model, grid, index, pitch, nullptr, build);
+            return play_map_point(model, grid, index, map.first_mode, nullptr, build);
         },
         progress, cancel);
+    return map;
 }
 
 HelmholtzPitch helmholtz_pitch(const std::vector<MapPoint>& points) {
@@ -345,13 +351,12 @@ SchellengBounds schelleng_bounds(const Model& model, double position, double spe
 }
 
 std::string format_map(const MapGrid& grid, const std::vector<MapPoint>& points,
-                       const Model& model) {
+                       const SchellengLines& lines) {
     std::ostringstream s;
     s.precision(10);
     s << "# archet-map " << grid.describe() << "\n";
     s << "index,force_n,position,regime,slips_per_period,pitch_cents,slip_share,centroid_hz,"
          "schelleng_min_n,schelleng_max_n\n";
-    const SchellengLines lines = schelleng_lines(model);
     for (const auto& p : points) {
         const SchellengBounds b = lines.at(p.position, grid.speed);
         s << p.index << "," << p.force << "," << p.position << "," << to_string(p.analysis.regime)

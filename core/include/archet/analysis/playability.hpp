@@ -81,13 +81,35 @@ MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t ind
 /// (fastest_chain_build()).
 ChainBuild fastest_build_for_map(const Model& model, const MapGrid& grid);
 
+/// Schelleng's bounds at one bow position and speed: below `minimum` several slips per
+/// period, above `maximum` raucous (both zero for a model without a string to read).
+struct SchellengBounds {
+    double minimum = 0, maximum = 0;
+};
+
+/// What Schelleng's lines need of the model's string: its impedance Z0 = √(k·m) at the bow,
+/// μs − μd, and the loss resistance R = 2·Z0·f1·τ of its first mode's decay. Reading them
+/// takes a modal analysis; the bounds at each position are then a formula.
+struct SchellengLines {
+    double impedance = 0, resistance = 0, friction_drop = 0;
+    SchellengBounds at(double position, double speed) const;
+};
+
+/// A map's points, sorted by index, with what it read of the model's modes in its one modal
+/// analysis (a long string's takes as long as many points): the first mode its points' pitch
+/// is measured against, and Schelleng's lines to draw over them.
+struct PlayedMap {
+    std::vector<MapPoint> points;
+    double first_mode = 0;  ///< Hz
+    SchellengLines lines;
+};
+
 /// Plays the points of `grid` whose index % shards == shard on `jobs` threads, calling
-/// `progress(done, total)` from the caller's thread as they finish. Sorted by index. Setting
-/// `*cancel` stops it (InputError "cancelled").
-std::vector<MapPoint> play_map(const Model& model, const MapGrid& grid, int jobs, int shard = 0,
-                               int shards = 1,
-                               const std::function<void(std::size_t, std::size_t)>& progress = {},
-                               const std::atomic<bool>* cancel = nullptr);
+/// `progress(done, total)` from the caller's thread as they finish. Setting `*cancel` stops it
+/// (InputError "cancelled").
+PlayedMap play_map(const Model& model, const MapGrid& grid, int jobs, int shard = 0, int shards = 1,
+                   const std::function<void(std::size_t, std::size_t)>& progress = {},
+                   const std::atomic<bool>* cancel = nullptr);
 
 /// How flat or sharp a map's Helmholtz points play against the string's first mode: the
 /// pitch flattening that grows with bow force.
@@ -102,28 +124,16 @@ HelmholtzPitch helmholtz_pitch(const std::vector<MapPoint>& points);
 double force_for_press(const Model& model, double press);
 double bow_position(const Model& model);
 
-/// Schelleng's bounds at one bow position and speed: below `minimum` several slips per
-/// period, above `maximum` raucous (both zero for a model without a string to read).
-struct SchellengBounds {
-    double minimum = 0, maximum = 0;
-};
-
-/// What Schelleng's lines need of the model's string: its impedance Z0 = √(k·m) at the bow,
-/// μs − μd, and the loss resistance R = 2·Z0·f1·τ of its first mode's decay. Reading them
-/// takes a modal analysis; the bounds at each position are then a formula.
-struct SchellengLines {
-    double impedance = 0, resistance = 0, friction_drop = 0;
-    SchellengBounds at(double position, double speed) const;
-};
 SchellengLines schelleng_lines(const Model& model);
 /// The same from the model's modal analysis, when the caller has it (analyse_modes(model)).
 SchellengLines schelleng_lines(const Model& model, const ModalAnalysis& modes);
 /// schelleng_lines(model).at(position, speed).
 SchellengBounds schelleng_bounds(const Model& model, double position, double speed);
 
-/// The map as CSV (first line: "# archet-map " + grid.describe()); and back.
+/// The map as CSV (first line: "# archet-map " + grid.describe()), with Schelleng's bounds at
+/// each point from `lines`; and back.
 std::string format_map(const MapGrid& grid, const std::vector<MapPoint>& points,
-                       const Model& model);
+                       const SchellengLines& lines);
 std::pair<MapGrid, std::vector<MapPoint>> parse_map(const std::string& text,
                                                     const std::string& source);
 

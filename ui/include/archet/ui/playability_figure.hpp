@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "archet/analysis/playability.hpp"
-#include "archet/model/model.hpp"
 
 class QCustomPlot;
 
@@ -19,7 +18,9 @@ class PlayabilityFigure : public QWidget {
 
   public:
     explicit PlayabilityFigure(QWidget* parent = nullptr);
-    void show_map(const MapGrid& grid, const std::vector<MapPoint>& points, const Model& model);
+    /// The points, with Schelleng's lines of the model's string (PlayedMap::lines).
+    void show_map(const MapGrid& grid, const std::vector<MapPoint>& points,
+                  const SchellengLines& lines);
     /// Marks (β, force) on the map, e.g. the gesture being played.
     void mark(std::optional<std::pair<double, double>> point);
     bool save(const QString& path, QSize size = {1000, 700});

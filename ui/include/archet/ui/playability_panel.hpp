@@ -39,10 +39,11 @@ class PlayabilityPanel : public QWidget {
     void compute();
     void cancel() { job_.cancel(); }
     bool busy() const { return job_.busy(); }
-    const std::vector<MapPoint>& points() const { return points_; }
+    const std::vector<MapPoint>& points() const { return map_.points; }
     PlayabilityFigure& figure() { return *figure_; }
     PreviewPlayer& player() { return player_; }
-    /// Renders grid point `index` again and plays it.
+    /// Renders grid point `index` again and plays it (on this thread: a point's stroke,
+    /// its pitch measured against the map's first mode).
     void listen(long index);
 
   signals:
@@ -50,7 +51,7 @@ class PlayabilityPanel : public QWidget {
 
   private:
     MapGrid grid_from_fields() const;
-    void finished(std::vector<MapPoint> points, QString error);
+    void finished(PlayedMap map, QString error);
 
     Model model_;        ///< the open model, mapped by the next Compute
     Model shown_model_;  ///< the model the figure shows
@@ -64,7 +65,7 @@ class PlayabilityPanel : public QWidget {
     QLabel* message_;
     PlayabilityFigure* figure_;
     QTimer* refresh_;
-    std::vector<MapPoint> points_;
+    PlayedMap map_;         ///< the map the figure shows
     PreviewPlayer player_;  ///< the preview path, apart from the engine
     BackgroundJob job_;     ///< last: destroyed (cancelled and joined) first
 };
