@@ -68,11 +68,10 @@ class FastJson {
     class Iterator;  ///< over an array's elements
     Iterator begin() const;
     Iterator end() const;
-    /// Calls f with each key of an object, in the file's order.
+    /// Calls f with each key of an object (a view into the document), in the file's order.
     template <class F>
     void for_each_key(F&& f) const {
-        for (simdjson::dom::key_value_pair m : simdjson::dom::object(element_))
-            f(std::string(m.key));
+        for (simdjson::dom::key_value_pair m : simdjson::dom::object(element_)) f(m.key);
     }
 
   private:

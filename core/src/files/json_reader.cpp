@@ -34,10 +34,10 @@ const char* type_name(const FastJson& v) {
     return v.type_name();
 }
 
-// Calls f with each key of an object, in the file's order.
+// Calls f with each key of an object (a view), in the file's order.
 template <class F>
 void for_each_key(const nlohmann::ordered_json& object, F&& f) {
-    for (auto it = object.begin(); it != object.end(); ++it) f(it.key());
+    for (auto it = object.begin(); it != object.end(); ++it) f(std::string_view(it.key()));
 }
 template <class F>
 void for_each_key(const FastJson& object, F&& f) {
@@ -58,41 +58,69 @@ std::string closest_word(const std::string& word, const std::set<std::string>& c
 template <class Value>
 BasicJsonObjectReader<Value>::BasicJsonObjectReader(const Value& object, std::string where)
     : object_(object), where_(std::move(where)) {
-    known_.reserve(16);  // an element's keys, without growing the list as they are asked for
+    check_is_object();
+}
+
+template <class Value>
+BasicJsonObjectReader<Value>::BasicJsonObjectReader(const Value& object, const char* kind,
+                                                    std::size_t index)
+    : object_(object), kind_(kind), index_(index) {
+    check_is_object();
+}
+
+template <class Value>
+void BasicJsonObjectReader<Value>::check_is_object() const {
     if (!object_.is_object())
-        throw InputError(where_,
+        throw InputError(where(),
                          std::string("expected a JSON object, found ") + type_name(object_));
 }
 
 template <class Value>
+const std::string& BasicJsonObjectReader<Value>::where() const {
+    if (kind_ && where_.empty()) {
+        const std::string kind = kind_;
+        const Found id = object_.is_object() ? find("id") : Found{};
+        where_ = id && (*id).is_string()
+                     ? kind + " " + quoted_text((*id).template get<std::string>())
+                     : kind + " #" + std::to_string(index_ + 1);
+    }
+    return where_;
+}
+
+template <class Value>
 bool BasicJsonObjectReader<Value>::has(const std::string& key) const {
-    if constexpr (kViews)
-        return object_.find(key).has_value();
-    else
-        return object_.contains(key);
+    return static_cast<bool>(find(key));
 }
 
 template <class Value>
-void BasicJsonObjectReader<Value>::ask(const std::string& key) {
-    if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.push_back(key);
-}
-
-template <class Value>
-auto BasicJsonObjectReader<Value>::get(const std::string& key) -> Ref {
-    Found v = optional(key);
-    if (!v) throw InputError(where_, "missing key " + quoted_text(key));
-    return *v;
-}
-
-template <class Value>
-auto BasicJsonObjectReader<Value>::optional(const std::string& key) -> Found {
-    ask(key);
+auto BasicJsonObjectReader<Value>::find(const std::string& key) const -> Found {
     if constexpr (kViews) {
         return object_.find(key);
     } else {
         auto it = object_.find(key);
         return it == object_.end() ? nullptr : &*it;
     }
+}
+
+template <class Value>
+void BasicJsonObjectReader<Value>::ask(const std::string& key) {
+    const auto asked = known_.begin() + static_cast<std::ptrdiff_t>(asked_);
+    if (std::find(known_.begin(), asked, key) != asked) return;
+    if (asked_ == kMostKeys) throw std::logic_error("a JSON object read for more keys than kept");
+    known_[asked_++] = key;
+}
+
+template <class Value>
+auto BasicJsonObjectReader<Value>::get(const std::string& key) -> Ref {
+    Found v = optional(key);
+    if (!v) throw InputError(where(), "missing key " + quoted_text(key));
+    return *v;
+}
+
+template <class Value>
+auto BasicJsonObjectReader<Value>::optional(const std::string& key) -> Found {
+    ask(key);
+    return find(key);
 }
 
 template <class Value>
@@ -103,9 +131,9 @@ double BasicJsonObjectReader<Value>::number(const std::string& key) {
 template <class Value>
 double BasicJsonObjectReader<Value>::checked_number(const std::string& key, const Value& v) const {
     if (!v.is_number())
-        throw InputError(where_, quoted_text(key) + " must be a number, found " + type_name(v));
+        throw InputError(where(), quoted_text(key) + " must be a number, found " + type_name(v));
     const double x = v.template get<double>();
-    if (!std::isfinite(x)) throw InputError(where_, quoted_text(key) + " must be a finite number");
+    if (!std::isfinite(x)) throw InputError(where(), quoted_text(key) + " must be a finite number");
     return x;
 }
 
@@ -121,15 +149,15 @@ int BasicJsonObjectReader<Value>::integer(const std::string& key, int fallback) 
     if (!found) return fallback;
     const auto& v = *found;
     if (!v.is_number_integer())
-        throw InputError(where_, quoted_text(key) + " must be an integer, found " + type_name(v));
+        throw InputError(where(), quoted_text(key) + " must be an integer, found " + type_name(v));
     const bool fits = v.is_number_unsigned()
                           ? v.template get<std::uint64_t>() <= std::numeric_limits<int>::max()
                           : v.template get<std::int64_t>() >= std::numeric_limits<int>::min() &&
                                 v.template get<std::int64_t>() <= std::numeric_limits<int>::max();
     if (!fits)
-        throw InputError(where_, key + " " + v.dump() +
-                                     " is out of range: a whole number here lies between "
-                                     "-2147483648 and 2147483647");
+        throw InputError(where(), key + " " + v.dump() +
+                                      " is out of range: a whole number here lies between "
+                                      "-2147483648 and 2147483647");
     return v.template get<int>();
 }
 
@@ -142,7 +170,7 @@ template <class Value>
 std::string BasicJsonObjectReader<Value>::checked_text(const std::string& key,
                                                        const Value& v) const {
     if (!v.is_string())
-        throw InputError(where_, quoted_text(key) + " must be a string, found " + type_name(v));
+        throw InputError(where(), quoted_text(key) + " must be a string, found " + type_name(v));
     return v.template get<std::string>();
 }
 
@@ -157,7 +185,7 @@ template <class Value>
 auto BasicJsonObjectReader<Value>::array(const std::string& key) -> Ref {
     Ref v = get(key);
     if (!v.is_array())
-        throw InputError(where_, quoted_text(key) + " must be an array, found " + type_name(v));
+        throw InputError(where(), quoted_text(key) + " must be an array, found " + type_name(v));
     return v;
 }
 
@@ -165,19 +193,20 @@ template <class Value>
 auto BasicJsonObjectReader<Value>::object(const std::string& key) -> Ref {
     Ref v = get(key);
     if (!v.is_object())
-        throw InputError(where_, quoted_text(key) + " must be an object, found " + type_name(v));
+        throw InputError(where(), quoted_text(key) + " must be an object, found " + type_name(v));
     return v;
 }
 
 template <class Value>
 void BasicJsonObjectReader<Value>::finish() const {
-    for_each_key(object_, [&](const std::string& key) {
-        if (std::find(known_.begin(), known_.end(), key) != known_.end()) return;
-        std::string message = "unknown key " + quoted_text(key);
+    const auto asked = known_.begin() + static_cast<std::ptrdiff_t>(asked_);
+    for_each_key(object_, [&](std::string_view key) {
+        if (std::find(known_.begin(), asked, key) != asked) return;
+        std::string message = "unknown key " + quoted_text(std::string(key));
         const std::string hint =
-            closest_word(key, std::set<std::string>(known_.begin(), known_.end()));
+            closest_word(std::string(key), std::set<std::string>(known_.begin(), asked));
         if (!hint.empty()) message += "; did you mean " + quoted_text(hint) + "?";
-        throw InputError(where_, message);
+        throw InputError(where(), message);
     });
 }
 

@@ -20,26 +20,20 @@
 
 namespace archet::model_reading {
 
-template <class Enum>
+// `text` as one of `values`, or an error naming `r`'s object and the values it may be.
+template <class Enum, class Json>
 Enum parse_enum(const std::string& text, std::initializer_list<Enum> values,
-                const std::string& where, const std::string& key) {
-    std::set<std::string> names;
-    for (Enum v : values) {
+                const BasicJsonObjectReader<Json>& r, const char* key) {
+    for (Enum v : values)
         if (text == to_string(v)) return v;
-        names.insert(to_string(v));
-    }
-    std::string message = "unknown " + key + " " + quoted_text(text) + "; expected one of:";
+    std::set<std::string> names;
+    for (Enum v : values) names.insert(to_string(v));
+    std::string message =
+        "unknown " + std::string(key) + " " + quoted_text(text) + "; expected one of:";
     for (const auto& n : names) message += " " + n;
     const std::string hint = closest_word(text, names);
     if (!hint.empty()) message += " (did you mean " + quoted_text(hint) + "?)";
-    throw InputError(where, message);
-}
-
-template <class Json>
-std::string element_where(const std::string& kind, const Json& item, std::size_t index) {
-    if (item.is_object() && item.contains("id") && item["id"].is_string())
-        return kind + " " + quoted_text(item["id"].template get<std::string>());
-    return kind + " #" + std::to_string(index + 1);
+    throw InputError(r.where(), message);
 }
 
 template <class Json>
@@ -96,18 +90,17 @@ void read_modal_point(BasicJsonObjectReader<Json>& r, Mat& m) {
 
 template <class Json>
 Mat read_mat(const Json& item, std::size_t index) {
-    BasicJsonObjectReader<Json> r(item, element_where("mass", item, index));
+    BasicJsonObjectReader<Json> r(item, "mass", index);
     Mat m;
     m.id = r.text("id");
     m.kind = parse_enum(
         r.text("type"),
         {MatKind::Mass, MatKind::Fixed, MatKind::Oscillator, MatKind::Gesture, MatKind::ModalPoint},
-        r.where(), "mass type");
+        r, "mass type");
     m.rate = r.text("rate", "audio");
     read_parameters(r, m);
     if (m.kind == MatKind::Gesture)
-        m.axis =
-            parse_enum(r.text("axis"), {GestureAxis::Slide, GestureAxis::Press}, r.where(), "axis");
+        m.axis = parse_enum(r.text("axis"), {GestureAxis::Slide, GestureAxis::Press}, r, "axis");
     if (m.kind == MatKind::ModalPoint) read_modal_point(r, m);
     m.display = read_display(r);
     r.finish();
@@ -116,13 +109,13 @@ Mat read_mat(const Json& item, std::size_t index) {
 
 template <class Json>
 Lia read_lia(const Json& item, std::size_t index) {
-    BasicJsonObjectReader<Json> r(item, element_where("link", item, index));
+    BasicJsonObjectReader<Json> r(item, "link", index);
     Lia l;
     l.id = r.text("id");
     l.kind = parse_enum(r.text("type"),
                         {LiaKind::Spring, LiaKind::Damper, LiaKind::SpringDamper, LiaKind::Buffer,
                          LiaKind::BowFriction, LiaKind::Finger},
-                        r.where(), "link type");
+                        r, "link type");
     l.rate = r.text("rate", "audio");
     if (l.kind == LiaKind::BowFriction) {  // its bow and string masses are `from` and `to`
         l.from = r.text("bow"), l.to = r.text("string");
@@ -140,7 +133,7 @@ Lia read_lia(const Json& item, std::size_t index) {
 
 template <class Json>
 Control read_control(const Json& item, std::size_t index) {
-    BasicJsonObjectReader<Json> r(item, element_where("control", item, index));
+    BasicJsonObjectReader<Json> r(item, "control", index);
     Control c;
     c.id = r.text("id");
     c.rate = r.text("rate", "audio");
@@ -150,7 +143,7 @@ Control read_control(const Json& item, std::size_t index) {
     c.source =
         parse_enum(s.text("type"),
                    {Control::Source::Envelope, Control::Source::Gesture, Control::Source::Position},
-                   s.where(), "source type");
+                   s, "source type");
     switch (c.source) {
         case Control::Source::Envelope: {
             for (const auto& p : s.array("points")) {
@@ -161,8 +154,8 @@ Control read_control(const Json& item, std::size_t index) {
             break;
         }
         case Control::Source::Gesture:
-            c.axis = parse_enum(s.text("axis"), {GestureAxis::Slide, GestureAxis::Press}, s.where(),
-                                "axis");
+            c.axis =
+                parse_enum(s.text("axis"), {GestureAxis::Slide, GestureAxis::Press}, s, "axis");
             break;
         case Control::Source::Position:
             c.element = s.text("element");
@@ -182,14 +175,14 @@ Control read_control(const Json& item, std::size_t index) {
 
 template <class Json>
 Probe read_probe(const Json& item, std::size_t index) {
-    BasicJsonObjectReader<Json> r(item, element_where("probe", item, index));
+    BasicJsonObjectReader<Json> r(item, "probe", index);
     Probe p;
     p.id = r.text("id");
     p.kind = parse_enum(
         r.text("kind"),
         {ProbeKind::Position, ProbeKind::Velocity, ProbeKind::Force, ProbeKind::NormalForce,
          ProbeKind::FrictionForce, ProbeKind::SlipVelocity, ProbeKind::Energy, ProbeKind::PowerIn},
-        r.where(), "probe kind");
+        r, "probe kind");
     if (p.kind != ProbeKind::Energy && p.kind != ProbeKind::PowerIn) p.element = r.text("element");
     r.finish();
     return p;
@@ -202,8 +195,8 @@ Output read_output(const Json& item, std::size_t index) {
     o.element = r.text("element");
     o.signal =
         parse_enum(r.text("signal"),
-                   {Output::Signal::Position, Output::Signal::Velocity, Output::Signal::Force},
-                   r.where(), "output signal");
+                   {Output::Signal::Position, Output::Signal::Velocity, Output::Signal::Force}, r,
+                   "output signal");
     o.gain = r.number("gain", 1.0);
     r.finish();
     return o;
@@ -235,7 +228,7 @@ Model read_model(const Json& root, const std::string& source) {
         m.rates.clear();
         std::size_t i = 0;
         for (const auto& rate : *rates) {
-            BasicJsonObjectReader<Json> rr(rate, element_where("rate level", rate, i++));
+            BasicJsonObjectReader<Json> rr(rate, "rate level", i++);
             m.rates.push_back({rr.text("id"), rr.integer("divider", 1)});
             rr.finish();
         }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <queue>
 #include <string_view>
 #include <unordered_map>
@@ -11,9 +12,126 @@
 namespace archet {
 
 namespace {
+
 bool has_inertia(const Mat& m) {
     return m.kind == MatKind::Mass || m.kind == MatKind::Oscillator;
 }
+
+// Builds one level's system: its DOFs, then each link's share of K and Z, in the model's order.
+class Assembler {
+  public:
+    Assembler(const Model& model, const RateLevel& level, LinearSystem& sys)
+        : model_(model), level_(level), sys_(sys), dof_(model.mats.size(), -1) {
+        // The level's MATs with inertia first, in the model's order; then those of other
+        // levels its links reach, as they reach them.
+        for (std::size_t i = 0; i < model.mats.size(); ++i)
+            if (model.mats[i].rate == level.id) dof_of(i);
+        k_.reserve(4 * model.lias.size()), z_.reserve(4 * model.lias.size());
+    }
+
+    void add_links(Fingers fingers) {
+        for (const auto& l : model_.lias) {
+            if (l.rate != level_.id) continue;
+            if (l.kind == LiaKind::BowFriction)
+                couple(mat_index(l.press), mat_index(l.surface), l.stiffness, l.damping);
+            else if (l.kind == LiaKind::Finger && fingers == Fingers::Include)
+                add_finger(l);
+            else if (l.kind != LiaKind::Finger)
+                couple(mat_index(l.from), mat_index(l.to), l.stiffness, l.damping);
+        }
+        for (std::size_t i = 0; i < model_.mats.size(); ++i) {
+            const Mat& m = model_.mats[i];
+            if (m.kind == MatKind::Oscillator && m.rate == level_.id)
+                couple(i, std::nullopt, m.stiffness, m.damping);
+        }
+    }
+
+    void finish() {
+        const int n = sys_.size();
+        sys_.mass.resize(n);
+        for (int i = 0; i < n; ++i) sys_.mass[i] = dof_mats_[static_cast<std::size_t>(i)]->mass;
+        sys_.stiffness.resize(n, n);
+        sys_.damping.resize(n, n);
+        sys_.stiffness.setFromTriplets(k_.begin(), k_.end());
+        sys_.damping.setFromTriplets(z_.begin(), z_.end());
+    }
+
+  private:
+    // A MAT as a combination of DOFs: itself, nothing (ground), or for a modal point the modes
+    // it reads, weighted by their shapes there.
+    using Combination = std::vector<std::pair<int, double>>;
+
+    // MAT `mat`'s DOF, given when first asked for; −1 without inertia.
+    int dof_of(std::size_t mat) {
+        const Mat& m = model_.mats[mat];
+        if (dof_[mat] >= 0 || !has_inertia(m)) return dof_[mat];
+        dof_[mat] = static_cast<int>(sys_.dofs.size());
+        sys_.dofs.push_back(m.id);
+        dof_mats_.push_back(&m);
+        return dof_[mat];
+    }
+
+    // The MAT of id `id`, by views of the model's own ids (unique in a valid model), looked up
+    // in a map made when a link first asks: a level without links (the hand's) needs none.
+    std::optional<std::size_t> mat_index(const std::string& id) {
+        if (by_id_.empty()) {
+            by_id_.reserve(model_.mats.size());
+            for (std::size_t i = 0; i < model_.mats.size(); ++i)
+                by_id_.emplace(model_.mats[i].id, i);
+        }
+        const auto found = by_id_.find(id);
+        if (found == by_id_.end()) return std::nullopt;
+        return found->second;
+    }
+
+    // Appends MAT `mat`'s combination to `v`, its weights negated or not.
+    void append(Combination& v, std::optional<std::size_t> mat, bool negated) {
+        if (!mat) return;
+        const Mat& m = model_.mats[*mat];
+        if (m.kind != MatKind::ModalPoint) {
+            if (const int d = dof_of(*mat); d >= 0) v.emplace_back(d, negated ? -1.0 : 1.0);
+            return;
+        }
+        for (std::size_t i = 0; i < m.modes.size() && i < m.weights.size(); ++i)
+            if (const auto mode = mat_index(m.modes[i]))
+                if (const int d = dof_of(*mode); d >= 0)
+                    v.emplace_back(d, negated ? -m.weights[i] : m.weights[i]);
+    }
+
+    // A link acting on d = v·x adds value·v·vᵀ, v = combination(a) − combination(b).
+    void couple(std::optional<std::size_t> a, std::optional<std::size_t> b, double stiff,
+                double damp) {
+        v_.clear();  // kept from link to link: no allocation for most of them
+        append(v_, a, false);
+        append(v_, b, true);
+        for (auto [list, value] : {std::pair{&k_, stiff}, std::pair{&z_, damp}}) {
+            if (value == 0.0) continue;
+            for (auto [i, wi] : v_)
+                for (auto [j, wj] : v_) list->emplace_back(i, j, value * wi * wj);
+        }
+    }
+
+    void add_finger(const Lia& l) {
+        const FingerContact at = finger_contact(l.finger_position, l.along.size());
+        Combination point, end;
+        append(end, mat_index(l.along[at.first]), false);
+        for (auto [d, w] : end) point.emplace_back(d, (1 - at.weight) * w);
+        end.clear();
+        append(end, mat_index(l.along[at.first + 1]), false);
+        for (auto [d, w] : end) point.emplace_back(d, at.weight * w);
+        sys_.fingers.push_back({point, l.pressure * l.stiffness, l.pressure * l.damping});
+    }
+
+    const Model& model_;
+    const RateLevel& level_;
+    LinearSystem& sys_;
+    std::vector<int> dof_;  ///< each MAT's DOF, −1: none (yet)
+    std::vector<const Mat*> dof_mats_;
+    std::unordered_map<std::string_view, std::size_t> by_id_;
+    std::vector<Eigen::Triplet<double>> k_, z_;
+    Combination v_;
+};
+
 }  // namespace
 
 LinearSystem assemble_linear_system(const Model& model, const std::string& rate_id,
@@ -25,78 +143,9 @@ LinearSystem assemble_linear_system(const Model& model, const std::string& rate_
     if (!level) return sys;
     sys.rate = level->id;
     sys.dt = level->divider / model.sample_rate;
-
-    // Keyed by views of the model's own ids, which outlive the maps: no id is copied.
-    std::unordered_map<std::string_view, const Mat*> mats;
-    mats.reserve(model.mats.size());
-    for (const auto& m : model.mats) mats.emplace(m.id, &m);
-    std::unordered_map<std::string_view, int> index;
-    index.reserve(model.mats.size());
-    auto dof_of = [&](const std::string& id) -> int {
-        const auto found = mats.find(id);
-        if (found == mats.end() || !has_inertia(*found->second)) return -1;
-        auto [it, added] = index.emplace(id, static_cast<int>(sys.dofs.size()));
-        if (added) sys.dofs.push_back(id);
-        return it->second;
-    };
-    for (const auto& m : model.mats)
-        if (m.rate == level->id) dof_of(m.id);
-
-    // A MAT as a combination of DOFs: itself, nothing (ground), or for a modal point the
-    // modes it reads, weighted by their shapes there.
-    using Combination = std::vector<std::pair<int, double>>;
-    auto combination = [&](const std::string& id) -> Combination {
-        const auto found = mats.find(id);
-        if (found == mats.end()) return {};
-        const Mat& m = *found->second;
-        if (m.kind != MatKind::ModalPoint) {
-            const int d = dof_of(id);
-            return d >= 0 ? Combination{{d, 1.0}} : Combination{};
-        }
-        Combination c;
-        for (std::size_t i = 0; i < m.modes.size() && i < m.weights.size(); ++i)
-            if (const int d = dof_of(m.modes[i]); d >= 0) c.emplace_back(d, m.weights[i]);
-        return c;
-    };
-    std::vector<Eigen::Triplet<double>> k, z;
-    // A link acting on d = v·x adds value·v·vᵀ, v = combination(a) − combination(b).
-    auto couple = [&](const Combination& a, const Combination& b, double stiff, double damp) {
-        Combination v = a;
-        for (auto [d, w] : b) v.emplace_back(d, -w);
-        for (auto [list, value] : {std::pair{&k, stiff}, std::pair{&z, damp}}) {
-            if (value == 0.0) continue;
-            for (auto [i, wi] : v)
-                for (auto [j, wj] : v) list->emplace_back(i, j, value * wi * wj);
-        }
-    };
-    for (const auto& l : model.lias) {
-        if (l.rate != level->id) continue;
-        if (l.kind == LiaKind::BowFriction) {
-            couple(combination(l.press), combination(l.surface), l.stiffness, l.damping);
-        } else if (l.kind == LiaKind::Finger) {
-            if (fingers == Fingers::Exclude) continue;
-            const FingerContact at = finger_contact(l.finger_position, l.along.size());
-            Combination point;
-            for (auto [d, w] : combination(l.along[at.first]))
-                point.emplace_back(d, (1 - at.weight) * w);
-            for (auto [d, w] : combination(l.along[at.first + 1]))
-                point.emplace_back(d, at.weight * w);
-            sys.fingers.push_back({point, l.pressure * l.stiffness, l.pressure * l.damping});
-        } else {
-            couple(combination(l.from), combination(l.to), l.stiffness, l.damping);
-        }
-    }
-    for (const auto& m : model.mats)
-        if (m.kind == MatKind::Oscillator && m.rate == level->id)
-            couple(combination(m.id), {}, m.stiffness, m.damping);
-
-    const int n = sys.size();
-    sys.mass.resize(n);
-    for (int i = 0; i < n; ++i) sys.mass[i] = mats.at(sys.dofs[i])->mass;
-    sys.stiffness.resize(n, n);
-    sys.damping.resize(n, n);
-    sys.stiffness.setFromTriplets(k.begin(), k.end());
-    sys.damping.setFromTriplets(z.begin(), z.end());
+    Assembler assembler(model, *level, sys);
+    assembler.add_links(fingers);
+    assembler.finish();
     return sys;
 }
 

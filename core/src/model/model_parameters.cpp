@@ -40,13 +40,6 @@ Found find_parameter(const Model& model, const ParameterName& name) {
     return find_parameter(const_cast<Model&>(model), name);
 }
 
-template <class Element>
-std::vector<ParameterValue> values_of(const Element& element) {
-    std::vector<ParameterValue> out;
-    for (const auto& r : kind_parameters(element.kind)) out.push_back({r.info, element.*r.field});
-    return out;
-}
-
 }  // namespace
 
 std::vector<ParameterInfo> element_parameters(const Model& model, const std::string& element) {
@@ -71,24 +64,16 @@ double get_parameter(const Model& model, const ParameterName& name) {
     return find_parameter(model, name).value;
 }
 
-std::vector<ParameterValue> parameter_values(const Mat& mat) {
-    return values_of(mat);
-}
-
-std::vector<ParameterValue> parameter_values(const Lia& lia) {
-    return values_of(lia);
-}
-
 std::string range_problem(const ParameterInfo& info, double value) {
-    const std::string unit = info.unit.empty() ? "" : " " + info.unit;
     if (!std::isfinite(value)) return info.name + " must be a finite number";
-    if (value < info.minimum || (info.strictly_positive && value <= info.minimum))
+    const bool low = value < info.minimum || (info.strictly_positive && value <= info.minimum);
+    if (!low && !(value > info.maximum)) return {};  // the common case: nothing to spell
+    const std::string unit = info.unit.empty() ? "" : " " + info.unit;
+    if (low)
         return info.name + " must be " + (info.strictly_positive ? "above " : "at least ") +
                format_number(info.minimum) + unit + " (is " + format_number(value) + ")";
-    if (value > info.maximum)
-        return info.name + " must be at most " + format_number(info.maximum) + unit + " (is " +
-               format_number(value) + ")";
-    return {};
+    return info.name + " must be at most " + format_number(info.maximum) + unit + " (is " +
+           format_number(value) + ")";
 }
 
 void set_parameter(Model& model, const ParameterName& name, double value) {

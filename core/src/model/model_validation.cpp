@@ -132,9 +132,10 @@ class Checker {
 
     // Every parameter within its physical range (the table, element_kinds.cpp), so that no state
     // or energy of a model that passes can overflow.
-    bool in_ranges(const ElementName& where, const std::vector<ParameterValue>& values) {
-        for (const auto& [info, value] : values) {
-            std::string problem = range_problem(info, value);
+    template <class Element>
+    bool in_ranges(const ElementName& where, const Element& e) {
+        for (const auto& p : kind_parameters(e.kind)) {
+            std::string problem = range_problem(p.info, e.*p.field);
             if (!problem.empty()) return add(where, std::move(problem)), false;
         }
         return true;
@@ -149,7 +150,7 @@ class Checker {
                 add(where, "has a non-finite parameter (NaN or infinity)");
                 return;
             }
-        if (!in_ranges(where, parameter_values(m))) return;  // the table's ranges, per kind
+        if (!in_ranges(where, m)) return;  // the table's ranges, per kind
         if (m.kind == MatKind::ModalPoint) check_modal_point(where, m);
         if (m.kind == MatKind::Gesture && m.position_scale == 0.0)
             add(where, "position_scale must not be 0 (the device could not move it)");
@@ -177,11 +178,11 @@ class Checker {
         }
     }
 
-    const Mat* mat_ref(const ElementName& where, const std::string& role, const std::string& id) {
+    const Mat* mat_ref(const ElementName& where, const char* role, const std::string& id) {
         const auto found = mats_.find(id);
         const Mat* m = found == mats_.end() ? nullptr : found->second;
         if (!m)
-            add(where, role + " \"" + id +
+            add(where, std::string(role) + " \"" + id +
                            "\" is not a mass of this model; link it to an existing mass id");
         return m;
     }
@@ -195,7 +196,7 @@ class Checker {
                 add(where, "has a non-finite parameter (NaN or infinity)");
                 return;
             }
-        if (!in_ranges(where, parameter_values(l))) return;  // the table's ranges, per kind
+        if (!in_ranges(where, l)) return;  // the table's ranges, per kind
         if (l.kind == LiaKind::Finger) {
             check_finger(where, l);
             return;

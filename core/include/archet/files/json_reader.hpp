@@ -3,6 +3,7 @@
 // refuses keys it does not know (with the closest known one as a hint) so that a typo in a
 // model file is an error rather than a silently ignored parameter.
 
+#include <array>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -26,8 +27,14 @@ class BasicJsonObjectReader {
     using Found = std::conditional_t<kViews, std::optional<Value>, const Value*>;
 
     BasicJsonObjectReader(const Value& object, std::string where);
+    /// Element `index` (from 0) of a list of `kind`s, named in errors by its id when it has
+    /// one as a string (mass "s1"), else by its place (mass #3): the name is spelt only for an
+    /// error, which a large model's thousands of elements then do not pay for. `kind` is a
+    /// literal.
+    BasicJsonObjectReader(const Value& object, const char* kind, std::size_t index);
     /// It keeps a reference to the object: never one to a temporary.
     BasicJsonObjectReader(Value&& object, std::string where) = delete;
+    BasicJsonObjectReader(Value&& object, const char* kind, std::size_t index) = delete;
 
     bool has(const std::string& key) const;
     double number(const std::string& key);
@@ -41,18 +48,27 @@ class BasicJsonObjectReader {
 
     /// Throws if the object holds a key none of the calls above asked for.
     void finish() const;
-    const std::string& where() const { return where_; }
+    /// The object's name in errors.
+    const std::string& where() const;
 
   private:
     Ref get(const std::string& key);
+    Found find(const std::string& key) const;
     /// Notes a key as one this object may hold (for finish()).
     void ask(const std::string& key);
     double checked_number(const std::string& key, const Value& v) const;
     std::string checked_text(const std::string& key, const Value& v) const;
 
+    void check_is_object() const;
+
     const Value& object_;
-    std::string where_;
-    std::vector<std::string> known_;  ///< the keys asked for: a handful, searched in order
+    mutable std::string where_;  ///< spelt when first asked for, for an element of a list
+    const char* kind_ = nullptr;
+    std::size_t index_ = 0;
+    /// The keys asked for: a handful, searched in order, kept without allocating.
+    static constexpr std::size_t kMostKeys = 32;
+    std::array<std::string, kMostKeys> known_;
+    std::size_t asked_ = 0;
 };
 
 using JsonObjectReader = BasicJsonObjectReader<nlohmann::ordered_json>;

@@ -11,16 +11,6 @@
 
 namespace archet {
 
-/// A parameter with the value it has in one element.
-struct ParameterValue {
-    ParameterInfo info;
-    double value;
-};
-
-/// The parameters of one mass or link with their values (no lookup by id: for validation).
-std::vector<ParameterValue> parameter_values(const Mat& mat);
-std::vector<ParameterValue> parameter_values(const Lia& lia);
-
 /// What is wrong with `value` for `info` ("must be at most 100 m/s (is 1e+300)"), or "" when
 /// it is finite and in range.
 std::string range_problem(const ParameterInfo& info, double value);
