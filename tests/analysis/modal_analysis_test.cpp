@@ -107,6 +107,24 @@ TEST(ModalAnalysis, RefusesAModelWithNoLinearPart) {
     }
 }
 
+// The level's masses take their DOFs first, in the model's order; a mass of another level
+// that a link reaches takes one when the link is met, its "from" end before its "to" end
+// (a link's two ends were once looked up in an order the compiler chose).
+TEST(LinearSystem, MassesTakeTheirDofsInAnOrderOfTheModels) {
+    Model model;
+    model.rates = {{"audio", 1}, {"slow", 2}};
+    model.mats = {test::fixed("wall"), test::mass("b", 1e-3, 0, "slow"),
+                  test::mass("a", 1e-3, 0, "slow"), test::mass("x", 1e-3)};
+    model.lias = {test::spring_damper("k1", "x", "wall", 10, 0.1),
+                  test::spring_damper("k2", "a", "b", 10, 0.1)};
+    const LinearSystem sys = assemble_linear_system(model, "audio");
+    EXPECT_EQ(sys.dofs, (std::vector<std::string>{"x", "a", "b"}));
+    ASSERT_EQ(sys.size(), 3);
+    EXPECT_EQ(sys.stiffness.coeff(1, 2), -10.0) << "k2 joins a and b";
+    EXPECT_EQ(sys.stiffness.coeff(0, 0), 10.0) << "k1 holds x to the wall";
+    EXPECT_EQ(sys.damping.coeff(2, 2), 0.1);
+}
+
 TEST(ModalAnalysis, RefusesASingularMassMatrix) {
     Model model = test::chain(3, 1e-4, 100, 0);
     LinearSystem sys = assemble_linear_system(model);

@@ -120,6 +120,9 @@ TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
         {{"map", model, "--force", "abc", "-o", (dir / "map.csv").string()},
          "expected MIN:MAX:STEPS"},
         {{"map", model, "--shard", "3/2", "-o", (dir / "map.csv").string()}, "0 ≤ I < N"},
+        // Told before its modes are analysed, and in those words.
+        {{"map", test::test_data("no-bow.json").string(), "-o", (dir / "map.csv").string()},
+         "plucked, not bowed: has no bow module (bow_friction) to map"},
         {{"map", "merge", (dir / "none.csv").string(), "--model", model, "-o",
           (dir / "map.csv").string()},
          "cannot open the file"},

@@ -261,7 +261,8 @@ PlayedMap play_map(const Model& model, const MapGrid& grid, int jobs, int shard,
                    const std::function<void(std::size_t, std::size_t)>& progress,
                    const std::atomic<bool>* cancel) {
     shard_points(grid.size(), shard, shards);  // a bad shard is refused before anything runs
-    bow_module(model);  // a model without a bow is told so before its modes are analysed
+    // A model without a bow is told so in those words, before its modes are analysed.
+    bow_module(model);
     PlayedMap map;
     // One analysis for the points' pitch and the lines (the bow's position does not move the
     // modes).

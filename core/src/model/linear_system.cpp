@@ -26,18 +26,20 @@ class Assembler {
         // levels its links reach, as they reach them.
         for (std::size_t i = 0; i < model.mats.size(); ++i)
             if (model.mats[i].rate == level.id) dof_of(i);
-        k_.reserve(4 * model.lias.size()), z_.reserve(4 * model.lias.size());
+        k_.reserve(4 * model.lias.size());
+        z_.reserve(4 * model.lias.size());
     }
 
     void add_links(Fingers fingers) {
         for (const auto& l : model_.lias) {
             if (l.rate != level_.id) continue;
-            if (l.kind == LiaKind::BowFriction)
+            if (l.kind == LiaKind::Finger) {
+                if (fingers == Fingers::Include) add_finger(l);
+            } else if (l.kind == LiaKind::BowFriction) {
                 couple(mat_index(l.press), mat_index(l.surface), l.stiffness, l.damping);
-            else if (l.kind == LiaKind::Finger && fingers == Fingers::Include)
-                add_finger(l);
-            else if (l.kind != LiaKind::Finger)
+            } else {
                 couple(mat_index(l.from), mat_index(l.to), l.stiffness, l.damping);
+            }
         }
         for (std::size_t i = 0; i < model_.mats.size(); ++i) {
             const Mat& m = model_.mats[i];
@@ -74,13 +76,14 @@ class Assembler {
     // The MAT of id `id`, by views of the model's own ids (unique in a valid model), looked up
     // in a map made when a link first asks: a level without links (the hand's) needs none.
     std::optional<std::size_t> mat_index(const std::string& id) {
-        if (by_id_.empty()) {
-            by_id_.reserve(model_.mats.size());
+        if (!by_id_) {
+            by_id_.emplace();
+            by_id_->reserve(model_.mats.size());
             for (std::size_t i = 0; i < model_.mats.size(); ++i)
-                by_id_.emplace(model_.mats[i].id, i);
+                by_id_->emplace(model_.mats[i].id, i);
         }
-        const auto found = by_id_.find(id);
-        if (found == by_id_.end()) return std::nullopt;
+        const auto found = by_id_->find(id);
+        if (found == by_id_->end()) return std::nullopt;
         return found->second;
     }
 
@@ -98,7 +101,8 @@ class Assembler {
                     v.emplace_back(d, negated ? -m.weights[i] : m.weights[i]);
     }
 
-    // A link acting on d = v·x adds value·v·vᵀ, v = combination(a) − combination(b).
+    // A link acting on d = v·x adds value·v·vᵀ, v = a's combination − b's. A MAT met here
+    // first takes its DOF then, a's before b's.
     void couple(std::optional<std::size_t> a, std::optional<std::size_t> b, double stiff,
                 double damp) {
         v_.clear();  // kept from link to link: no allocation for most of them
@@ -113,12 +117,13 @@ class Assembler {
 
     void add_finger(const Lia& l) {
         const FingerContact at = finger_contact(l.finger_position, l.along.size());
-        Combination point, end;
-        append(end, mat_index(l.along[at.first]), false);
-        for (auto [d, w] : end) point.emplace_back(d, (1 - at.weight) * w);
-        end.clear();
-        append(end, mat_index(l.along[at.first + 1]), false);
-        for (auto [d, w] : end) point.emplace_back(d, at.weight * w);
+        // The point between the two MATs it lies between, weighted by how near it is to each.
+        Combination point, neighbour;
+        append(neighbour, mat_index(l.along[at.first]), false);
+        for (auto [d, w] : neighbour) point.emplace_back(d, (1 - at.weight) * w);
+        neighbour.clear();
+        append(neighbour, mat_index(l.along[at.first + 1]), false);
+        for (auto [d, w] : neighbour) point.emplace_back(d, at.weight * w);
         sys_.fingers.push_back({point, l.pressure * l.stiffness, l.pressure * l.damping});
     }
 
@@ -127,7 +132,7 @@ class Assembler {
     LinearSystem& sys_;
     std::vector<int> dof_;  ///< each MAT's DOF, −1: none (yet)
     std::vector<const Mat*> dof_mats_;
-    std::unordered_map<std::string_view, std::size_t> by_id_;
+    std::optional<std::unordered_map<std::string_view, std::size_t>> by_id_;
     std::vector<Eigen::Triplet<double>> k_, z_;
     Combination v_;
 };

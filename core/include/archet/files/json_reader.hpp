@@ -65,7 +65,8 @@ class BasicJsonObjectReader {
     mutable std::string where_;  ///< spelt when first asked for, for an element of a list
     const char* kind_ = nullptr;
     std::size_t index_ = 0;
-    /// The keys asked for: a handful, searched in order, kept without allocating.
+    /// The keys asked for: a handful, searched in order, in a fixed array (a key of up to 15
+    /// characters is kept without allocating).
     static constexpr std::size_t kMostKeys = 32;
     std::array<std::string, kMostKeys> known_;
     std::size_t asked_ = 0;

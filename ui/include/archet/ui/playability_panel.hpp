@@ -42,8 +42,8 @@ class PlayabilityPanel : public QWidget {
     const std::vector<MapPoint>& points() const { return map_.points; }
     PlayabilityFigure& figure() { return *figure_; }
     PreviewPlayer& player() { return player_; }
-    /// Renders grid point `index` again and plays it (on this thread: a point's stroke,
-    /// its pitch measured against the map's first mode).
+    /// Renders grid point `index` again on the GUI thread (one stroke: its pitch is measured
+    /// against the map's first mode, with no modal analysis) and plays it.
     void listen(long index);
 
   signals:
