@@ -3,6 +3,7 @@
 // bow.position here). Writes a WAV and a CSV per value, comparison.json and comparison.png.
 
 #include <QDir>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -12,6 +13,7 @@
 #include "archet/analysis/comparison.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/common/input_limits.hpp"
+#include "archet/common/parallel_for.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/interruption.hpp"
 #include "archet/model/model_variants.hpp"
@@ -30,6 +32,7 @@ namespace {
 struct CompareArguments {
     std::string model, gesture, vary, output;
     double seconds = 0;
+    int jobs = 0;
 };
 
 // A label as a file name: no path separators.
@@ -45,6 +48,22 @@ void write_figure(const std::filesystem::path& path, const std::vector<Compariso
     figure.show_runs(runs);
     if (!figure.save(QString::fromStdString(path.string())))
         throw InputError(path.string(), "could not write the figure");
+}
+
+// The variants on every core (or --jobs threads), none started once a signal has come.
+std::vector<ComparisonRun> render_variants(const Model& model, const Gesture& gesture,
+                                           const std::string& parameter,
+                                           const std::vector<double>& values, double seconds,
+                                           int jobs) {
+    std::atomic<bool> stop{false};
+    ComparedVariants compared = compare_variants(model, gesture, parameter, values, seconds,
+                                                 jobs > 0 ? jobs : hardware_jobs(), &stop,
+                                                 [&stop](std::size_t, std::size_t) {
+                                                     if (interruption_signal() != 0) stop = true;
+                                                 });
+    if (compared.error) std::rethrow_exception(compared.error);
+    throw_if_interrupted("no variant was written");
+    return std::move(compared.runs);
 }
 
 int run_compare(const CompareArguments& a) {
@@ -69,20 +88,28 @@ int run_compare(const CompareArguments& a) {
         set_variant_parameter(variant, parameter, v);
     }
     const std::filesystem::path dir = a.output;
+    const bool made = !std::filesystem::exists(dir);
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throw InputError(a.output, "cannot create the folder: " + ec.message());
 
+    // All rendered before any is written: a variant that fails leaves no file of the others,
+    // nor the folder made for them.
     std::vector<ComparisonRun> runs;
+    try {
+        runs = render_variants(model, gesture, parameter, values, seconds, a.jobs);
+    } catch (...) {
+        if (made) std::filesystem::remove(dir, ec);
+        throw;
+    }
     nlohmann::ordered_json summary = {{"model", model.name},
                                       {"parameter", parameter},
                                       {"seconds", seconds},
                                       {"runs", nlohmann::ordered_json::array()}};
     std::cout << std::left << std::setw(32) << "variant" << std::setw(12) << "f1 Hz"
               << "dissipated per period (µJ)\n";
-    for (double v : values) {
+    for (const ComparisonRun& run : runs) {
         throw_if_interrupted("the variants before were written, comparison.json was not");
-        ComparisonRun run = compare_variant(model, gesture, parameter, v, seconds);
         const std::string stem = file_stem(run.label);
         SoundFileWriter wav(dir / (stem + ".wav"), SoundFormat::Wav,
                             static_cast<int>(std::lround(run.sample_rate)));
@@ -98,12 +125,11 @@ int run_compare(const CompareArguments& a) {
                   << std::setprecision(3) << run.fundamental << std::setprecision(4)
                   << 1e6 * run.dissipated_per_period << std::defaultfloat << "\n";
         summary["runs"].push_back({{"label", run.label},
-                                   {"value", v},
+                                   {"value", run.value},
                                    {"fundamental_hz", run.fundamental},
                                    {"dissipated_per_period_j", run.dissipated_per_period},
                                    {"wav", stem + ".wav"},
                                    {"csv", stem + ".csv"}});
-        runs.push_back(std::move(run));
     }
     write_file_atomically(dir / "comparison.json", summary.dump(2) + "\n");
     write_figure(dir / "comparison.png", runs);
@@ -128,6 +154,9 @@ void add_compare_command(CLI::App& app, Action& action) {
     cmd->add_option("--gesture", a->gesture, "Gesture file (default: the model's own gesture)");
     cmd->add_option("--seconds", a->seconds, "Seconds to render (default: the gesture's length)")
         ->check(duration_range(limits::kDurationSeconds));
+    cmd->add_option("--jobs", a->jobs, "Threads, one variant each (0: every core)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1024));
     cmd->callback([&action, a] { action = [a] { return run_compare(*a); }; });
 }
 

@@ -4,8 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <cstring>
 #include <nlohmann/json.hpp>
 
+#include "archet/analysis/comparison.hpp"
 #include "archet/analysis/playability.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
@@ -49,6 +52,60 @@ TEST(Compare, ABadVariationIsRefusedBeforeAnythingIsWritten) {
         EXPECT_NE(r.err.find(expected), std::string::npos) << vary << ": " << r.err;
         EXPECT_FALSE(std::filesystem::exists(dir / "out")) << vary;
     }
+}
+
+// The variants render on several threads, a variant each: the same runs as one at a time.
+TEST(Compare, VariantsOnTwoThreadsAreTheVariantsOneByOne) {
+    const Model model = load_model_file(test::resource("models/bowed-string-220-paper.json"));
+    const std::vector<double> values{0.0005, 0.005, 0.002};
+    const ComparedVariants compared =
+        compare_variants(model, *model.gesture, "string.damping", values, 0.4, 2);
+    ASSERT_TRUE(compared.complete());
+    ASSERT_EQ(compared.runs.size(), values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        SCOPED_TRACE(values[i]);
+        const ComparisonRun alone =
+            compare_variant(model, *model.gesture, "string.damping", values[i], 0.4);
+        const ComparisonRun& run = compared.runs[i];
+        EXPECT_EQ(run.label, alone.label);
+        ASSERT_EQ(run.audio.size(), alone.audio.size());
+        EXPECT_EQ(std::memcmp(run.audio.data(), alone.audio.data(), 8 * run.audio.size()), 0);
+        EXPECT_EQ(run.bow_force, alone.bow_force);
+        EXPECT_EQ(run.fundamental, alone.fundamental);
+        EXPECT_EQ(run.dissipated_per_period, alone.dissipated_per_period);
+    }
+}
+
+// A variant that fails keeps those before it and says why; a cancelled comparison starts none.
+TEST(Compare, AFailedVariantKeepsThoseBeforeIt) {
+    const Model model = load_model_file(test::resource("models/bowed-string-220-paper.json"));
+    const ComparedVariants compared =
+        compare_variants(model, *model.gesture, "string.damping", {0.0005, 1e6, 0.002}, 0.2, 1);
+    EXPECT_EQ(compared.runs.size(), 1u);
+    ASSERT_TRUE(compared.error);
+    EXPECT_FALSE(compared.cancelled);
+    try {
+        std::rethrow_exception(compared.error);
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("unstable"), std::string::npos) << e.what();
+    }
+    const std::atomic<bool> cancel{true};
+    const ComparedVariants none =
+        compare_variants(model, *model.gesture, "string.damping", {0.0005, 0.002}, 0.2, 2, &cancel);
+    EXPECT_TRUE(none.runs.empty());
+    EXPECT_TRUE(none.cancelled);
+    EXPECT_FALSE(none.error);
+}
+
+// From the command line, a variant that fails leaves no file of the others, nor their folder.
+TEST(Compare, AVariantThatFailsLeavesNoFileOfTheOthers) {
+    const auto dir = test::temp_dir("compare-unstable");
+    const auto r = test::run_archet(
+        {"compare", test::resource("models/bowed-string-220-paper.json").string(), "--vary",
+         "string.damping=0.0005,1e6", "--seconds", "0.2", "-o", (dir / "out").string()});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("unstable"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "out")) << "nor the folder made for them";
 }
 
 TEST(Compare, BowPositionMovesAHairWideBowsContactPoint) {

@@ -277,6 +277,31 @@ TEST(Cli, ASigtermedRenderLeavesNoTemporaryFile) {
     EXPECT_EQ(files_in(dir), std::vector<std::string>{});
 }
 
+// An interrupted comparison stops its variants under way, writes none of them and removes the
+// folder it made for them.
+TEST(Cli, AnInterruptedCompareWritesNoVariant) {
+    const auto dir = test::temp_dir("compare-sigint");
+    const auto out = dir / "cmp";
+    const pid_t pid = spawn_archet(
+        {"compare", test::resource("models/bowed-string-220-paper.json").string(), "--vary",
+         "string.damping=0.0005,0.005", "--seconds", "300", "-o", out.string()});
+    ASSERT_GT(pid, 0);
+    // The folder is made just before the variants render.
+    const bool rendering =
+        test::wait_for([&] { return std::filesystem::exists(out); }, std::chrono::seconds(60));
+    ::kill(pid, SIGINT);
+    int status = -1;
+    const bool ended = test::wait_for([&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
+                                      std::chrono::seconds(120));
+    if (!ended) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+    ASSERT_TRUE(rendering) << "the comparison never got under way";
+    ASSERT_TRUE(ended) << "the variants under way did not stop";
+    ASSERT_TRUE(WIFEXITED(status))
+        << "killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+    EXPECT_EQ(WEXITSTATUS(status), 128 + SIGINT);
+    EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 TEST(Cli, ASigtermedExamplesRunLeavesNoTemporaryFile) {
     const auto dir = test::temp_dir("examples-sigterm");
     const pid_t pid = spawn_archet({"examples", "-o", dir.string()});

@@ -72,6 +72,13 @@ TEST(BadInput, EveryBadGestureIsRefused) {
     }
 }
 
+// "0.001,0.002,…": n values.
+std::string many_values(int n) {
+    std::string list;
+    for (int i = 1; i <= n; ++i) list += (i > 1 ? "," : "") + std::to_string(0.001 * i);
+    return list;
+}
+
 TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
     const std::string model = test::resource("models/bowed-string-220.json").string();
     const auto dir = test::temp_dir("bad-commands");
@@ -141,6 +148,12 @@ TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
         {{"play", model, "--audio", "null", "--duration", "1e308"}, "at most 3600 s"},
         {{"map", model, "--force", "0.1:1:100000000", "-o", (dir / "map.csv").string()},
          "more than --max-points 100000"},
+        {{"compare", model, "--vary", "string.damping=" + many_values(65), "-o",
+          (dir / "cmp").string()},
+         "give at most 64 values to compare"},
+        {{"compare", model, "--vary", "string.damping=1,2", "--jobs", "-1", "-o",
+          (dir / "cmp").string()},
+         "--jobs"},
         // Inputs that never end: read up to the bound, then refused.
         {{"check", "/dev/zero"}, "is larger than 64 MiB"},
         {{"render", "/dev/urandom", "-o", out}, "is larger than 64 MiB"},

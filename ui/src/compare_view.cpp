@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "archet/builders/bowed_string.hpp"
+#include "archet/common/parallel_for.hpp"
 #include "archet/model/model_parameters.hpp"
 #include "archet/model/model_variants.hpp"
 #include "archet/ui/compare_figure.hpp"
@@ -25,6 +26,17 @@ QString default_values(const Model& model) {
     const double damping = links.empty() ? 0.001 : model.find_lia(links.front())->damping;
     return QString("%1, %2").arg(damping / 10, 0, 'g', 3).arg(damping, 0, 'g', 3);
 }
+// What a failed variant threw, in words.
+QString what_it_said(const std::exception_ptr& error) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const std::exception& e) {
+        return QString::fromUtf8(e.what());
+    } catch (...) {
+        return QObject::tr("a variant failed");
+    }
+}
+
 }  // namespace
 
 CompareView::CompareView(const Model& model, QWidget* parent) : QDialog(parent), model_(model) {
@@ -115,21 +127,14 @@ void CompareView::render() {
     };
     job_.start(
         [model = model_, gesture = gesture_, variation](BackgroundJob::Control& control) {
-            Rendered rendered;
-            for (double v : variation.second) {
-                if (control.cancelled()) {
-                    rendered.stopped = tr("cancelled");
-                    break;
-                }
-                try {  // the variants rendered before a failure are still shown
-                    rendered.runs.push_back(
-                        compare_variant(model, gesture, variation.first, v, gesture.duration()));
-                } catch (const std::exception& e) {
-                    rendered.stopped = QString::fromUtf8(e.what());
-                    break;
-                }
-                control.progress(rendered.runs.size(), variation.second.size());
-            }
+            // On every core, a variant each; those before a failure are still shown.
+            ComparedVariants compared = compare_variants(
+                model, gesture, variation.first, variation.second, gesture.duration(),
+                hardware_jobs(), &control.cancel_flag(),
+                [&control](std::size_t done, std::size_t total) { control.progress(done, total); });
+            Rendered rendered{std::move(compared.runs), {}};
+            if (compared.cancelled) rendered.stopped = tr("cancelled");
+            if (compared.error) rendered.stopped = what_it_said(compared.error);
             return rendered;
         },
         [this](Rendered r) { finish(std::move(r.runs), r.stopped); },

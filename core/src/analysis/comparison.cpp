@@ -1,10 +1,12 @@
 #include "archet/analysis/comparison.hpp"
 
+#include <optional>
 #include <sstream>
 
 #include "archet/analysis/modal_analysis.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/common/parallel_for.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/model/model_variants.hpp"
 #include "archet/physics/compiled_model.hpp"
@@ -12,8 +14,12 @@
 
 namespace archet {
 
-ComparisonRun compare_variant(const Model& model, const Gesture& gesture,
-                              const std::string& parameter, double value, double seconds) {
+namespace {
+
+// compare_variant(), or nothing once `*stop` is set (looked at every few thousand samples).
+std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& gesture,
+                                            const std::string& parameter, double value,
+                                            double seconds, const std::atomic<bool>* stop) {
     Model variant = model;
     set_variant_parameter(variant, parameter, value);
     validate_model(variant);
@@ -49,7 +55,9 @@ ComparisonRun compare_variant(const Model& model, const Gesture& gesture,
     const DenormalGuard no_denormals;
     std::vector<double> dissipated(frames + 1, 0.0);  // by the string, up to each sample
     std::size_t last_contact = 0;
+    constexpr std::size_t kStopLooks = 4096;  // samples between two looks at `stop`
     for (std::size_t i = 0; i < frames; ++i) {
+        if (stop && i % kStopLooks == 0 && stop->load()) return std::nullopt;
         sim.step();
         run.audio.push_back(sim.output());
         run.bow_force.push_back(sim.model().bows[0].friction);
@@ -68,6 +76,49 @@ ComparisonRun compare_variant(const Model& model, const Gesture& gesture,
         run.dissipated_per_period = (dissipated[run.steady_end] - dissipated[from]) / periods;
     }
     return run;
+}
+
+}  // namespace
+
+ComparisonRun compare_variant(const Model& model, const Gesture& gesture,
+                              const std::string& parameter, double value, double seconds) {
+    return *render_variant(model, gesture, parameter, value, seconds, nullptr);
+}
+
+ComparedVariants compare_variants(const Model& model, const Gesture& gesture,
+                                  const std::string& parameter, const std::vector<double>& values,
+                                  double seconds, int jobs, const std::atomic<bool>* cancel,
+                                  const std::function<void(std::size_t, std::size_t)>& progress) {
+    std::vector<std::optional<ComparisonRun>> runs(values.size());
+    std::vector<std::exception_ptr> errors(values.size());
+    std::exception_ptr thrown;  // a variant's error, or what kept the threads from running
+    try {
+        parallel_for(
+            values.size(), jobs,
+            [&](std::size_t i) {
+                try {
+                    runs[i] = render_variant(model, gesture, parameter, values[i], seconds, cancel);
+                } catch (...) {
+                    errors[i] = std::current_exception();
+                    throw;  // no other variant starts
+                }
+            },
+            cancel, progress);
+    } catch (...) {
+        thrown = std::current_exception();
+    }
+    // Variants start in order, so those after the first unfinished one never ran; its own
+    // error is the one reported.
+    ComparedVariants compared;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        if (!runs[i]) {
+            compared.error = errors[i] ? errors[i] : thrown;
+            compared.cancelled = !compared.error;
+            break;
+        }
+        compared.runs.push_back(std::move(*runs[i]));
+    }
+    return compared;
 }
 
 }  // namespace archet

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "archet/common/input_error.hpp"
+#include "archet/common/input_limits.hpp"
 #include "archet/model/model_parameters.hpp"
 #include "archet/model/string_points.hpp"
 
@@ -94,6 +95,9 @@ std::pair<std::string, std::vector<double>> parse_variation(const std::string& t
     std::stringstream list(text.substr(eq + 1));
     std::string item;
     while (std::getline(list, item, ',')) {
+        if (values.size() == limits::kCompareValues)
+            throw InputError("--vary", "give at most " + std::to_string(limits::kCompareValues) +
+                                           " values to compare");
         std::size_t used = 0;
         double v = 0;
         try {

@@ -3,6 +3,9 @@
 // the bow force and the displacement at the bowing point, and the energy the string's links
 // dissipate per period of its first mode. Offline and deterministic.
 
+#include <atomic>
+#include <exception>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,5 +32,24 @@ struct ComparisonRun {
 /// `seconds`. Throws InputError for a bad parameter or a variant that does not validate.
 ComparisonRun compare_variant(const Model& model, const Gesture& gesture,
                               const std::string& parameter, double value, double seconds);
+
+/// The variants of a comparison, in the order of their values: those before the first that
+/// did not finish, and why it did not (`error`, what it threw; else it was cancelled).
+struct ComparedVariants {
+    std::vector<ComparisonRun> runs;
+    std::exception_ptr error;
+    bool cancelled = false;
+    bool complete() const { return !error && !cancelled; }
+};
+
+/// compare_variant() for each of `values`, on `jobs` threads: each variant is independent, so
+/// the runs are the same on any number of threads. `progress(done, total)` is called from the
+/// caller's thread about ten times a second. Once `*cancel` is set no variant starts and those
+/// under way stop within a few thousand samples; once one throws, no other starts.
+ComparedVariants compare_variants(
+    const Model& model, const Gesture& gesture, const std::string& parameter,
+    const std::vector<double>& values, double seconds, int jobs,
+    const std::atomic<bool>* cancel = nullptr,
+    const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 }  // namespace archet

@@ -22,6 +22,8 @@ inline constexpr double kMinSampleRate = 1000.0;
 inline constexpr double kMaxSampleRate = 1'000'000.0;
 /// Points of a playability map (raise with --max-points).
 inline constexpr std::size_t kMapPoints = 100'000;
+/// Values of one comparison: each is rendered, kept in memory and drawn side by side.
+inline constexpr std::size_t kCompareValues = 64;
 
 // Physical ranges of state and gestures, in SI units: far beyond any instrument, and small
 // enough that energies (m·v², k·x²) stay finite in double precision.
