@@ -50,7 +50,29 @@ void write_figure(const std::filesystem::path& path, const std::vector<Compariso
         throw InputError(path.string(), "could not write the figure");
 }
 
-// The variants on every core (or --jobs threads), none started once a signal has come.
+// The outermost folder of `dir` that does not exist yet (empty when it exists).
+std::filesystem::path first_missing_folder(const std::filesystem::path& dir) {
+    std::filesystem::path missing;
+    std::error_code ec;
+    for (auto p = std::filesystem::absolute(dir, ec); !p.empty() && !std::filesystem::exists(p, ec);
+         p = p.parent_path()) {
+        missing = p;
+        if (p == p.parent_path()) break;
+    }
+    return missing;
+}
+
+// Removes the folders made for `dir`, up to `made` (first_missing_folder()): each still empty.
+void remove_folders_made(const std::filesystem::path& dir, const std::filesystem::path& made) {
+    if (made.empty()) return;
+    std::error_code ec;
+    for (auto p = std::filesystem::absolute(dir, ec); !p.empty(); p = p.parent_path()) {
+        std::filesystem::remove(p, ec);  // an empty folder only
+        if (p == made || p == p.parent_path()) break;
+    }
+}
+
+// The variants on every core (or --jobs threads); a signal stops those under way.
 std::vector<ComparisonRun> render_variants(const Model& model, const Gesture& gesture,
                                            const std::string& parameter,
                                            const std::vector<double>& values, double seconds,
@@ -67,7 +89,7 @@ std::vector<ComparisonRun> render_variants(const Model& model, const Gesture& ge
 }
 
 int run_compare(const CompareArguments& a) {
-    const InterruptionGuard stop_on_signal;  // SIGINT, SIGTERM, SIGHUP: stop between two variants
+    const InterruptionGuard stop_on_signal;  // SIGINT, SIGTERM, SIGHUP: stop, keep what is whole
     const auto [parameter, values] = parse_variation(a.vary);
     const Model model = load_validated_model(a.model, {});
     Gesture gesture;
@@ -88,18 +110,18 @@ int run_compare(const CompareArguments& a) {
         set_variant_parameter(variant, parameter, v);
     }
     const std::filesystem::path dir = a.output;
-    const bool made = !std::filesystem::exists(dir);
+    const std::filesystem::path made_dir = first_missing_folder(dir);
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec) throw InputError(a.output, "cannot create the folder: " + ec.message());
 
     // All rendered before any is written: a variant that fails leaves no file of the others,
-    // nor the folder made for them.
+    // nor the folders made for them.
     std::vector<ComparisonRun> runs;
     try {
         runs = render_variants(model, gesture, parameter, values, seconds, a.jobs);
     } catch (...) {
-        if (made) std::filesystem::remove(dir, ec);
+        remove_folders_made(dir, made_dir);
         throw;
     }
     nlohmann::ordered_json summary = {{"model", model.name},

@@ -16,10 +16,17 @@ namespace archet {
 
 namespace {
 
-// compare_variant(), or nothing once `*stop` is set (looked at every few thousand samples).
+// What stops a variant under way: the caller's cancel, or another variant's failure.
+struct StopFlags {
+    const std::atomic<bool>* cancel = nullptr;
+    const std::atomic<bool>* failed = nullptr;
+    bool any() const { return (cancel && cancel->load()) || (failed && failed->load()); }
+};
+
+// compare_variant(), or nothing once `stop` says so (looked at every few thousand samples).
 std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& gesture,
                                             const std::string& parameter, double value,
-                                            double seconds, const std::atomic<bool>* stop) {
+                                            double seconds, StopFlags stop) {
     Model variant = model;
     set_variant_parameter(variant, parameter, value);
     validate_model(variant);
@@ -57,7 +64,7 @@ std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& g
     std::size_t last_contact = 0;
     constexpr std::size_t kStopLooks = 4096;  // samples between two looks at `stop`
     for (std::size_t i = 0; i < frames; ++i) {
-        if (stop && i % kStopLooks == 0 && stop->load()) return std::nullopt;
+        if (i % kStopLooks == 0 && stop.any()) return std::nullopt;
         sim.step();
         run.audio.push_back(sim.output());
         run.bow_force.push_back(sim.model().bows[0].friction);
@@ -82,7 +89,7 @@ std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& g
 
 ComparisonRun compare_variant(const Model& model, const Gesture& gesture,
                               const std::string& parameter, double value, double seconds) {
-    return *render_variant(model, gesture, parameter, value, seconds, nullptr);
+    return *render_variant(model, gesture, parameter, value, seconds, {});
 }
 
 ComparedVariants compare_variants(const Model& model, const Gesture& gesture,
@@ -91,28 +98,36 @@ ComparedVariants compare_variants(const Model& model, const Gesture& gesture,
                                   const std::function<void(std::size_t, std::size_t)>& progress) {
     std::vector<std::optional<ComparisonRun>> runs(values.size());
     std::vector<std::exception_ptr> errors(values.size());
-    std::exception_ptr thrown;  // a variant's error, or what kept the threads from running
+    std::atomic<bool> failed{false};  // a variant threw: no other starts, those under way stop
+    std::exception_ptr thrown;        // what kept the threads from running, if anything
     try {
         parallel_for(
             values.size(), jobs,
             [&](std::size_t i) {
                 try {
-                    runs[i] = render_variant(model, gesture, parameter, values[i], seconds, cancel);
+                    runs[i] = render_variant(model, gesture, parameter, values[i], seconds,
+                                             {cancel, &failed});
                 } catch (...) {
                     errors[i] = std::current_exception();
-                    throw;  // no other variant starts
+                    failed = true;
+                    throw;
                 }
             },
             cancel, progress);
     } catch (...) {
         thrown = std::current_exception();
     }
-    // Variants start in order, so those after the first unfinished one never ran; its own
-    // error is the one reported.
+    // The runs up to the first that did not finish. It threw, or was stopped: by the caller's
+    // cancel, else by a failure (the first in the order of the values is the one reported).
+    std::exception_ptr first_error = thrown;
+    for (auto it = errors.rbegin(); it != errors.rend(); ++it)
+        if (*it) first_error = *it;
     ComparedVariants compared;
     for (std::size_t i = 0; i < values.size(); ++i) {
         if (!runs[i]) {
-            compared.error = errors[i] ? errors[i] : thrown;
+            compared.error = errors[i]                    ? errors[i]
+                             : (cancel && cancel->load()) ? nullptr
+                                                          : first_error;
             compared.cancelled = !compared.error;
             break;
         }

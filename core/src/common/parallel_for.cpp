@@ -35,11 +35,17 @@ bool parallel_for(std::size_t count, int jobs, const std::function<void(std::siz
     };
     std::vector<std::thread> threads;
     const auto workers = std::min(static_cast<std::size_t>(std::max(1, jobs)), count);
-    for (std::size_t t = 0; t < workers; ++t) threads.emplace_back(worker);
-    // Progress about ten times a second, until the pieces are done or no longer handed out.
-    for (std::unique_lock lock(mutex); done.load() < count && !failed.load() && !cancelled();) {
-        if (progress) progress(done.load(), count);
-        ended.wait_for(lock, std::chrono::milliseconds(100));
+    try {
+        for (std::size_t t = 0; t < workers; ++t) threads.emplace_back(worker);
+        // Progress about ten times a second, until the pieces are done or no longer handed out.
+        for (std::unique_lock lock(mutex); done.load() < count && !failed.load() && !cancelled();) {
+            if (progress) progress(done.load(), count);
+            ended.wait_for(lock, std::chrono::milliseconds(100));
+        }
+    } catch (...) {  // a thread that could not start, or the progress: the others stop first
+        failed = true;
+        for (auto& t : threads) t.join();
+        throw;
     }
     for (auto& t : threads) t.join();
     if (failed.load()) std::rethrow_exception(error);

@@ -44,8 +44,8 @@ struct ComparedVariants {
 
 /// compare_variant() for each of `values`, on `jobs` threads: each variant is independent, so
 /// the runs are the same on any number of threads. `progress(done, total)` is called from the
-/// caller's thread about ten times a second. Once `*cancel` is set no variant starts and those
-/// under way stop within a few thousand samples; once one throws, no other starts.
+/// caller's thread about ten times a second. Once `*cancel` is set, or a variant throws, no
+/// other starts and those under way stop within a few thousand samples.
 ComparedVariants compare_variants(
     const Model& model, const Gesture& gesture, const std::string& parameter,
     const std::vector<double>& values, double seconds, int jobs,
