@@ -46,7 +46,8 @@ std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& g
         run.fundamental = 0;  // no linear part to analyse: no per-period figure
     }
     Simulation sim(compile(variant));
-    sim.set_gesture_track(&gesture);
+    const Gesture stroke = gesture;  // its own: reading a gesture moves the cursor it keeps
+    sim.set_gesture_track(&stroke);
     sim.enable_accounting(true);
     run.sample_rate = sim.sample_rate();
     const MatSlot bowed = sim.model().mat_slots.at(bow->bowed_string());

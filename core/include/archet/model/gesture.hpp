@@ -29,7 +29,8 @@ class Gesture {
     /// Keyframes must be in strictly increasing time (validated by the loader).
     Gesture(std::string name, std::vector<GestureKeyframe> keyframes);
 
-    /// Axis positions at time t; held at the first/last keyframe outside their range.
+    /// Axis positions at time t; held at the first/last keyframe outside their range. It moves
+    /// a cursor kept in the gesture: two threads reading one gesture at once need a copy each.
     GestureSample at(double t) const;
     double duration() const { return keyframes_.empty() ? 0.0 : keyframes_.back().time; }
     bool empty() const { return keyframes_.empty(); }
