@@ -213,6 +213,14 @@ pid_t spawn_archet(std::vector<std::string> arguments) {
     return ::posix_spawn(&pid, argv[0], nullptr, nullptr, argv.data(), environ) == 0 ? pid : -1;
 }
 
+// Whether child `pid` ended within `limit`, its status in `status`; killed (SIGKILL) if not.
+bool ended_within(pid_t pid, int& status, std::chrono::seconds limit) {
+    const bool ended =
+        test::wait_for([&] { return ::waitpid(pid, &status, WNOHANG) == pid; }, limit);
+    if (!ended) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+    return ended;
+}
+
 // A signal the caller ignores stays ignored (`nohup archet render ... &`): the render goes on
 // to the end and writes its file.
 TEST(Cli, AnIgnoredHangupDoesNotStopARender) {
@@ -236,9 +244,7 @@ TEST(Cli, AnIgnoredHangupDoesNotStopARender) {
         std::chrono::seconds(60));
     ::kill(pid, SIGHUP);
     int status = -1;
-    const bool ended = test::wait_for([&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
-                                      std::chrono::seconds(600));
-    if (!ended) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+    const bool ended = ended_within(pid, status, std::chrono::seconds(600));
     ASSERT_TRUE(rendering) << "the render never got under way";
     ASSERT_TRUE(ended);
     ASSERT_TRUE(WIFEXITED(status)) << "stopped by a signal it was told to ignore";
@@ -266,9 +272,7 @@ TEST(Cli, ASigtermedRenderLeavesNoTemporaryFile) {
         std::chrono::seconds(60));
     ::kill(pid, SIGTERM);
     int status = -1;
-    const bool ended = test::wait_for([&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
-                                      std::chrono::seconds(60));
-    if (!ended) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+    const bool ended = ended_within(pid, status, std::chrono::seconds(60));
     ASSERT_TRUE(rendering) << "the render never wrote";
     ASSERT_TRUE(ended);
     ASSERT_TRUE(WIFEXITED(status))
@@ -291,9 +295,7 @@ TEST(Cli, AnInterruptedCompareWritesNoVariant) {
         test::wait_for([&] { return std::filesystem::exists(out); }, std::chrono::seconds(60));
     ::kill(pid, SIGINT);
     int status = -1;
-    const bool ended = test::wait_for([&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
-                                      std::chrono::seconds(120));
-    if (!ended) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+    const bool ended = ended_within(pid, status, std::chrono::seconds(120));
     ASSERT_TRUE(rendering) << "the comparison never got under way";
     ASSERT_TRUE(ended) << "the variants under way did not stop";
     ASSERT_TRUE(WIFEXITED(status))
@@ -316,9 +318,7 @@ TEST(Cli, ASigtermedExamplesRunLeavesNoTemporaryFile) {
         test::wait_for([&] { return !temporaries().empty(); }, std::chrono::seconds(60));
     ::kill(pid, SIGTERM);
     int status = -1;
-    const bool ended = test::wait_for([&] { return ::waitpid(pid, &status, WNOHANG) == pid; },
-                                      std::chrono::seconds(60));
-    if (!ended) ::kill(pid, SIGKILL), ::waitpid(pid, &status, 0);
+    const bool ended = ended_within(pid, status, std::chrono::seconds(60));
     ASSERT_TRUE(rendering) << "no example was being written";
     ASSERT_TRUE(WIFEXITED(status))
         << "killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);

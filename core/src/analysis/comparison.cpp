@@ -1,5 +1,6 @@
 #include "archet/analysis/comparison.hpp"
 
+#include <algorithm>
 #include <optional>
 #include <sstream>
 
@@ -120,9 +121,8 @@ ComparedVariants compare_variants(const Model& model, const Gesture& gesture,
     }
     // The runs up to the first that did not finish. It threw, or was stopped: by the caller's
     // cancel, else by a failure (the first in the order of the values is the one reported).
-    std::exception_ptr first_error = thrown;
-    for (auto it = errors.rbegin(); it != errors.rend(); ++it)
-        if (*it) first_error = *it;
+    const auto failure = std::find_if(errors.begin(), errors.end(), [](auto& e) { return !!e; });
+    const std::exception_ptr first_error = failure != errors.end() ? *failure : thrown;
     ComparedVariants compared;
     for (std::size_t i = 0; i < values.size(); ++i) {
         if (!runs[i]) {

@@ -1,7 +1,7 @@
 #pragma once
 // Independent pieces of offline work (the points of a playability map, the strokes of a band
-// search, the variants of a comparison) spread over threads. Each piece writes only its own result, so the outcome is the
-// same on any number of threads.
+// search, the variants of a comparison) spread over threads. Each piece writes only its own
+// result, so the outcome is the same on any number of threads.
 
 #include <atomic>
 #include <cstddef>
