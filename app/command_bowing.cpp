@@ -11,7 +11,7 @@
 
 #include "archet/analysis/attack.hpp"
 #include "archet/analysis/bowing_analysis.hpp"
-#include "archet/analysis/modal_analysis.hpp"
+#include "archet/analysis/string_first_mode.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
@@ -67,7 +67,7 @@ Report play(const std::string& path, const BowingArguments& a) {
 
     Report r;
     r.name = model.name;
-    r.pitch = analyse_modes(model).fundamental;
+    r.pitch = string_first_mode(model).frequency;
     const double fs = sim.sample_rate();
     std::vector<double> slip, normal;
     const auto frames = static_cast<std::size_t>(gesture->duration() * fs);

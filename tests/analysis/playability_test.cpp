@@ -13,6 +13,7 @@
 #include <numbers>
 #include <random>
 
+#include "archet/analysis/modal_analysis.hpp"
 #include "archet/analysis/playability.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/files/model_file.hpp"

@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "archet/analysis/bowing_analysis.hpp"
-#include "archet/analysis/modal_analysis.hpp"
 #include "archet/analysis/playability.hpp"
+#include "archet/analysis/string_first_mode.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/grid_sweep.hpp"
 #include "archet/common/input_error.hpp"
@@ -26,7 +26,7 @@ constexpr double kTolerance = 0.1;  // of the period, for a period to count as s
 constexpr double kHeardFor = 0.6;   // s of sliding that an attack played to be heard lasts
 
 double string_pitch(const Model& model) {
-    const double f1 = analyse_modes(model).fundamental;
+    const double f1 = string_first_mode(model).frequency;
     if (!(f1 > 0)) throw InputError(model.name, "has no string mode to count periods of");
     return f1;
 }

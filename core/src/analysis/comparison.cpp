@@ -4,7 +4,7 @@
 #include <optional>
 #include <sstream>
 
-#include "archet/analysis/modal_analysis.hpp"
+#include "archet/analysis/string_first_mode.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/common/parallel_for.hpp"
@@ -42,7 +42,7 @@ std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& g
     run.label = label.str();
     run.value = value;
     try {
-        run.fundamental = analyse_modes(variant).fundamental;
+        run.fundamental = string_first_mode(variant).frequency;
     } catch (const std::exception&) {
         run.fundamental = 0;  // no linear part to analyse: no per-period figure
     }

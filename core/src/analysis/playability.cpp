@@ -10,7 +10,7 @@
 #include <unsupported/Eigen/FFT>
 
 #include "archet/analysis/bowing_analysis.hpp"
-#include "archet/analysis/modal_analysis.hpp"
+#include "archet/analysis/string_first_mode.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/grid_sweep.hpp"
 #include "archet/common/input_error.hpp"
@@ -107,10 +107,10 @@ double press_stiffness(const Model& model) {
                          bow.press + "\")");
 }
 
-double first_mode(const Model& model, const ModalAnalysis& modes) {
-    if (!(modes.fundamental > 0))
+double first_mode(const Model& model, const StringFirstMode& first) {
+    if (!(first.frequency > 0))
         throw InputError(model.name, "has no string mode to measure pitch against");
-    return modes.fundamental;
+    return first.frequency;
 }
 
 }  // namespace
@@ -221,7 +221,7 @@ MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t ind
     p.force = grid.force(index);
     p.position = grid.position(index);
     const auto [variant, stroke] = map_stroke(model, grid, index);
-    if (!(pitch > 0)) pitch = first_mode(variant, analyse_modes(variant));
+    if (!(pitch > 0)) pitch = first_mode(variant, string_first_mode(variant));
     Simulation sim(compile(variant));
     sim.set_gesture_track(&stroke);
     if (build) sim.set_chain_build(*build);
@@ -266,9 +266,9 @@ PlayedMap play_map(const Model& model, const MapGrid& grid, int jobs, int shard,
     PlayedMap map;
     // One analysis for the points' pitch and the lines (the bow's position does not move the
     // modes).
-    const ModalAnalysis modes = analyse_modes(model);
-    map.first_mode = first_mode(model, modes);
-    map.lines = schelleng_lines(model, modes);
+    const StringFirstMode first = string_first_mode(model);
+    map.first_mode = first_mode(model, first);
+    map.lines = schelleng_lines(model, first);
     // Every variant is checked before the threads start.
     for (double beta : {grid.position_min, grid.position_max}) {
         Model check = model;
@@ -315,10 +315,10 @@ double bow_position(const Model& model) {
 
 SchellengLines schelleng_lines(const Model& model) {
     bow_module(model);  // a model without a bow is told so before its modes are analysed
-    return schelleng_lines(model, analyse_modes(model));
+    return schelleng_lines(model, string_first_mode(model));
 }
 
-SchellengLines schelleng_lines(const Model& model, const ModalAnalysis& modes) {
+SchellengLines schelleng_lines(const Model& model, const StringFirstMode& first) {
     const Lia& bow = bow_module(model);
     const std::string centre = bowed_centre(model, bow);
     const Mat* bowed = model.find_mat(centre);
@@ -327,13 +327,11 @@ SchellengLines schelleng_lines(const Model& model, const ModalAnalysis& modes) {
         const Lia* l = model.find_lia(id);
         if (l->from == centre || l->to == centre) k = std::max(k, l->stiffness);
     }
-    double t60 = 0;
-    for (const auto& m : modes.modes)
-        if (m.partial == 1) t60 = m.t60;
+    const double t60 = first.t60;
     SchellengLines lines;
     if (!bowed || !(k > 0) || !(t60 > 0) || !std::isfinite(t60)) return lines;
     lines.impedance = std::sqrt(k * bowed->mass);
-    lines.resistance = 2 * lines.impedance * modes.fundamental * t60 / std::log(1000.0);
+    lines.resistance = 2 * lines.impedance * first.frequency * t60 / std::log(1000.0);
     lines.friction_drop = bow.mu_static - bow.mu_dynamic;
     return lines;
 }

@@ -5,8 +5,8 @@
 #include <sstream>
 
 #include "archet/analysis/bowing_analysis.hpp"
-#include "archet/analysis/modal_analysis.hpp"
 #include "archet/analysis/playability.hpp"
+#include "archet/analysis/string_first_mode.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/common/parallel_for.hpp"
@@ -54,9 +54,9 @@ bool plays_helmholtz(const Model& model, double pitch, double speed, double forc
 HelmholtzBand helmholtz_band(const Model& model, double speed, int steps,
                              const std::atomic<bool>* cancel) {
     const double beta = bow_position(model);
-    const ModalAnalysis modes = analyse_modes(model);  // once: it is most of the cost here
-    const SchellengBounds lines = schelleng_lines(model, modes).at(beta, speed);
-    const double pitch = modes.fundamental;
+    const StringFirstMode first = string_first_mode(model);  // once: most of the cost here
+    const SchellengBounds lines = schelleng_lines(model, first).at(beta, speed);
+    const double pitch = first.frequency;
     // Without Schelleng's lines (a modal string has no links to read its impedance from), the
     // range a violinist's bow covers.
     const bool lined = lines.minimum > 0 && lines.maximum > lines.minimum;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "archet/analysis/modal_analysis.hpp"
+#include "archet/analysis/string_first_mode.hpp"
 #include "archet/model/gesture.hpp"
 #include "archet/model/model.hpp"
 #include "archet/physics/chain_kernel.hpp"
@@ -125,8 +125,8 @@ double force_for_press(const Model& model, double press);
 double bow_position(const Model& model);
 
 SchellengLines schelleng_lines(const Model& model);
-/// The same from the model's modal analysis, when the caller has it (analyse_modes(model)).
-SchellengLines schelleng_lines(const Model& model, const ModalAnalysis& modes);
+/// The same from the string's first mode, when the caller has it (string_first_mode(model)).
+SchellengLines schelleng_lines(const Model& model, const StringFirstMode& first);
 /// schelleng_lines(model).at(position, speed).
 SchellengBounds schelleng_bounds(const Model& model, double position, double speed);
 
