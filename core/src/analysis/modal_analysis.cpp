@@ -121,6 +121,10 @@ ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
     const int n = sys.size();
     const double dt = sys.dt;
     Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), true);
+    if (solver.info() != Eigen::Success)  // Eigen then leaves no roots to read
+        throw InputError("model",
+                         "its modal analysis did not converge (the QR iteration ran "
+                         "out of steps): check the model's masses and links");
 
     ModalAnalysis result;
     result.rate = sys.rate;

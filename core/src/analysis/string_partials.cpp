@@ -9,6 +9,7 @@
 
 #include "archet/analysis/discrete_modes.hpp"
 #include "archet/analysis/modal_analysis.hpp"
+#include "archet/analysis/mode_shape.hpp"
 
 namespace archet {
 
@@ -112,7 +113,6 @@ std::vector<double> string_partial_frequencies(const LinearSystem& sys, const Mo
     if (!sys.fingers.empty() || !is_tridiagonal(sys))
         return partials_of_the_whole_analysis(sys, model);
     check_analysable(sys);
-    const int n = sys.size();
     const double dt = sys.dt;
     // Without eigenvectors Eigen runs the same reduction and QR steps on the Schur form and
     // only leaves out accumulating their basis: the roots are analyse_modes()' to the bit. The
@@ -123,17 +123,10 @@ std::vector<double> string_partial_frequencies(const LinearSystem& sys, const Mo
     std::vector<std::pair<double, bool>> modes;  // frequency, support
     for (const Complex& root : solver.eigenvalues()) {
         if (root.imag() <= 0.0) continue;  // as analyse_modes(): one of each pair, no real roots
-        const std::vector<Complex> shape = chain_mode_shape(sys, root);
-        double kinetic = 0, in_supports = 0;
-        for (int i = 0; i < n; ++i) {
-            const double e = sys.mass[i] * std::norm(shape[i]);
-            kinetic += e;
-            if (is_support[i]) in_supports += e;
-        }
-        if (!(kinetic > 0) || !std::isfinite(kinetic))  // a shape lost to overflow
+        const EnergySplit energy = energy_split(sys, is_support, chain_mode_shape(sys, root));
+        if (!energy.finite())  // a shape lost to overflow
             return partials_of_the_whole_analysis(sys, model);
-        modes.emplace_back(std::arg(root) / (2.0 * std::numbers::pi * dt),
-                           in_supports > 0.5 * kinetic);
+        modes.emplace_back(std::arg(root) / (2.0 * std::numbers::pi * dt), energy.support());
     }
     std::sort(modes.begin(), modes.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });

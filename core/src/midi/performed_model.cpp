@@ -1,8 +1,8 @@
 // What the MIDI performer needs of a model, read once when it loads (the open string's first
 // mode takes a modal analysis): the engine and the LV2 plugin both play through it.
 
-#include "archet/analysis/modal_analysis.hpp"
 #include "archet/analysis/playability.hpp"
+#include "archet/analysis/string_first_mode.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/midi/midi_performer.hpp"
 
@@ -17,7 +17,7 @@ PerformedModel performed_model(const Model& model) {
         Model open = model;
         for (auto& l : open.lias)
             if (l.kind == LiaKind::Finger) l.pressure = 0;
-        p.open_string_hz = analyse_modes(open).fundamental;
+        p.open_string_hz = string_first_mode(open).frequency;
         if (!(p.open_string_hz > 0))
             throw InputError(finger->id, "the string along the finger has no first mode");
     }

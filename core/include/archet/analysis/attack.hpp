@@ -98,7 +98,7 @@ struct AttackPoint {
 };
 
 /// Plays one attack on `model` (a bowed string with a hand on each axis); `pitch` is the
-/// string's first mode (0: found by modal analysis). With `sound`, the stroke's output.
+/// string's first mode (0: string_first_mode()). With `sound`, the stroke's output.
 AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::size_t index,
                               double pitch = 0, std::vector<double>* sound = nullptr);
 

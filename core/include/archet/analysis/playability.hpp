@@ -71,7 +71,7 @@ struct MapStroke {
 MapStroke map_stroke(const Model& model, const MapGrid& grid, std::size_t index);
 
 /// Plays one grid point on `model` (a bowed string with a hand on each axis). `pitch` is the
-/// string's first mode (0: found by modal analysis). With `sound`, the whole stroke's output.
+/// string's first mode (0: string_first_mode()). With `sound`, the whole stroke's output.
 /// `build`: the bowed chain loop's (Simulation::set_chain_build()), else the widest here.
 MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t index,
                         double pitch = 0, std::vector<double>* sound = nullptr,
@@ -89,15 +89,16 @@ struct SchellengBounds {
 
 /// What Schelleng's lines need of the model's string: its impedance Z0 = √(k·m) at the bow,
 /// μs − μd, and the loss resistance R = 2·Z0·f1·τ of its first mode's decay. Reading them
-/// takes a modal analysis; the bounds at each position are then a formula.
+/// takes the string's first mode (string_first_mode()); the bounds at each position are then
+/// a formula.
 struct SchellengLines {
     double impedance = 0, resistance = 0, friction_drop = 0;
     SchellengBounds at(double position, double speed) const;
 };
 
-/// A map's points, sorted by index, with what it read of the model's modes in its one modal
-/// analysis (a long string's takes as long as many points): the first mode its points' pitch
-/// is measured against, and Schelleng's lines to draw over them.
+/// A map's points, sorted by index, with what it read of the model's first mode, found once (on
+/// a long string that takes as long as several points): the pitch its points are measured
+/// against, and Schelleng's lines to draw over them.
 struct PlayedMap {
     std::vector<MapPoint> points;
     double first_mode = 0;  ///< Hz

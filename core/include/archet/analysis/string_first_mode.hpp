@@ -18,9 +18,10 @@ struct StringFirstMode {
 };
 
 /// What analyse_modes(model) gives as its fundamental and the t60 of its partial 1, with the
-/// same bits (the same roots, and the same classes unless a mode's energy is split within
-/// rounding of half in the supports); it throws what analyse_modes() throws. A model with a
-/// finger, or a shape the sparse solve cannot find, gets analyse_modes() itself.
+/// same bits; it throws what analyse_modes() throws. The roots are the same; where the modes up
+/// to f1 could be classed otherwise (two at one frequency, a mode's energy split within 1e-9 of
+/// half in the supports, a shape the solve cannot find) and on a model with a finger, it is
+/// analyse_modes() itself.
 StringFirstMode string_first_mode(const Model& model);
 StringFirstMode string_first_mode(const LinearSystem& system, const Model& model);
 
