@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <charconv>
 #include <system_error>
 
 #include "archet/common/input_error.hpp"
@@ -11,7 +12,10 @@ namespace archet {
 
 ProbeCsvWriter::ProbeCsvWriter(std::filesystem::path path, const std::vector<std::string>& columns,
                                WriteMode mode)
-    : path_(std::move(path)), mode_(mode), columns_(columns.size()) {
+    : path_(std::move(path)),
+      mode_(mode),
+      columns_(columns.size()),
+      row_((columns.size() + 1) * kNumberBytes + 1) {
     // Direct: "x" refuses a file that exists (a take never overwrites one). Safe: a device or
     // FIFO (--probes /dev/null) is written in place, never renamed over.
     const char* how = "wx";
@@ -44,10 +48,26 @@ void ProbeCsvWriter::flush() {
     if (file_) std::fflush(file_);
 }
 
+namespace {
+
+// A number as printf's "%.9g" writes it: std::to_chars with the same format and precision is
+// specified to give the same characters, several times faster. Returns the end.
+char* nine_digits(char* at, char* end, double value) {
+    return std::to_chars(at, end, value, std::chars_format::general, 9).ptr;
+}
+
+}  // namespace
+
 void ProbeCsvWriter::write_row(double time, const double* values) {
-    std::fprintf(file_, "%.9g", time);
-    for (std::size_t i = 0; i < columns_; ++i) std::fprintf(file_, ",%.9g", values[i]);
-    std::fputc('\n', file_);
+    char* at = row_.data();
+    char* const end = row_.data() + row_.size();
+    at = nine_digits(at, end, time);
+    for (std::size_t i = 0; i < columns_; ++i) {
+        *at++ = ',';
+        at = nine_digits(at, end, values[i]);
+    }
+    *at++ = '\n';
+    std::fwrite(row_.data(), 1, static_cast<std::size_t>(at - row_.data()), file_);
 }
 
 void ProbeCsvWriter::close() {

@@ -31,6 +31,9 @@ class ProbeCsvWriter {
     WriteMode mode_;
     std::FILE* file_ = nullptr;
     std::size_t columns_ = 0;
+    /// The longest "%.9g" ("-1.23456789e-308") and its comma, with room to spare.
+    static constexpr std::size_t kNumberBytes = 32;
+    std::vector<char> row_;  ///< a row's characters, handed to stdio at once
 };
 
 }  // namespace archet
