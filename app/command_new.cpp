@@ -70,7 +70,9 @@ void add_new_command(CLI::App& app, Action& action) {
                 "A body at the bridge, its radiated sound the output: a preset name or none")
             ->capture_default_str();
     bowed->add_flag("--point-bow", o->point_bow,
-                    "The bow rubs one mass (the paper's) instead of a hair-wide contact point");
+                    "The bow rubs one mass (the paper's) instead of a hair-wide contact point; "
+                    "on a full-bandwidth string it finds almost no Helmholtz band, so pair it "
+                    "with --paper or --no-gesture");
     bowed->add_flag("--finger", o->finger,
                     "Add a finger (\"finger\") pressed on the string: move it with "
                     "finger.position, lift it with finger.pressure");

@@ -102,6 +102,8 @@ TEST(BadInput, BadCommandLinesAreRefusedWithStatus2) {
         {{"new", "bowed-string", "--paper", "--masses", "80", "-o", out}, "25 to 60"},
         {{"new", "bowed-string", "--paper", "--body", "violin", "-o", out}, "have no body"},
         {{"new", "bowed-string", "--body", "theorbo", "-o", out}, "known bodies: violin"},
+        {{"new", "bowed-string", "--point-bow", "-o", out},
+         "build it without a stroke (--no-gesture)"},
         {{"new", "bowed-string", "--string-t60", "2", "--string-t60-high", "9", "-o", out},
          "--string-t60-high: must be at most"},
         {{"new", "bowed-string", "--pitch", "440", "--masses", "60", "-o", out},

@@ -274,6 +274,15 @@ std::string material_hint(const BowedStringOptions& o) {
            "mean (a cello's C: about 130 N and 0.0148 kg/m)";
 }
 
+// A bow rubbing one mass of a full string drives the chain's shortest waves, which a real bow's
+// width averages out: it finds almost no Helmholtz band there (docs/physics.md).
+std::string point_bow_hint(const BowedStringOptions& o) {
+    if (!o.point_bow || o.paper) return "";
+    return ". A point bow finds almost no Helmholtz band on a full-bandwidth string: leave out "
+           "--point-bow (a contact as wide as a bow's hair), or build it without a stroke "
+           "(--no-gesture)";
+}
+
 // The string with its stroke. A short string has few masses to bow: where the default bow
 // position finds no Helmholtz band, the next mass or two may. `model` is `string` bowed where
 // `o` says.
@@ -300,13 +309,13 @@ Model finished(Model model, const UnbowedString& string, const BowedStringOption
             if (was_cancelled(cancel)) throw;
             if (k + 1 < moves.size()) continue;
             if (e.where() != "--bow-position") throw;
-            // No position finds a Helmholtz band: the material may be why.
-            throw InputError(e.where(), e.message() + material_hint(o));
+            // No position finds a Helmholtz band: the material or the point bow may be why.
+            throw InputError(e.where(), e.message() + material_hint(o) + point_bow_hint(o));
         }
     }
     throw InputError("--bow-position", "no bow position near " + fmt(o.bow_position) +
                                            " finds a Helmholtz band; try another" +
-                                           material_hint(o));
+                                           material_hint(o) + point_bow_hint(o));
 }
 
 }  // namespace
