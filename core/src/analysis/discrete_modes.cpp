@@ -3,7 +3,6 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 namespace archet {
@@ -46,8 +45,7 @@ std::vector<DiscreteMode> discrete_modes(const LinearSystem& sys) {
         DiscreteMode mode;
         mode.frequency = std::arg(root) * fs / (2.0 * std::numbers::pi);
         mode.radius = std::abs(root);
-        mode.t60 = mode.radius < 1.0 ? std::log(1e-3) / std::log(mode.radius) * dt
-                                     : std::numeric_limits<double>::infinity();
+        mode.t60 = root_t60(root, dt);
         modes.push_back(mode);
     }
     std::sort(modes.begin(), modes.end(),

@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <limits>
-#include <numbers>
 #include <set>
 
 #include "archet/analysis/discrete_modes.hpp"
@@ -139,10 +137,8 @@ ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
         const std::complex<double> root = solver.eigenvalues()[r];
         if (root.imag() <= 0.0) continue;  // one of each conjugate pair; real roots do not ring
         ModeInfo mode;
-        mode.frequency = std::arg(root) / (2.0 * std::numbers::pi * dt);
-        const double radius = std::abs(root);
-        mode.t60 = radius < 1.0 ? std::log(1e-3) / std::log(radius) * dt
-                                : std::numeric_limits<double>::infinity();
+        mode.frequency = root_frequency(root, dt);
+        mode.t60 = root_t60(root, dt);
         // Shape: the x[n] half of the eigenvector, turned so its largest entry is real.
         Eigen::VectorXcd v = vectors.col(r).head(n);
         Eigen::Index top = 0;

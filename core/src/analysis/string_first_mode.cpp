@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <limits>
-#include <numbers>
 #include <optional>
 #include <vector>
 
@@ -52,10 +50,7 @@ StringFirstMode string_first_mode(const LinearSystem& sys, const Model& model) {
     std::vector<Root> roots;
     for (const Complex& z : solver.eigenvalues()) {
         if (z.imag() <= 0.0) continue;  // as analyse_modes(): one of each pair, no real roots
-        const double radius = std::abs(z);
-        roots.push_back({z, std::arg(z) / (2.0 * std::numbers::pi * dt),
-                         radius < 1.0 ? std::log(1e-3) / std::log(radius) * dt
-                                      : std::numeric_limits<double>::infinity()});
+        roots.push_back({z, root_frequency(z, dt), root_t60(z, dt)});
     }
     std::sort(roots.begin(), roots.end(),
               [](const auto& a, const auto& b) { return a.frequency < b.frequency; });

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <utility>
 
 #include "archet/analysis/discrete_modes.hpp"
@@ -126,7 +125,7 @@ std::vector<double> string_partial_frequencies(const LinearSystem& sys, const Mo
         const EnergySplit energy = energy_split(sys, is_support, chain_mode_shape(sys, root));
         if (!energy.finite())  // a shape lost to overflow
             return partials_of_the_whole_analysis(sys, model);
-        modes.emplace_back(std::arg(root) / (2.0 * std::numbers::pi * dt), energy.support());
+        modes.emplace_back(root_frequency(root, dt), energy.support());
     }
     std::sort(modes.begin(), modes.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
