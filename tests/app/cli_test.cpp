@@ -320,6 +320,7 @@ TEST(Cli, ASigtermedExamplesRunLeavesNoTemporaryFile) {
     int status = -1;
     const bool ended = ended_within(pid, status, std::chrono::seconds(60));
     ASSERT_TRUE(rendering) << "no example was being written";
+    ASSERT_TRUE(ended) << "the render went on for 60 s after SIGTERM";
     ASSERT_TRUE(WIFEXITED(status))
         << "killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
     EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM);

@@ -3,11 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "archet/builders/bowed_string.hpp"
 #include "archet/builders/string_body.hpp"
+#include "archet/files/model_file.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "energy_books.hpp"
@@ -101,6 +103,73 @@ TEST(Energy, MultiRateBowingNeverAddsEnergyOverAnyHapticPeriod) {
     const int divider = options.haptic_divider;
     const Books books = haptic_period_books(sim, divider, 3 * 48000 / divider);
     EXPECT_LE(books.worst, 1e-12 * books.scale);
+}
+
+// What the accounts book over `steps` for each chain link and ground, one element at a time.
+std::vector<double> chain_and_ground_losses_by_hand(Simulation& sim, int steps) {
+    const CompiledLevel& lv = sim.model().levels[0];
+    const std::size_t lias = sim.model().source.lias.size();
+    std::vector<double> expected(sim.dissipated_by_element().size(), 0.0);
+    for (int i = 0; i < steps; ++i) {
+        sim.step();
+        // After the step x[n+1] is x() and x[n−1] is still in the buffer the next step fills.
+        const double* xn = lv.x();
+        const double* xp = lv.x_next();
+        for (int j = 1; j < lv.size; ++j) {
+            if (lv.chain_element[j] < 0) continue;
+            const double centred = (xn[j] - xn[j + 1]) - (xp[j] - xp[j + 1]);
+            expected[lv.chain_element[j]] += 0.25 * lv.chain_zdt[j] * centred * centred;
+        }
+        for (const CompiledGround& g : lv.grounds) {
+            const int s = g.index;
+            expected[lias + g.element] +=
+                0.25 * lv.ground_zdt[s] * (xn[s] - xp[s]) * (xn[s] - xp[s]);
+        }
+    }
+    return expected;
+}
+
+// The losses of a chain's dampers and of its grounds (a full-bandwidth string's air), booked a
+// run of elements at a time, are each element's own, to the bit, whatever order the model
+// lists its elements in (out of order, most runs are one element long).
+TEST(Energy, EachChainAndGroundDamperIsBookedToItsOwnElement) {
+    const Model shipped = load_model_file(test::resource("models/bowed-string-110.json"));
+    Model links_reversed = shipped, mats_shuffled = shipped;
+    std::reverse(links_reversed.lias.begin(), links_reversed.lias.end());
+    std::mt19937 random(11);
+    std::shuffle(mats_shuffled.mats.begin(), mats_shuffled.mats.end(), random);
+    for (const Model* model :
+         std::initializer_list<const Model*>{&shipped, &links_reversed, &mats_shuffled}) {
+        Simulation sim(compile(*model));
+        sim.enable_accounting(true);
+        const CompiledLevel& lv = sim.model().levels[0];
+        ASSERT_GT(lv.grounds.size(), 200u) << "the string's air is a ground on every mass";
+        const std::vector<double> expected = chain_and_ground_losses_by_hand(sim, 4800);
+        const std::size_t lias = sim.model().source.lias.size();
+        int booked = 0;
+        for (int j = 1; j < lv.size; ++j)
+            if (lv.chain_element[j] >= 0) {
+                const int e = lv.chain_element[j];
+                EXPECT_EQ(sim.dissipated_by_element()[e], expected[e]) << "link " << e;
+                booked += expected[e] > 0;
+            }
+        for (const CompiledGround& g : lv.grounds) {
+            const std::size_t e = lias + g.element;
+            EXPECT_EQ(sim.dissipated_by_element()[e], expected[e]) << "ground " << g.element;
+            booked += expected[e] > 0;
+        }
+        EXPECT_GT(booked, 400) << "the bowed string moves, and its dampers take something";
+        if (model == &shipped) {
+            EXPECT_EQ(lv.chain_element_runs.size(), 1u) << "a string built in order is one run";
+            EXPECT_EQ(lv.ground_runs.size(), 1u);
+        }
+        if (model == &links_reversed) {
+            EXPECT_GT(lv.chain_element_runs.size(), 200u);
+        }
+        if (model == &mats_shuffled) {
+            EXPECT_GT(lv.ground_runs.size(), 100u);
+        }
+    }
 }
 
 // With the violin body at the bridge (its modes' oscillators, the bridge a modal point linked

@@ -23,6 +23,30 @@ bool chainable(LiaKind k) {
     return k == LiaKind::Spring || k == LiaKind::Damper || k == LiaKind::SpringDamper;
 }
 
+// Runs of storage whose elements follow one another as the storage does, from (storage,
+// element) pairs in storage order: a string built in order is one run.
+template <class Pairs>
+std::vector<ElementRun> element_runs(const Pairs& pairs) {
+    std::vector<ElementRun> runs;
+    for (const auto& [s, element] : pairs) {
+        ElementRun* last = runs.empty() ? nullptr : &runs.back();
+        if (last && s == last->end && element == last->element + (s - last->begin))
+            ++last->end;
+        else
+            runs.push_back({s, s + 1, element});
+    }
+    return runs;
+}
+
+void find_element_runs(CompiledLevel& lv) {
+    std::vector<std::pair<int, int>> links, grounds;
+    for (int j = 1; j < lv.size; ++j)  // links 0 and size are padding
+        if (lv.chain_element[j] >= 0) links.emplace_back(j, lv.chain_element[j]);
+    for (const CompiledGround& g : lv.grounds) grounds.emplace_back(g.index, g.element);
+    lv.chain_element_runs = element_runs(links);
+    lv.ground_runs = element_runs(grounds);
+}
+
 // A MAT's index in the model by its id: views of the model's own ids, which outlive it.
 using MatIndex = std::unordered_map<std::string_view, int>;
 
@@ -138,6 +162,7 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
     hold_fixed_tail(lv);
     fold_grounds(lv);
     find_uniform_runs(lv);
+    find_element_runs(lv);
 }
 
 // Rate levels that share a divider tick together: they compile into one level, so links

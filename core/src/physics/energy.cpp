@@ -20,16 +20,26 @@ void Simulation::account(CompiledLevel& lv) {
         return 0.25 * zdt * centred * centred;
     };
     const std::size_t lias = model_.source.lias.size();
-    for (int j = 1; j < lv.size; ++j)
-        if (lv.chain_element[j] >= 0)
-            dissipated_[lv.chain_element[j]] += taken(lv.chain_zdt[j], j, j + 1);
+    // The chain's and the grounds' dampers a run of elements at a time: each element takes the
+    // same term as one at a time would give it, and the runs' loops vectorise.
+    const double* __restrict const chain_zdt = lv.chain_zdt.data();
+    for (const ElementRun& run : lv.chain_element_runs) {
+        double* __restrict const taken_by = dissipated_.data() + run.element;
+        for (int j = run.begin; j < run.end; ++j) {
+            const double centred = (xn[j] - xn[j + 1]) - (xp[j] - xp[j + 1]);
+            taken_by[j - run.begin] += 0.25 * chain_zdt[j] * centred * centred;
+        }
+    }
+    const double* __restrict const ground_zdt = lv.ground_zdt.data();
+    for (const ElementRun& run : lv.ground_runs) {
+        double* __restrict const taken_by = dissipated_.data() + lias + run.element;
+        for (int s = run.begin; s < run.end; ++s)
+            taken_by[s - run.begin] += 0.25 * ground_zdt[s] * (xn[s] - xp[s]) * (xn[s] - xp[s]);
+    }
     for (const auto& l : lv.links) {
         if (l.contact && x[l.a] - x[l.b] - l.length <= 0.0) continue;
         dissipated_[l.element] += taken(l.zdt, l.a, l.b);
     }
-    for (const auto& g : lv.grounds)
-        dissipated_[lias + g.element] += 0.25 * lv.ground_zdt[g.index] *
-                                         (xn[g.index] - xp[g.index]) * (xn[g.index] - xp[g.index]);
     for (int b : lv.bows) {
         const CompiledBow& bow = model_.bows[b];
         const double p = x[bow.press] - x[bow.surface];

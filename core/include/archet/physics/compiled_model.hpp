@@ -112,6 +112,12 @@ struct CompiledFinger {
     int element = -1;
 };
 
+/// Storage begin … end − 1 (a chain link's left MAT, or a ground's MAT) whose elements are
+/// element, element + 1, …: the energy accounts add their dampers' losses a run at a time.
+struct ElementRun {
+    int begin, end, element;
+};
+
 struct CompiledLevel {
     std::string id;
     int divider = 1;
@@ -137,10 +143,12 @@ struct CompiledLevel {
     /// Scratch: this step's force of the chain links in chain_forces_used (the chain loop
     /// keeps none).
     std::vector<double> chain_force;
-    std::vector<int> chain_forces_used;  ///< links on either side of watched MATs
-    std::vector<int> chain_element;      ///< index into Model::lias, −1 for none
+    std::vector<int> chain_forces_used;          ///< links on either side of watched MATs
+    std::vector<int> chain_element;              ///< index into Model::lias, −1 for none
+    std::vector<ElementRun> chain_element_runs;  ///< the chain links with an element
     std::vector<CompiledLink> links;
     std::vector<CompiledGround> grounds;
+    std::vector<ElementRun> ground_runs;         ///< the grounds, elements counted among the MATs
     MatArray ground_k, ground_zdt, ground_rest;  ///< per storage index, 0 if none
     /// The update of a MAT with its ground, folded (see fold_ground()): x[n+1] =
     /// ((a·x[n] + b·x[n−1]) + e) + T²/m·(forces). Refreshed whenever T²/m or a ground changes.
