@@ -6,6 +6,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <cmath>
 #include <complex>
 #include <filesystem>
 #include <string>
@@ -33,6 +34,10 @@ void expect_the_whole_analysis_first_partial(const Model& model, const std::stri
     const StringFirstMode first = string_first_mode(model);
     EXPECT_EQ(first.frequency, modes.fundamental) << what;  // to the bit
     EXPECT_EQ(first.t60, partial_1->t60) << what;
+    // From roots solved beforehand (as a new string's tuning leaves them): the same bits.
+    const StringFirstMode from_roots = string_first_mode(update_roots(sounding_part(model)), model);
+    EXPECT_EQ(from_roots.frequency, modes.fundamental) << what;
+    EXPECT_EQ(from_roots.t60, partial_1->t60) << what;
 }
 
 Model shipped(const std::string& name) {
@@ -108,6 +113,55 @@ TEST(StringFirstMode, ClassesEveryModeBelowF1AsTheWholeAnalysisDoes) {
     const Model paper = shipped("bowed-string-220-paper");
     ASSERT_TRUE(is_tridiagonal(sounding_part(paper)));
     EXPECT_GE(expect_the_classes_of_the_modes_up_to_f1(paper, "220 Hz paper chaplet"), 1);
+}
+
+// A new string tries the bow at the next masses when its own finds no Helmholtz band: along a
+// chain the sounding part stays the tuned string's, whose roots its tuning solved, to the bit,
+// so the first mode is read from those roots rather than solved again (seconds on a long
+// string).
+TEST(StringFirstMode, ABowMovedAlongAChainLeavesTheSoundingPartAsItWas) {
+    BowedStringOptions here;
+    here.pitch = 196, here.with_gesture = false;
+    BowedStringOptions further = here;
+    further.bow_position = here.bow_position + 0.03;
+    const LinearSystem a = sounding_part(build_bowed_string(here));
+    const LinearSystem b = sounding_part(build_bowed_string(further));
+    EXPECT_TRUE(identical(a, b));
+    // A modal string is made from the tuned chain once the bow's place is known: its sounding
+    // part is not the chain's, and its first mode is solved anew.
+    here.structure = Structure::Modal;
+    EXPECT_FALSE(identical(a, sounding_part(build_bowed_string(here))));
+}
+
+// identical() tells one bit apart, in each part of a system.
+TEST(StringFirstMode, IdenticalSystemsDifferInNoBit) {
+    BowedStringOptions options;
+    options.pitch = 440, options.with_gesture = false;
+    const LinearSystem system = sounding_part(build_bowed_string(options));
+    ASSERT_GT(system.stiffness.nonZeros(), 0);
+    EXPECT_TRUE(identical(system, system));
+    LinearSystem other = system;
+    other.stiffness.uncompress();  // the same matrix stored otherwise
+    EXPECT_TRUE(identical(system, other));
+    auto one_ulp_up = [](double& v) { v = std::nextafter(v, 2 * v + 1); };
+    other = system;
+    one_ulp_up(other.mass[3]);
+    EXPECT_FALSE(identical(system, other)) << "a mass";
+    other = system;
+    one_ulp_up(other.stiffness.valuePtr()[5]);
+    EXPECT_FALSE(identical(system, other)) << "a stiffness";
+    other = system;
+    one_ulp_up(other.damping.valuePtr()[other.damping.nonZeros() - 1]);
+    EXPECT_FALSE(identical(system, other)) << "a damping";
+    other = system;
+    one_ulp_up(other.dt);
+    EXPECT_FALSE(identical(system, other)) << "the period";
+    other = system;
+    other.dofs[0] += "'";
+    EXPECT_FALSE(identical(system, other)) << "a DOF's name";
+    other = system;
+    other.fingers.push_back({{{1, 1.0}}, 100.0, 0.1});
+    EXPECT_FALSE(identical(system, other)) << "a finger";
 }
 
 TEST(StringFirstMode, ThrowsWhatTheWholeAnalysisThrows) {

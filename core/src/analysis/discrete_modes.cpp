@@ -33,14 +33,23 @@ Eigen::MatrixXd update_matrix(const LinearSystem& sys) {
     return step;
 }
 
+UpdateRoots update_roots(LinearSystem system) {
+    const Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(system), false);
+    const bool converged = solver.info() == Eigen::Success;
+    return {std::move(system), solver.eigenvalues(), converged};
+}
+
 std::vector<DiscreteMode> discrete_modes(const LinearSystem& sys) {
-    const int n = sys.size();
+    if (sys.size() == 0) return {};
+    return discrete_modes(update_roots(sys));
+}
+
+std::vector<DiscreteMode> discrete_modes(const UpdateRoots& update) {
     std::vector<DiscreteMode> modes;
-    if (n == 0) return modes;
-    const double dt = sys.dt;
-    Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), false);
+    if (update.system.size() == 0) return modes;
+    const double dt = update.system.dt;
     const double fs = 1.0 / dt;
-    for (const auto& root : solver.eigenvalues()) {
+    for (const auto& root : update.roots) {
         if (root.imag() <= 0.0) continue;  // one of each conjugate pair
         DiscreteMode mode;
         mode.frequency = std::arg(root) * fs / (2.0 * std::numbers::pi);

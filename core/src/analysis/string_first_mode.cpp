@@ -39,16 +39,22 @@ StringFirstMode string_first_mode(const Model& model) {
 }
 
 StringFirstMode string_first_mode(const LinearSystem& sys, const Model& model) {
+    if (!sys.fingers.empty()) return string_first_mode(analyse_modes(sys, model));
+    check_analysable(sys);  // before a solve that an unanalysable system could make endless
+    return string_first_mode(update_roots(sys), model);
+}
+
+StringFirstMode string_first_mode(const UpdateRoots& update, const Model& model) {
+    const LinearSystem& sys = update.system;
     auto whole_analysis = [&] { return string_first_mode(analyse_modes(sys, model)); };
     if (!sys.fingers.empty()) return whole_analysis();  // their correction is in U alone
     check_analysable(sys);
     const double dt = sys.dt;
     // Without eigenvectors Eigen runs the same reduction and QR steps on the Schur form and
     // only leaves out accumulating their basis: the roots are analyse_modes()' to the bit.
-    const Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), false);
-    if (solver.info() != Eigen::Success) return whole_analysis();  // which says so
+    if (!update.converged) return whole_analysis();  // which says so
     std::vector<Root> roots;
-    for (const Complex& z : solver.eigenvalues()) {
+    for (const Complex& z : update.roots) {
         if (z.imag() <= 0.0) continue;  // as analyse_modes(): one of each pair, no real roots
         roots.push_back({z, root_frequency(z, dt), root_t60(z, dt)});
     }

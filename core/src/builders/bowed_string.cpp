@@ -7,11 +7,14 @@
 #include <optional>
 #include <sstream>
 
+#include "archet/analysis/modal_analysis.hpp"
+#include "archet/analysis/string_first_mode.hpp"
 #include "archet/builders/count_search.hpp"
 #include "archet/builders/string_body.hpp"
 #include "archet/builders/string_chain.hpp"
 #include "archet/builders/stroke_in_band.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/model/linear_system.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/model/stability.hpp"
 
@@ -160,6 +163,8 @@ struct UnbowedString {
     Model model;
     StringLosses losses;
     std::string decays;  ///< the decays it has, for its description
+    /// The roots of its audio level's update, where its tuning solved them (retune_damped()).
+    std::optional<UpdateRoots> roots;
 };
 
 // `tuned` is tuned_string(o, n), when the caller has it already.
@@ -170,11 +175,12 @@ UnbowedString unbowed_string(const BowedStringOptions& o, int n,
     if (!o.paper && o.tuning == Tuning::Harmonic && o.string_damping < 0)
         model = tuned_string(o, n, &losses);
     std::string decays;
+    std::optional<UpdateRoots> roots;
     if (!o.paper) {
-        const std::vector<DiscreteMode> modes = retune_damped(model, o, n);
-        decays = decays_text(model, o, n, modes);
+        roots = retune_damped(model, o, n);
+        decays = decays_text(model, o, n, discrete_modes(*roots));
     }
-    return {std::move(model), losses, std::move(decays)};
+    return {std::move(model), losses, std::move(decays), std::move(roots)};
 }
 
 // The string bowed where `o` says.
@@ -283,6 +289,17 @@ std::string point_bow_hint(const BowedStringOptions& o) {
            "(--no-gesture)";
 }
 
+// The string's first mode wherever the bow is tried. A long string's analysis costs seconds,
+// and its tuning has solved the roots already: where the bow leaves the sounding part as it
+// was (along a chain it does), the analysis reads them. (A modal string, made from the tuned
+// chain once the bow's place is known, is another system: solved anew.)
+StringFirstMode first_mode_bowed(const Model& bowed, const UnbowedString& string) {
+    const LinearSystem sounding = sounding_part(bowed);
+    if (string.roots && identical(string.roots->system, sounding))
+        return string_first_mode(*string.roots, bowed);
+    return string_first_mode(sounding, bowed);
+}
+
 // The string with its stroke. A short string has few masses to bow: where the default bow
 // position finds no Helmholtz band, the next mass or two may. `model` is `string` bowed where
 // `o` says.
@@ -299,7 +316,8 @@ Model finished(Model model, const UnbowedString& string, const BowedStringOption
         if (bowed_mass(moved, n) != bowed + moves[k]) continue;  // off the string's bowable half
         Model m = moves[k] == 0 ? model : bowed_at(string, moved, n);
         try {
-            const HelmholtzBand band = helmholtz_band(m, o.stroke_speed, 17, cancel);
+            const HelmholtzBand band =
+                helmholtz_band(m, first_mode_bowed(m, string), o.stroke_speed, 17, cancel);
             m.gesture = stroke_in_band(m, band, o.stroke_speed);
             if (!o.paper && !(o.output_gain > 0) && band.peak > 0)
                 m.output_gain *= kStrokePeak / band.peak;  // the stroke it carries at −6 dBFS

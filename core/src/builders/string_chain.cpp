@@ -217,12 +217,12 @@ Model undamped_tuned_string(const BowedStringOptions& o, int n) {
     return string_tuned(o, n, nullptr, false);
 }
 
-std::vector<DiscreteMode> retune_damped(Model& model, const BowedStringOptions& o, int n) {
+UpdateRoots retune_damped(Model& model, const BowedStringOptions& o, int n) {
     const StringElements string = string_elements(n);
     for (int iteration = 0;; ++iteration) {  // at most four scalings; each look is a solve
-        std::vector<DiscreteMode> modes = discrete_modes(assemble_linear_system(model, "audio"));
-        const double f = nearest_frequency(modes, o.pitch);
-        if (iteration == 4 || !(f > 0) || std::abs(f / o.pitch - 1.0) < 1e-10) return modes;
+        UpdateRoots roots = update_roots(assemble_linear_system(model, "audio"));
+        const double f = nearest_frequency(discrete_modes(roots), o.pitch);
+        if (iteration == 4 || !(f > 0) || std::abs(f / o.pitch - 1.0) < 1e-10) return roots;
         scale_links(model, string, (o.pitch / f) * (o.pitch / f));
     }
 }

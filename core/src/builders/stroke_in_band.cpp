@@ -53,8 +53,12 @@ bool plays_helmholtz(const Model& model, double pitch, double speed, double forc
 
 HelmholtzBand helmholtz_band(const Model& model, double speed, int steps,
                              const std::atomic<bool>* cancel) {
+    return helmholtz_band(model, string_first_mode(model), speed, steps, cancel);
+}
+
+HelmholtzBand helmholtz_band(const Model& model, const StringFirstMode& first, double speed,
+                             int steps, const std::atomic<bool>* cancel) {
     const double beta = bow_position(model);
-    const StringFirstMode first = string_first_mode(model);  // once, for the lines and pitch
     const SchellengBounds lines = schelleng_lines(model, first).at(beta, speed);
     const double pitch = first.frequency;
     // Without Schelleng's lines (a modal string has no links to read its impedance from), the

@@ -1,6 +1,7 @@
 #include "archet/model/linear_system.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <map>
 #include <optional>
 #include <queue>
@@ -207,6 +208,56 @@ LinearSystem sounding_part(const Model& model) {
     const LinearSystem all = assemble_linear_system(model);
     if (model.outputs.empty()) return all;
     return connected_part(all, model.outputs.front().element);
+}
+
+namespace {
+
+bool same_bits(const double* a, const double* b, Eigen::Index count) {
+    return count == 0 || std::memcmp(a, b, static_cast<std::size_t>(count) * sizeof(double)) == 0;
+}
+
+bool same_bits(const double a, const double b) {
+    return same_bits(&a, &b, 1);
+}
+
+// The same pattern and the same values, compared compressed (as setFromTriplets() leaves them).
+bool same_bits(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& b) {
+    if (!a.isCompressed() || !b.isCompressed()) {
+        Eigen::SparseMatrix<double> ca = a, cb = b;
+        ca.makeCompressed(), cb.makeCompressed();
+        return same_bits(ca, cb);
+    }
+    if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+    const auto ints = [](const int* x, const int* y, Eigen::Index n) {
+        return n == 0 || std::memcmp(x, y, static_cast<std::size_t>(n) * sizeof(int)) == 0;
+    };
+    return ints(a.outerIndexPtr(), b.outerIndexPtr(), a.outerSize() + 1) &&
+           ints(a.innerIndexPtr(), b.innerIndexPtr(), a.nonZeros()) &&
+           same_bits(a.valuePtr(), b.valuePtr(), a.nonZeros());
+}
+
+bool same_bits(const FingerTerm& a, const FingerTerm& b) {
+    if (a.point.size() != b.point.size() || !same_bits(a.stiffness, b.stiffness) ||
+        !same_bits(a.damping, b.damping))
+        return false;
+    for (std::size_t i = 0; i < a.point.size(); ++i)
+        if (a.point[i].first != b.point[i].first ||
+            !same_bits(a.point[i].second, b.point[i].second))
+            return false;
+    return true;
+}
+
+}  // namespace
+
+bool identical(const LinearSystem& a, const LinearSystem& b) {
+    if (a.rate != b.rate || !same_bits(a.dt, b.dt) || a.dofs != b.dofs ||
+        a.mass.size() != b.mass.size() || !same_bits(a.mass.data(), b.mass.data(), a.mass.size()) ||
+        !same_bits(a.stiffness, b.stiffness) || !same_bits(a.damping, b.damping) ||
+        a.fingers.size() != b.fingers.size())
+        return false;
+    for (std::size_t i = 0; i < a.fingers.size(); ++i)
+        if (!same_bits(a.fingers[i], b.fingers[i])) return false;
+    return true;
 }
 
 }  // namespace archet

@@ -37,8 +37,19 @@ inline double root_t60(std::complex<double> z, double dt) {
 /// then corrected by each finger's implicit solve.
 Eigen::MatrixXd update_matrix(const LinearSystem& system);
 
+/// The roots of a system's one-step update, the eigenvalues of update_matrix() solved without
+/// eigenvectors: the costly part of an analysis (seconds for a long string), kept with the
+/// system they belong to, so that the analyses of the same system share them.
+struct UpdateRoots {
+    LinearSystem system;
+    Eigen::VectorXcd roots;  ///< all of them: each conjugate pair and the real roots
+    bool converged = false;  ///< Eigen's QR iteration converged (else `roots` are not its roots)
+};
+UpdateRoots update_roots(LinearSystem system);
+
 /// Oscillating modes sorted by frequency (real, non-oscillating roots are left out).
 std::vector<DiscreteMode> discrete_modes(const LinearSystem& system);
+std::vector<DiscreteMode> discrete_modes(const UpdateRoots& roots);
 
 /// Undamped discrete frequencies from the symmetric problem (fast, for tuning; fingers left
 /// out).

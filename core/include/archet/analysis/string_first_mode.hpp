@@ -5,6 +5,7 @@
 // the modes from the lowest up to the first partial have their shape solved, to tell a mode
 // of the supports from the string's.
 
+#include "archet/analysis/discrete_modes.hpp"
 #include "archet/model/linear_system.hpp"
 #include "archet/model/model.hpp"
 
@@ -24,6 +25,8 @@ struct StringFirstMode {
 /// analyse_modes() itself.
 StringFirstMode string_first_mode(const Model& model);
 StringFirstMode string_first_mode(const LinearSystem& system, const Model& model);
+/// The same from the roots of the model's sounding part (sounding_part(model)), solved already.
+StringFirstMode string_first_mode(const UpdateRoots& roots, const Model& model);
 
 /// The same read from a whole analysis.
 StringFirstMode string_first_mode(const ModalAnalysis& modes);

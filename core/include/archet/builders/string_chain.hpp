@@ -30,9 +30,10 @@ Model undamped_tuned_string(const BowedStringOptions& o, int n);
 
 /// Puts the damped first mode, as the scheme runs it, exactly on the pitch: the chain is tuned
 /// undamped, and the losses (and a body) then move it by a fraction of a cent. Scaling each
-/// link's stiffness and damping together keeps σ1. Returns the scheme's modes of the model as
-/// it leaves it (discrete_modes()), which the last check has already solved when it converged.
-std::vector<DiscreteMode> retune_damped(Model& model, const BowedStringOptions& o, int n);
+/// link's stiffness and damping together keeps σ1. Returns the roots of the model's update as
+/// it leaves it (its audio level's system), which the last check has already solved: its
+/// modes (discrete_modes()), and its string's first mode once it is bowed.
+UpdateRoots retune_damped(Model& model, const BowedStringOptions& o, int n);
 
 /// The ids of the string's masses and links in a chain of `n` masses.
 StringElements string_elements(int n);

@@ -5,6 +5,7 @@
 
 #include <atomic>
 
+#include "archet/analysis/string_first_mode.hpp"
 #include "archet/model/gesture.hpp"
 #include "archet/model/model.hpp"
 
@@ -21,6 +22,9 @@ struct HelmholtzBand {
 /// InputError "cancelled" once `*cancel` is set (checked between strokes).
 HelmholtzBand helmholtz_band(const Model& model, double speed, int steps = 17,
                              const std::atomic<bool>* cancel = nullptr);
+/// The same with the string's first mode already analysed (string_first_mode(model)).
+HelmholtzBand helmholtz_band(const Model& model, const StringFirstMode& first, double speed,
+                             int steps = 17, const std::atomic<bool>* cancel = nullptr);
 
 /// A steady stroke at `speed` with the band's middle force (`played`), 3 s long.
 Gesture stroke_in_band(const Model& model, const HelmholtzBand& band, double speed);

@@ -40,6 +40,10 @@ enum class Fingers { Include, Exclude };
 LinearSystem assemble_linear_system(const Model& model, const std::string& rate = "",
                                     Fingers fingers = Fingers::Include);
 
+/// Whether two systems are the same to the bit: rate, period, DOFs, matrices and fingers (an
+/// analysis of one is the other's).
+bool identical(const LinearSystem& a, const LinearSystem& b);
+
 /// The connected part of a system that holds `dof` (all of it when `dof` is not in it).
 LinearSystem connected_part(const LinearSystem& system, const std::string& dof);
 
