@@ -10,12 +10,14 @@
 #include <optional>
 
 #include "archet/analysis/attack.hpp"
+#include "archet/analysis/bow_probes.hpp"
 #include "archet/analysis/bowing_analysis.hpp"
 #include "archet/analysis/string_first_mode.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/physics/compiled_model.hpp"
+#include "archet/physics/run_ticks.hpp"
 #include "archet/physics/simulation.hpp"
 #include "commands.hpp"
 #include "model_loading.hpp"
@@ -61,8 +63,10 @@ Report play(const std::string& path, const BowingArguments& a) {
     else if (model.gesture)
         gesture = model.gesture;
     if (!gesture) throw InputError(path, "has no gesture of its own; give one with --gesture");
-    Simulation sim(compile(model));
-    if (sim.model().bows.empty()) throw InputError(path, "has no bow_friction link to analyse");
+    Model probed = model;  // reading its bow's slip velocity and normal force at every tick
+    if (!read_bow_only(probed, {ProbeKind::SlipVelocity, ProbeKind::NormalForce}))
+        throw InputError(path, "has no bow_friction link to analyse");
+    Simulation sim(compile(probed));
     sim.set_gesture_track(&*gesture);
 
     Report r;
@@ -73,11 +77,10 @@ Report play(const std::string& path, const BowingArguments& a) {
     const auto frames = static_cast<std::size_t>(gesture->duration() * fs);
     {
         const DenormalGuard no_denormals;
-        for (std::size_t i = 0; i < frames; ++i) {
-            sim.step();
-            slip.push_back(sim.model().bows[0].slip_velocity);
-            normal.push_back(sim.model().bows[0].normal);
-        }
+        run_ticks(sim, frames, [&](std::size_t, double, const double* row) {
+            slip.push_back(row[0]), normal.push_back(row[1]);
+            return true;
+        });
     }
     r.attack = analyse_attack(slip, normal, fs, r.pitch);
     r.transient = judge_stroke(slip, normal, fs, r.pitch);

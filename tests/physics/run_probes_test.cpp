@@ -6,13 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include "archet/analysis/bow_probes.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/physics/compiled_model.hpp"
+#include "archet/physics/run_ticks.hpp"
 #include "archet/physics/simulation.hpp"
 #include "run_as_step.hpp"
 #include "test_support.hpp"
@@ -113,6 +117,72 @@ TEST(RunProbes, WithoutEnergyItsColumnsKeepWhatTheyHeld) {
     }
     const Model model = load_model_file(test::resource(kShipped[1]));
     expect_rows_as_step(model, {16}, 2400, false, true);
+}
+
+// run_ticks(), as the analyses read a stroke (the map, the stroke search, attacks, bowing
+// reports): each tick's sample and its row of the bow's probes, as step() then output() and
+// probe() give them, across its blocks, and it stops where it is told.
+TEST(RunProbes, RunTicksHandsEveryTickAsStepWould) {
+    Model model = load_model_file(test::resource(kShipped[1]));
+    ASSERT_TRUE(read_bow_only(model, {ProbeKind::SlipVelocity, ProbeKind::NormalForce}));
+    ASSERT_EQ(model.probes.size(), 2u);
+    EXPECT_EQ(model.probes[0].id, "slip_velocity");
+    EXPECT_EQ(model.probes[1].kind, ProbeKind::NormalForce);
+    const Gesture bow = wandering_bow(11, 0.5);
+    Simulation by_step(compile(model)), by_ticks(compile(model));
+    by_step.set_gesture_track(&bow), by_ticks.set_gesture_track(&bow);
+    constexpr std::size_t kTicks = 10000;  // across two of its blocks
+    std::size_t next = 0;
+    int slipping = 0;
+    const std::size_t handed =
+        run_ticks(by_ticks, kTicks, [&](std::size_t tick, double sample, const double* row) {
+            EXPECT_EQ(tick, next++);
+            by_step.step();
+            EXPECT_TRUE(same_bits(sample, by_step.output())) << "tick " << tick;
+            EXPECT_TRUE(same_bits(row[0], by_step.probe(0))) << "tick " << tick;
+            EXPECT_TRUE(same_bits(row[1], by_step.probe(1))) << "tick " << tick;
+            slipping += row[0] != 0.0;
+            return true;
+        });
+    EXPECT_EQ(handed, kTicks);
+    EXPECT_GT(slipping, 100) << "the bow slips now and then";
+    // Told to stop at a tick, it hands no later one.
+    Simulation stopped(compile(model));
+    stopped.set_gesture_track(&bow);
+    std::size_t last = 0;
+    EXPECT_EQ(run_ticks(stopped, kTicks,
+                        [&](std::size_t tick, double, const double*) {
+                            last = tick;
+                            return tick < 5000;
+                        }),
+              5001u);
+    EXPECT_EQ(last, 5000u);
+}
+
+TEST(RunProbes, RunTicksGoesOnPastATickThatIsNotFinite) {
+    // run() ends its block after such a tick; the steps go on, and so does run_ticks().
+    Model model = load_model_file(test::resource(kShipped[0]));
+    model.find_mat("s12")->position = std::numeric_limits<double>::quiet_NaN();
+    ASSERT_TRUE(read_bow_only(model, {ProbeKind::SlipVelocity}));
+    Simulation by_step(compile(model)), by_ticks(compile(model));
+    int not_finite = 0;
+    EXPECT_EQ(run_ticks(by_ticks, 300,
+                        [&](std::size_t tick, double sample, const double*) {
+                            by_step.step();
+                            const double expected = by_step.output();
+                            EXPECT_EQ(std::isfinite(sample), std::isfinite(expected)) << tick;
+                            if (std::isfinite(expected)) {
+                                EXPECT_TRUE(same_bits(sample, expected)) << tick;
+                            }
+                            not_finite += !std::isfinite(sample);
+                            return true;
+                        }),
+              300u);
+    EXPECT_GT(not_finite, 200) << "the sound is NaN once the NaN has reached the bridge";
+    Model bowless = model;
+    std::erase_if(bowless.lias, [](const Lia& l) { return l.kind == LiaKind::BowFriction; });
+    EXPECT_FALSE(read_bow_only(bowless, {ProbeKind::SlipVelocity}));
+    EXPECT_EQ(bowless.probes.size(), model.probes.size()) << "left as it was";
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "archet/analysis/bow_probes.hpp"
 #include "archet/analysis/bowing_analysis.hpp"
 #include "archet/analysis/playability.hpp"
 #include "archet/analysis/string_first_mode.hpp"
@@ -15,6 +16,7 @@
 #include "archet/model/model_validation.hpp"
 #include "archet/model/model_variants.hpp"
 #include "archet/physics/compiled_model.hpp"
+#include "archet/physics/run_ticks.hpp"
 #include "archet/physics/simulation.hpp"
 
 namespace archet {
@@ -158,6 +160,8 @@ AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::s
     Model variant = model;
     if (grid.position > 0) set_variant_parameter(variant, "bow.position", grid.position);
     validate_model(variant);
+    if (!read_bow_only(variant, {ProbeKind::SlipVelocity}))
+        throw InputError(model.name, "has no bow to play an attack with");
     if (!(pitch > 0)) pitch = string_pitch(variant);
     const double period = 1.0 / pitch;
     CompiledModel compiled = compile(variant);
@@ -179,12 +183,12 @@ AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::s
     // An attack to be heard plays on for a while after it is judged.
     const std::size_t heard = sound ? static_cast<std::size_t>((kBowStart + kHeardFor) * fs) : 0;
     if (sound) sound->clear();
-    for (std::size_t i = 0; i < end && !(judged && i >= heard); ++i) {
-        sim.step();
-        if (sound) sound->push_back(sim.output());
-        if (i < start || judged) continue;  // the bow has not moved yet, or it is over
+    run_ticks(sim, end, [&](std::size_t i, double sample, const double* row) {
+        if (judged && i >= heard) return false;
+        if (sound) sound->push_back(sample);
+        if (i < start || judged) return true;  // the bow has not moved yet, or it is over
         const double now = static_cast<double>(i + 1) / fs - kBowStart;
-        const double slip = sim.model().bows[0].slip_velocity;
+        const double slip = row[0];
         if (!std::isfinite(slip))
             throw InputError(model.name, "stopped being finite bowed at " +
                                              format_number(p.acceleration) + " m/s² and " +
@@ -199,7 +203,8 @@ AttackPoint play_attack_point(const Model& model, const AttackGrid& grid, std::s
                 judge_transient(slips, period, now, grid.periods_max, kSettle, kTolerance).decided;
         }
         judged = judged || now > give_up;
-    }
+        return true;
+    });
     if (!slips.empty()) p.first_slip = slips.front().onset;
     p.transient =
         judge_transient(slips, period, give_up + 1, grid.periods_max, kSettle, kTolerance);

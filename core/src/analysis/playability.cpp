@@ -9,6 +9,7 @@
 #include <sstream>
 #include <unsupported/Eigen/FFT>
 
+#include "archet/analysis/bow_probes.hpp"
 #include "archet/analysis/bowing_analysis.hpp"
 #include "archet/analysis/string_first_mode.hpp"
 #include "archet/common/denormal_guard.hpp"
@@ -19,6 +20,7 @@
 #include "archet/model/string_points.hpp"
 #include "archet/physics/chain_build_choice.hpp"
 #include "archet/physics/compiled_model.hpp"
+#include "archet/physics/run_ticks.hpp"
 #include "archet/physics/simulation.hpp"
 
 namespace archet {
@@ -192,22 +194,11 @@ MapGrid MapGrid::parse(const std::string& text) {
     return g;
 }
 
-namespace {
-
-// The variant's probes replaced by its bow's slip velocity (map_stroke()).
-void read_slip_only(Model& variant) {
-    const auto bow = std::find_if(variant.lias.begin(), variant.lias.end(),
-                                  [](const Lia& l) { return l.kind == LiaKind::BowFriction; });
-    if (bow == variant.lias.end()) throw InputError(variant.name, "has no bow to play a map with");
-    variant.probes = {{"slip_velocity", ProbeKind::SlipVelocity, bow->id}};
-}
-
-}  // namespace
-
 MapStroke map_stroke(const Model& model, const MapGrid& grid, std::size_t index) {
     Model variant = model;
     set_variant_parameter(variant, "bow.position", grid.position(index));
-    read_slip_only(variant);
+    if (!read_bow_only(variant, {ProbeKind::SlipVelocity}))
+        throw InputError(variant.name, "has no bow to play a map with");
     validate_model(variant);
     Gesture stroke = steady_bow_gesture(grid.speed, grid.force(index) / press_stiffness(variant),
                                         grid.duration + 0.4);  // lifts after `duration`
@@ -231,21 +222,11 @@ MapPoint play_map_point(const Model& model, const MapGrid& grid, std::size_t ind
     std::vector<double> slip, sound;
     slip.reserve(total - from), sound.reserve(total - from);
     if (whole) whole->clear();
-    // In blocks through run(), a bowed string's own loop; one that is not finite stops a block
-    // after that tick, and the next goes on from there as the steps would.
-    constexpr std::size_t kBlock = 4096;
-    std::vector<double> block(kBlock), slips(kBlock);
-    for (std::size_t done = 0; done < total;) {
-        const std::size_t length = std::min(kBlock, total - done);
-        const std::size_t ran = sim.run({block.data(), length}, {.values = slips.data()});
-        for (std::size_t k = 0; k < ran; ++k) {
-            if (whole) whole->push_back(block[k]);
-            if (done + k < from) continue;
-            slip.push_back(slips[k]);
-            sound.push_back(block[k]);
-        }
-        done += ran;
-    }
+    run_ticks(sim, total, [&](std::size_t tick, double sample, const double* row) {
+        if (whole) whole->push_back(sample);
+        if (tick >= from) slip.push_back(row[0]), sound.push_back(sample);
+        return true;
+    });
     p.analysis = classify_regime(slip, sound, sim.sample_rate(), pitch);
     return p;
 }

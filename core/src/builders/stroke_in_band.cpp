@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "archet/analysis/bow_probes.hpp"
 #include "archet/analysis/bowing_analysis.hpp"
 #include "archet/analysis/playability.hpp"
 #include "archet/analysis/string_first_mode.hpp"
@@ -11,6 +12,7 @@
 #include "archet/common/input_error.hpp"
 #include "archet/common/parallel_for.hpp"
 #include "archet/physics/compiled_model.hpp"
+#include "archet/physics/run_ticks.hpp"
 #include "archet/physics/simulation.hpp"
 
 namespace archet {
@@ -26,6 +28,7 @@ constexpr double kBelowMinimum = 0.25, kAboveMaximum = 3.0;
 // The stroke at `force`, played to its end: in steady Helmholtz motion by kSteadyFrom, every
 // period after its onset one slip within 1 % of the steady period until the lift, as
 // `archet bowing` judges it (analyse_attack), and Helmholtz motion from kSteadyFrom to the lift.
+// `model` reads its bow's slip velocity and normal force (read_bow_only()).
 bool plays_helmholtz(const Model& model, double pitch, double speed, double force, double& peak) {
     const Gesture stroke =
         steady_bow_gesture(speed, force / force_for_press(model, 1.0), kStrokeSeconds);
@@ -36,12 +39,11 @@ bool plays_helmholtz(const Model& model, double pitch, double speed, double forc
     const auto end = static_cast<std::size_t>(kStrokeSeconds * fs);
     std::vector<double> slip, normal;
     slip.reserve(end), normal.reserve(end);
-    for (std::size_t i = 0; i < end; ++i) {
-        sim.step();
-        slip.push_back(sim.model().bows[0].slip_velocity);
-        normal.push_back(sim.model().bows[0].normal);
-        peak = std::max(peak, std::abs(sim.output()));
-    }
+    run_ticks(sim, end, [&](std::size_t, double sample, const double* row) {
+        slip.push_back(row[0]), normal.push_back(row[1]);
+        peak = std::max(peak, std::abs(sample));
+        return true;
+    });
     const AttackAnalysis attack = analyse_attack(slip, normal, fs, pitch);
     if (!attack.reached() || attack.helmholtz > kSteadyFrom) return false;
     const auto from = static_cast<std::size_t>(kSteadyFrom * fs);
@@ -66,6 +68,9 @@ HelmholtzBand helmholtz_band(const Model& model, const StringFirstMode& first, d
     const bool lined = lines.minimum > 0 && lines.maximum > lines.minimum;
     const double low = lined ? std::max(1e-4, kBelowMinimum * lines.minimum) : 3e-3;
     const double high = lined ? std::max(low * 100, kAboveMaximum * lines.maximum) : 3.0;
+    Model probed = model;
+    if (!read_bow_only(probed, {ProbeKind::SlipVelocity, ProbeKind::NormalForce}))
+        throw InputError(model.name, "has no bow to find a Helmholtz band with");
     std::vector<double> forces(steps), peaks(steps, 0.0);
     std::vector<char> plays(steps, 0);  // not vector<bool>: each stroke writes its own byte
     for (int i = 0; i < steps; ++i) forces[i] = low * std::pow(high / low, i / (steps - 1.0));
@@ -73,7 +78,7 @@ HelmholtzBand helmholtz_band(const Model& model, const StringFirstMode& first, d
     const bool finished = parallel_for(
         forces.size(), hardware_jobs(),
         [&](std::size_t i) {
-            plays[i] = plays_helmholtz(model, pitch, speed, forces[i], peaks[i]);
+            plays[i] = plays_helmholtz(probed, pitch, speed, forces[i], peaks[i]);
         },
         cancel);
     if (!finished) throw InputError(model.name, "cancelled");
