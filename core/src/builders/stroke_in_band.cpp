@@ -55,6 +55,7 @@ bool plays_helmholtz(const Model& model, double pitch, double speed, double forc
 
 HelmholtzBand helmholtz_band(const Model& model, double speed, int steps,
                              const std::atomic<bool>* cancel) {
+    bow_position(model);  // a model without a bow is told so before its modes are analysed
     return helmholtz_band(model, string_first_mode(model), speed, steps, cancel);
 }
 
