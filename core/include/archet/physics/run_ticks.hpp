@@ -1,8 +1,8 @@
 #pragma once
 // A simulation stepped tick by tick for an analysis that reads every tick (a map's stroke, the
 // stroke search, an attack, a bowing report), through run() in blocks: a bowed string runs its
-// own loop, several times faster than step(), with the same bytes as step(), output() and
-// probe() at each tick.
+// own loop, faster than the general step, with the same bytes as step(), output() and probe()
+// at each tick.
 
 #include <algorithm>
 #include <cstddef>
