@@ -62,7 +62,10 @@ std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& g
         return total;
     };
     const DenormalGuard no_denormals;
-    std::vector<double> dissipated(frames + 1, 0.0);  // by the string, up to each sample
+    // By the string, up to each sample from half-way, where the steady part is looked for (a sum
+    // over its links: not kept where nothing reads it).
+    const std::size_t from = frames / 2;
+    std::vector<double> dissipated(frames + 1, 0.0);
     std::size_t last_contact = 0;
     constexpr std::size_t kStopLooks = 4096;  // samples between two looks at `stop`
     for (std::size_t i = 0; i < frames; ++i) {
@@ -71,14 +74,13 @@ std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& g
         run.audio.push_back(sim.output());
         run.bow_force.push_back(sim.model().bows[0].friction);
         run.displacement.push_back(sim.position(bowed));
-        dissipated[i + 1] = string_dissipation();
+        if (i + 1 >= from) dissipated[i + 1] = string_dissipation();
         if (sim.model().bows[0].normal > 0) last_contact = i;
     }
     // Steady bowing: from half-way to shortly before the bow leaves (a lift ends most
     // gestures, and the free decay after it is not what is compared).
     const auto margin = static_cast<std::size_t>(0.05 * sim.sample_rate());
     run.steady_end = last_contact > margin ? last_contact - margin : frames;
-    const std::size_t from = frames / 2;
     if (run.steady_end > from && run.fundamental > 0) {
         const double periods =
             static_cast<double>(run.steady_end - from) / sim.sample_rate() * run.fundamental;
