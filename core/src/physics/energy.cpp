@@ -25,10 +25,8 @@ void Simulation::account(CompiledLevel& lv) {
     const double* __restrict const chain_zdt = lv.chain_zdt.data();
     for (const ElementRun& run : lv.chain_element_runs) {
         double* __restrict const taken_by = dissipated_.data() + run.element;
-        for (int j = run.begin; j < run.end; ++j) {
-            const double centred = (xn[j] - xn[j + 1]) - (xp[j] - xp[j + 1]);
-            taken_by[j - run.begin] += 0.25 * chain_zdt[j] * centred * centred;
-        }
+        for (int j = run.begin; j < run.end; ++j)
+            taken_by[j - run.begin] += taken(chain_zdt[j], j, j + 1);
     }
     const double* __restrict const ground_zdt = lv.ground_zdt.data();
     for (const ElementRun& run : lv.ground_runs) {
