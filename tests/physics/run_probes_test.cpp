@@ -131,7 +131,7 @@ TEST(RunProbes, RunTicksHandsEveryTickAsStepWould) {
     const Gesture bow = wandering_bow(11, 0.5);
     Simulation by_step(compile(model)), by_ticks(compile(model));
     by_step.set_gesture_track(&bow), by_ticks.set_gesture_track(&bow);
-    constexpr std::size_t kTicks = 10000;  // across two of its blocks
+    constexpr std::size_t kTicks = 10000;  // across many of its blocks
     std::size_t next = 0;
     int slipping = 0;
     const std::size_t handed =

@@ -18,7 +18,10 @@ namespace archet {
 /// early; the next block goes on from there, as the steps would. Returns the ticks handed.
 template <class Each>
 std::size_t run_ticks(Simulation& sim, std::size_t ticks, Each&& each) {
-    constexpr std::size_t kBlock = 4096;
+    // Short enough that a stroke stopped early (an attack once judged) steps little past its
+    // end, long enough that run()'s setup is lost in it: blocks of 4,096 made the attack map
+    // of the 220 Hz string 9 % slower, with the same points.
+    constexpr std::size_t kBlock = 512;
     const std::size_t width = sim.probe_count();
     std::vector<double> block(std::min(kBlock, ticks)), rows(block.size() * width);
     std::size_t done = 0;
