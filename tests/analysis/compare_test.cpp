@@ -6,10 +6,15 @@
 
 #include <atomic>
 #include <cstring>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <thread>
+#include <vector>
 
 #include "archet/analysis/comparison.hpp"
 #include "archet/analysis/playability.hpp"
+#include "archet/analysis/shared_first_modes.hpp"
+#include "archet/analysis/string_first_mode.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_variants.hpp"
@@ -78,6 +83,62 @@ TEST(CompareVariants, OnTwoThreadsTheyAreTheVariantsOneByOne) {
         EXPECT_EQ(run.fundamental, alone.fundamental);
         EXPECT_EQ(run.dissipated_per_period, alone.dissipated_per_period);
     }
+}
+
+// A bow moved along the string leaves the string as it was, to the bit: its first mode is
+// solved once for all the bow's variants, and is string_first_mode()'s to the bit; a variant of
+// the string's damping is another string, solved again.
+TEST(CompareVariants, ABowsVariantsShareTheirStringsSolve) {
+    const Model model = load_model_file(test::resource("models/bowed-string-220.json"));
+    SharedFirstModes first_modes;
+    auto expect_string_first_mode = [&](const std::string& parameter, double value) {
+        SCOPED_TRACE(parameter + "=" + std::to_string(value));
+        Model variant = model;
+        set_variant_parameter(variant, parameter, value);
+        const StringFirstMode shared = first_modes.of(variant);
+        const StringFirstMode alone = string_first_mode(variant);
+        EXPECT_GT(shared.frequency, 200.0);
+        EXPECT_EQ(shared.frequency, alone.frequency);
+        EXPECT_EQ(shared.t60, alone.t60);
+    };
+    for (double position : {0.08, 0.1, 0.13, 0.2})
+        expect_string_first_mode("bow.position", position);
+    EXPECT_EQ(first_modes.solves(), 1u);
+    for (double damping : {0.0005, 0.002}) expect_string_first_mode("string.damping", damping);
+    EXPECT_EQ(first_modes.solves(), 3u);
+    expect_string_first_mode("string.damping", 0.002);
+    EXPECT_EQ(first_modes.solves(), 3u);
+}
+
+// Threads asking for one string at once: one solves it, the others wait for its roots.
+TEST(CompareVariants, ThreadsAskingForOneStringAtOnceSolveItOnce) {
+    const Model model = load_model_file(test::resource("models/bowed-string-220-paper.json"));
+    const StringFirstMode alone = string_first_mode(model);
+    SharedFirstModes first_modes;
+    std::vector<StringFirstMode> found(4);
+    std::vector<std::thread> threads;
+    for (std::size_t i = 0; i < found.size(); ++i)
+        threads.emplace_back([&, i] {
+            Model variant = model;
+            set_variant_parameter(variant, "bow.position", 0.1 + 0.02 * static_cast<double>(i));
+            found[i] = first_modes.of(variant);
+        });
+    for (std::thread& t : threads) t.join();
+    EXPECT_EQ(first_modes.solves(), 1u);
+    for (const StringFirstMode& first : found) {
+        EXPECT_EQ(first.frequency, alone.frequency);
+        EXPECT_EQ(first.t60, alone.t60);
+    }
+}
+
+// And what it cannot analyse it says to each that asks, as string_first_mode() does.
+TEST(CompareVariants, AStringThatCannotBeAnalysedIsRefusedToEachThatAsks) {
+    Model model = load_model_file(test::resource("models/bowed-string-220-paper.json"));
+    model.find_mat("s5")->mass = std::numeric_limits<double>::quiet_NaN();
+    SharedFirstModes first_modes;
+    EXPECT_ANY_THROW(string_first_mode(model));
+    EXPECT_ANY_THROW(first_modes.of(model));
+    EXPECT_ANY_THROW(first_modes.of(model));
 }
 
 std::string what_it_said(const std::exception_ptr& error) {

@@ -4,7 +4,7 @@
 #include <optional>
 #include <sstream>
 
-#include "archet/analysis/string_first_mode.hpp"
+#include "archet/analysis/shared_first_modes.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/common/parallel_for.hpp"
@@ -25,9 +25,11 @@ struct StopFlags {
 };
 
 // compare_variant(), or nothing once `stop` says so (looked at every few thousand samples).
+// `first_modes` is shared by the variants of one comparison.
 std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& gesture,
                                             const std::string& parameter, double value,
-                                            double seconds, StopFlags stop) {
+                                            double seconds, SharedFirstModes& first_modes,
+                                            StopFlags stop) {
     Model variant = model;
     set_variant_parameter(variant, parameter, value);
     validate_model(variant);
@@ -42,7 +44,7 @@ std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& g
     run.label = label.str();
     run.value = value;
     try {
-        run.fundamental = string_first_mode(variant).frequency;
+        run.fundamental = first_modes.of(variant).frequency;
     } catch (const std::exception&) {
         run.fundamental = 0;  // no linear part to analyse: no per-period figure
     }
@@ -93,7 +95,8 @@ std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& g
 
 ComparisonRun compare_variant(const Model& model, const Gesture& gesture,
                               const std::string& parameter, double value, double seconds) {
-    return *render_variant(model, gesture, parameter, value, seconds, {});
+    SharedFirstModes first_modes;
+    return *render_variant(model, gesture, parameter, value, seconds, first_modes, {});
 }
 
 ComparedVariants compare_variants(const Model& model, const Gesture& gesture,
@@ -104,13 +107,14 @@ ComparedVariants compare_variants(const Model& model, const Gesture& gesture,
     std::vector<std::exception_ptr> errors(values.size());
     std::atomic<bool> failed{false};  // a variant threw: no other starts, those under way stop
     std::exception_ptr thrown;        // what kept the threads from running, if anything
+    SharedFirstModes first_modes;     // a bow's or a hand's variants share their string's
     try {
         parallel_for(
             values.size(), jobs,
             [&](std::size_t i) {
                 try {
                     runs[i] = render_variant(model, gesture, parameter, values[i], seconds,
-                                             {cancel, &failed});
+                                             first_modes, {cancel, &failed});
                 } catch (...) {
                     errors[i] = std::current_exception();
                     failed = true;
