@@ -510,6 +510,27 @@ TEST(ModesPanelTest, FindsTheStringsFundamental) {
     EXPECT_GT(panel.mode_count(), 20);
 }
 
+// An edit of the bow leaves the string and its modes as they were: they are shown again without
+// another analysis. An edit of the string analyses it again.
+TEST(ModesPanelTest, AnalysesAgainOnlyWhenAnEditChangesTheModes) {
+    ModelDocument document;
+    ModesPanel panel(document);
+    document.reset(load_model_file(test::resource("models/bowed-string-220.json")));
+    ASSERT_TRUE(test::wait_until([&] { return !panel.computing(); }, 30000));
+    ASSERT_EQ(panel.analyses_made(), 1u);
+    const double f1 = panel.fundamental();
+    const int modes = panel.mode_count();
+    document.edit_parameter(ParameterName::parse("friction.mu_s"), 0.7);
+    ASSERT_TRUE(test::wait_until([&] { return !panel.computing(); }, 30000));
+    EXPECT_EQ(panel.analyses_made(), 1u);
+    EXPECT_EQ(panel.fundamental(), f1);
+    EXPECT_EQ(panel.mode_count(), modes);
+    document.edit_parameter(ParameterName::parse("k5.damping"), 0.004);
+    ASSERT_TRUE(test::wait_until([&] { return !panel.computing(); }, 30000));
+    EXPECT_EQ(panel.analyses_made(), 2u);
+    EXPECT_NEAR(panel.fundamental(), 220.0, 1.0);
+}
+
 TEST(ModesPanelTest, ShowsHertzToOneDecimalAndACentsChartScaledToTheData) {
     ModelDocument document;
     ModesPanel panel(document);

@@ -71,10 +71,10 @@ void ModesPanel::refresh() {
         stale_ = true;
         return;
     }
-    job_.start(
-        [model = document_.model()](BackgroundJob::Control&) { return analyse_modes(model); },
-        [this](const ModalAnalysis& modes) { show_modes(modes); },
-        [this](const QString& message) { show_failure(message); });
+    job_.start([model = document_.model(),
+                &analyses = analyses_](BackgroundJob::Control&) { return analyses.of(model); },
+               [this](const ModalAnalysis& modes) { show_modes(modes); },
+               [this](const QString& message) { show_failure(message); });
 }
 
 void ModesPanel::show_failure(const QString& message) {

@@ -28,9 +28,6 @@ bool ModalAnalysis::has_shape_at(const std::string& id) const {
     return points.count(id) || std::find(dofs.begin(), dofs.end(), id) != dofs.end();
 }
 
-namespace {
-
-// What each modal point reads: (DOF, weight) pairs.
 std::map<std::string, std::vector<std::pair<int, double>>> modal_point_reads(
     const LinearSystem& sys, const Model& model) {
     std::map<std::string, std::vector<std::pair<int, double>>> points;
@@ -46,6 +43,8 @@ std::map<std::string, std::vector<std::pair<int, double>>> modal_point_reads(
     }
     return points;
 }
+
+namespace {
 
 // The string beyond a pressed finger (pressure of ½ or more), on the side away from the bow:
 // it rings on its own, and its modes are not the played string's partials.

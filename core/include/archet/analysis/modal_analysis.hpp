@@ -6,6 +6,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "archet/model/linear_system.hpp"
@@ -51,5 +52,9 @@ void check_analysable(const LinearSystem& system);
 /// body's bridge point reads, the string behind a finger): a mode with most of its kinetic energy
 /// in them is a support mode.
 std::vector<bool> support_dofs(const LinearSystem& system, const Model& model);
+
+/// What each of the model's modal points reads of the system: (DOF, weight) pairs, by id.
+std::map<std::string, std::vector<std::pair<int, double>>> modal_point_reads(
+    const LinearSystem& system, const Model& model);
 
 }  // namespace archet
