@@ -135,10 +135,22 @@ TEST(CompareVariants, ThreadsAskingForOneStringAtOnceSolveItOnce) {
 TEST(CompareVariants, AStringThatCannotBeAnalysedIsRefusedToEachThatAsks) {
     Model model = load_model_file(test::resource("models/bowed-string-220-paper.json"));
     model.find_mat("s5")->mass = std::numeric_limits<double>::quiet_NaN();
+    std::string expected;
+    try {
+        string_first_mode(model);
+    } catch (const InputError& e) {
+        expected = e.what();
+    }
+    ASSERT_FALSE(expected.empty());
     SharedFirstModes first_modes;
-    EXPECT_ANY_THROW(string_first_mode(model));
-    EXPECT_ANY_THROW(first_modes.of(model));
-    EXPECT_ANY_THROW(first_modes.of(model));
+    for (int time = 0; time < 2; ++time) {
+        try {
+            first_modes.of(model);
+            ADD_FAILURE() << "analysed a mass that is not a number";
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.what(), expected);
+        }
+    }
 }
 
 std::string what_it_said(const std::exception_ptr& error) {

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -74,6 +75,24 @@ TEST(ModalAnalysisCache, AModalPointThatReadsOtherMassesIsAnotherAnalysis) {
     const ModalAnalysis moved = cache.of(model);
     expect_same_analysis(moved, analyse_modes(model));
     EXPECT_EQ(cache.solves(), 2u);
+}
+
+// What a modal point reads is part of the analysis to the bit: a weight turned from +0 to −0
+// is another analysis, not the one before.
+TEST(ModalAnalysisCache, AWeightOfMinusZeroIsNotOneOfPlusZero) {
+    ModalAnalysisCache cache;
+    Model model = shipped("bowed-string-220");
+    Mat* point = nullptr;
+    for (Mat& m : model.mats)
+        if (m.kind == MatKind::ModalPoint && m.weights.size() > 1) point = &m;
+    ASSERT_NE(point, nullptr);
+    point->weights.back() = 0.0;
+    cache.of(model);
+    point->weights.back() = -0.0;
+    const ModalAnalysis minus = cache.of(model);
+    EXPECT_EQ(cache.solves(), 2u);
+    expect_same_analysis(minus, analyse_modes(model));
+    EXPECT_TRUE(std::signbit(minus.points.at(point->id).back().second));
 }
 
 TEST(ModalAnalysisCache, RefusesWhatAnalyseModesRefusesEveryTime) {

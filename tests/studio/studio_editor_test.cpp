@@ -521,11 +521,13 @@ TEST(ModesPanelTest, AnalysesAgainOnlyWhenAnEditChangesTheModes) {
     const double f1 = panel.fundamental();
     const int modes = panel.mode_count();
     document.edit_parameter(ParameterName::parse("friction.mu_s"), 0.7);
+    EXPECT_TRUE(panel.computing()) << "the edit asks for the modes again";
     ASSERT_TRUE(test::wait_until([&] { return !panel.computing(); }, 30000));
     EXPECT_EQ(panel.analyses_made(), 1u);
     EXPECT_EQ(panel.fundamental(), f1);
     EXPECT_EQ(panel.mode_count(), modes);
     document.edit_parameter(ParameterName::parse("k5.damping"), 0.004);
+    EXPECT_TRUE(panel.computing());
     ASSERT_TRUE(test::wait_until([&] { return !panel.computing(); }, 30000));
     EXPECT_EQ(panel.analyses_made(), 2u);
     EXPECT_NEAR(panel.fundamental(), 220.0, 1.0);

@@ -28,9 +28,8 @@ bool ModalAnalysis::has_shape_at(const std::string& id) const {
     return points.count(id) || std::find(dofs.begin(), dofs.end(), id) != dofs.end();
 }
 
-std::map<std::string, std::vector<std::pair<int, double>>> modal_point_reads(
-    const LinearSystem& sys, const Model& model) {
-    std::map<std::string, std::vector<std::pair<int, double>>> points;
+ModalPointReads modal_point_reads(const LinearSystem& sys, const Model& model) {
+    ModalPointReads points;
     for (const auto& m : model.mats) {
         if (m.kind != MatKind::ModalPoint) continue;
         std::vector<std::pair<int, double>> reads;

@@ -54,7 +54,7 @@ void check_analysable(const LinearSystem& system);
 std::vector<bool> support_dofs(const LinearSystem& system, const Model& model);
 
 /// What each of the model's modal points reads of the system: (DOF, weight) pairs, by id.
-std::map<std::string, std::vector<std::pair<int, double>>> modal_point_reads(
-    const LinearSystem& system, const Model& model);
+using ModalPointReads = std::map<std::string, std::vector<std::pair<int, double>>>;
+ModalPointReads modal_point_reads(const LinearSystem& system, const Model& model);
 
 }  // namespace archet

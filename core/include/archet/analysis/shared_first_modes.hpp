@@ -2,7 +2,8 @@
 // The first modes of models whose sounding parts are the same, solved once: a comparison's
 // variants of a bow or a hand (its position, force, speed) leave the string as it was, to the
 // bit, and the eigenvalue solve of its update is most of what a short variant costs. Threads
-// may ask at once: the first to ask for a sounding part solves it, the others wait for it.
+// may ask at once: the first to ask for a sounding part solves it, the others wait for it. A
+// string with a finger takes the whole analysis each time (string_first_mode() says why).
 
 #include <cstddef>
 #include <future>
@@ -22,7 +23,8 @@ class SharedFirstModes {
     /// string_first_mode(model), with the same bits, and what it throws; the roots of its
     /// sounding part are solved only where no model asked before had an identical() one.
     StringFirstMode of(const Model& model);
-    /// How many sounding parts have been solved.
+    /// How many sounding parts it has solved, or tried to: one whose solve threw throws the
+    /// same to every model that asks for it again.
     std::size_t solves() const;
 
   private:

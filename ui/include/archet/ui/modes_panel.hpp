@@ -2,8 +2,8 @@
 // The model's modes from modal analysis (exact for the scheme): frequency, decay, and each
 // partial against the harmonic series in cents, in a table and a plot. The analysis runs off
 // the GUI thread: on a 220-mass string it takes about half a second, on a 578-mass one seven,
-// at every edit that changes what it reads (an edit of the bow, the hand or the gesture
-// leaves the modes as they were: ModalAnalysisCache).
+// at every edit that changes what it reads (an edit of the bow's force or friction, the hand
+// or the gesture leaves the modes as they were: ModalAnalysisCache).
 
 #include <QWidget>
 
