@@ -28,8 +28,12 @@ bool ModalAnalysis::has_shape_at(const std::string& id) const {
     return points.count(id) || std::find(dofs.begin(), dofs.end(), id) != dofs.end();
 }
 
-ModalPointReads modal_point_reads(const LinearSystem& sys, const Model& model) {
-    ModalPointReads points;
+namespace {
+
+// What each modal point reads: (DOF, weight) pairs.
+std::map<std::string, std::vector<std::pair<int, double>>> modal_point_reads(
+    const LinearSystem& sys, const Model& model) {
+    std::map<std::string, std::vector<std::pair<int, double>>> points;
     for (const auto& m : model.mats) {
         if (m.kind != MatKind::ModalPoint) continue;
         std::vector<std::pair<int, double>> reads;
@@ -42,8 +46,6 @@ ModalPointReads modal_point_reads(const LinearSystem& sys, const Model& model) {
     }
     return points;
 }
-
-namespace {
 
 // The string beyond a pressed finger (pressure of ½ or more), on the side away from the bow:
 // it rings on its own, and its modes are not the played string's partials.
@@ -113,32 +115,50 @@ ModalAnalysis analyse_modes(const Model& model) {
 }
 
 ModalAnalysis analyse_modes(const LinearSystem& sys, const Model& model) {
+    return class_modes(solve_modes(sys), sys, model);
+}
+
+ModalSolve solve_modes(const LinearSystem& sys) {
     check_analysable(sys);
     const int n = sys.size();
-    const double dt = sys.dt;
     Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), true);
     if (solver.info() != Eigen::Success)  // Eigen then leaves no roots to read
         throw InputError("model",
                          "its modal analysis did not converge (the QR iteration ran "
                          "out of steps): check the model's masses and links");
+    // Built once: eigenvectors() converts the whole real Schur basis to a complex matrix at
+    // every call, which inside a loop cost a quarter of a long string's retuning.
+    const Eigen::MatrixXcd vectors = solver.eigenvectors();
+    ModalSolve solve;
+    std::vector<int> ringing;
+    for (int r = 0; r < 2 * n; ++r)  // one of each conjugate pair; real roots do not ring
+        if (solver.eigenvalues()[r].imag() > 0.0) ringing.push_back(r);
+    solve.roots.resize(static_cast<Eigen::Index>(ringing.size()));
+    solve.shapes.resize(n, static_cast<Eigen::Index>(ringing.size()));
+    for (std::size_t k = 0; k < ringing.size(); ++k) {
+        const auto column = static_cast<Eigen::Index>(k);
+        solve.roots[column] = solver.eigenvalues()[ringing[k]];
+        solve.shapes.col(column) = vectors.col(ringing[k]).head(n);
+    }
+    return solve;
+}
 
+ModalAnalysis class_modes(const ModalSolve& solve, const LinearSystem& sys, const Model& model) {
+    const int n = sys.size();
+    const double dt = sys.dt;
     ModalAnalysis result;
     result.rate = sys.rate;
     result.sample_rate = 1.0 / dt;
     result.dofs = sys.dofs;
     result.points = modal_point_reads(sys, model);
     const std::vector<bool> is_oscillator = support_dofs(sys, model);
-    // Built once: eigenvectors() converts the whole real Schur basis to a complex matrix at
-    // every call, which inside the loop cost a quarter of a long string's retuning.
-    const Eigen::MatrixXcd vectors = solver.eigenvectors();
-    for (int r = 0; r < 2 * n; ++r) {
-        const std::complex<double> root = solver.eigenvalues()[r];
-        if (root.imag() <= 0.0) continue;  // one of each conjugate pair; real roots do not ring
+    for (Eigen::Index r = 0; r < solve.roots.size(); ++r) {
+        const std::complex<double> root = solve.roots[r];
         ModeInfo mode;
         mode.frequency = root_frequency(root, dt);
         mode.t60 = root_t60(root, dt);
         // Shape: the x[n] half of the eigenvector, turned so its largest entry is real.
-        Eigen::VectorXcd v = vectors.col(r).head(n);
+        Eigen::VectorXcd v = solve.shapes.col(r);
         Eigen::Index top = 0;
         v.cwiseAbs().maxCoeff(&top);
         v *= std::abs(v[top]) / v[top];

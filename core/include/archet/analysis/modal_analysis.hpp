@@ -4,6 +4,7 @@
 // is classed as a partial of the string or a mode of its supports (most of its kinetic
 // energy in oscillator MATs, the bridges), and partials are measured against n·f1.
 
+#include <Eigen/Dense>
 #include <map>
 #include <string>
 #include <utility>
@@ -44,6 +45,19 @@ inline constexpr int kMaxModalDofs = 1500;
 ModalAnalysis analyse_modes(const Model& model);
 ModalAnalysis analyse_modes(const LinearSystem& system, const Model& model);
 
+/// The eigenvalue solve of analyse_modes(), apart from what it reads of the model: the roots of
+/// the update that ring (one of each conjugate pair, in the solver's order) and the x[n] half of
+/// their eigenvectors, a column each.
+struct ModalSolve {
+    Eigen::VectorXcd roots;
+    Eigen::MatrixXcd shapes;
+};
+/// Throws what analyse_modes() throws for the system.
+ModalSolve solve_modes(const LinearSystem& system);
+/// The modes of a solve, classed as analyse_modes() classes them for `model`: analyse_modes()
+/// is class_modes(solve_modes(system), system, model).
+ModalAnalysis class_modes(const ModalSolve& solve, const LinearSystem& system, const Model& model);
+
 /// Throws the InputError analyse_modes() throws for a system it cannot analyse: none, more
 /// than kMaxModalDofs, or a mass that is not positive.
 void check_analysable(const LinearSystem& system);
@@ -52,9 +66,5 @@ void check_analysable(const LinearSystem& system);
 /// body's bridge point reads, the string behind a finger): a mode with most of its kinetic energy
 /// in them is a support mode.
 std::vector<bool> support_dofs(const LinearSystem& system, const Model& model);
-
-/// What each of the model's modal points reads of the system: (DOF, weight) pairs, by id.
-using ModalPointReads = std::map<std::string, std::vector<std::pair<int, double>>>;
-ModalPointReads modal_point_reads(const LinearSystem& system, const Model& model);
 
 }  // namespace archet

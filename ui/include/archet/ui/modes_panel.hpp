@@ -2,8 +2,8 @@
 // The model's modes from modal analysis (exact for the scheme): frequency, decay, and each
 // partial against the harmonic series in cents, in a table and a plot. The analysis runs off
 // the GUI thread: on a 220-mass string it takes about half a second, on a 578-mass one seven,
-// at every edit that changes what it reads (an edit of the bow's force or friction, the hand
-// or the gesture leaves the modes as they were: ModalAnalysisCache).
+// at every edit that changes the sounding part; after an edit of the bow, the hand or the
+// gesture it classes the modes it has again (ModalAnalysisCache), in milliseconds.
 
 #include <QWidget>
 
@@ -36,9 +36,9 @@ class ModesPanel : public QWidget {
     double fundamental() const { return fundamental_; }
     /// Whether an analysis is under way (the table shows the previous model's until it ends).
     bool computing() const { return job_.busy(); }
-    /// How many analyses it has made (the others, after edits that left the modes as they
-    /// were, it has shown again).
-    std::size_t analyses_made() const { return analyses_.solves(); }
+    /// How many eigenvalue solves it has made (after an edit that left the sounding part as it
+    /// was, it classes the modes of the last one again).
+    std::size_t solves_made() const { return analyses_.solves(); }
 
   private:
     void refresh();
