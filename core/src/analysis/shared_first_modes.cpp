@@ -18,7 +18,10 @@ StringFirstMode SharedFirstModes::of(const Model& model) {
     {
         const std::lock_guard lock(mutex_);
         for (const auto& [solved, its_roots] : solved_)
-            if (identical(solved, system)) roots = its_roots;
+            if (identical(solved, system)) {
+                roots = its_roots;
+                break;
+            }
         if (!roots.valid()) {
             roots = solving.get_future().share();
             solved_.emplace_back(system, roots);
