@@ -96,6 +96,29 @@ TEST(ModalAnalysisCache, AWeightOfMinusZeroIsNotOneOfPlusZero) {
     EXPECT_TRUE(std::signbit(minus.points.at(point->id).back().second));
 }
 
+// An undo back to a string analysed a few edits before finds its solve; one analysed longer
+// ago than the cache keeps is solved again, with the same result.
+TEST(ModalAnalysisCache, KeepsTheLastFewSolvesForAnUndo) {
+    ModalAnalysisCache cache;
+    const Model original = shipped("bowed-string-110-paper");
+    std::vector<Model> strings;
+    for (std::size_t k = 0; k <= ModalAnalysisCache::kKept; ++k) {
+        Model edited = original;
+        set_variant_parameter(edited, "string.damping", 0.0005 * static_cast<double>(k + 1));
+        strings.push_back(edited);
+    }
+    for (std::size_t k = 0; k < ModalAnalysisCache::kKept; ++k) cache.of(strings[k]);
+    EXPECT_EQ(cache.solves(), ModalAnalysisCache::kKept);
+    expect_same_analysis(cache.of(strings[0]), analyse_modes(strings[0]));  // undo, undo, …
+    EXPECT_EQ(cache.solves(), ModalAnalysisCache::kKept);
+    // One more string: the least recently used (strings[1], not strings[0]) makes room.
+    cache.of(strings[ModalAnalysisCache::kKept]);
+    cache.of(strings[0]);
+    EXPECT_EQ(cache.solves(), ModalAnalysisCache::kKept + 1);
+    expect_same_analysis(cache.of(strings[1]), analyse_modes(strings[1]));
+    EXPECT_EQ(cache.solves(), ModalAnalysisCache::kKept + 2);
+}
+
 TEST(ModalAnalysisCache, RefusesWhatAnalyseModesRefusesEveryTime) {
     ModalAnalysisCache cache;
     Model model = shipped("bowed-string-220-paper");

@@ -4,11 +4,12 @@
 // place on the string), of the hand or of the gesture leaves the sounding part as it was, to the
 // bit. The modes are then classed again for the model as it is (class_modes(): which DOFs are
 // supports, what the modal points read), a small part of the work. A long string's solve takes
-// seconds (7.3 s for a 41 Hz string of 578 masses). Only the last solve is kept.
+// seconds (7.3 s for a 41 Hz string of 578 masses). The last few solves are kept, so that an
+// undo back to a string analysed before finds its solve.
 
 #include <cstddef>
+#include <deque>
 #include <mutex>
-#include <optional>
 #include <utility>
 
 #include "archet/analysis/modal_analysis.hpp"
@@ -25,9 +26,12 @@ class ModalAnalysisCache {
     /// How many eigenvalue solves it has made.
     std::size_t solves() const;
 
+    /// How many solves it keeps, the most recently used first (a long string's is a few MB).
+    static constexpr std::size_t kKept = 4;
+
   private:
     mutable std::mutex mutex_;
-    std::optional<std::pair<LinearSystem, ModalSolve>> last_;
+    std::deque<std::pair<LinearSystem, ModalSolve>> kept_;  ///< most recently used first
     std::size_t solves_ = 0;
 };
 
