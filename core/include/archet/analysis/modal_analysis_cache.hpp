@@ -5,15 +5,12 @@
 // bit. The modes are then classed again for the model as it is (class_modes(): which DOFs are
 // supports, what the modal points read), a small part of the work. A long string's solve takes
 // seconds (7.3 s for a 41 Hz string of 578 masses). The last few solves are kept, so that an
-// undo back to a string analysed before finds its solve.
+// undo back to a string analysed before finds its solve (SoundingPartSolves).
 
 #include <cstddef>
-#include <deque>
-#include <mutex>
-#include <utility>
 
 #include "archet/analysis/modal_analysis.hpp"
-#include "archet/model/linear_system.hpp"
+#include "archet/analysis/sounding_part_solves.hpp"
 #include "archet/model/model.hpp"
 
 namespace archet {
@@ -26,13 +23,11 @@ class ModalAnalysisCache {
     /// How many eigenvalue solves it has made.
     std::size_t solves() const;
 
-    /// How many solves it keeps, the most recently used first (a long string's is a few MB).
+    /// How many solves it keeps, the most recently used (a long string's is a few MB).
     static constexpr std::size_t kKept = 4;
 
   private:
-    mutable std::mutex mutex_;
-    std::deque<std::pair<LinearSystem, ModalSolve>> kept_;  ///< most recently used first
-    std::size_t solves_ = 0;
+    SoundingPartSolves<ModalSolve> solves_{kKept};
 };
 
 }  // namespace archet

@@ -4,14 +4,12 @@
 // bit, and the eigenvalue solve of its update is most of what a short variant costs. Threads
 // may ask at once: the first to ask for a sounding part solves it, the others wait for it. A
 // string with a finger takes the whole analysis each time (string_first_mode() says why).
+// (SoundingPartSolves keeps the solves.)
 
 #include <cstddef>
-#include <future>
-#include <mutex>
-#include <utility>
-#include <vector>
 
 #include "archet/analysis/discrete_modes.hpp"
+#include "archet/analysis/sounding_part_solves.hpp"
 #include "archet/analysis/string_first_mode.hpp"
 #include "archet/model/linear_system.hpp"
 #include "archet/model/model.hpp"
@@ -23,13 +21,11 @@ class SharedFirstModes {
     /// string_first_mode(model), with the same bits, and what it throws; the roots of its
     /// sounding part are solved only where no model asked before had an identical() one.
     StringFirstMode of(const Model& model);
-    /// How many sounding parts it has solved, or tried to: one whose solve threw throws the
-    /// same to every model that asks for it again.
-    std::size_t solves() const;
+    /// How many sounding parts it has solved.
+    std::size_t solves() const { return roots_.solves(); }
 
   private:
-    mutable std::mutex mutex_;
-    std::vector<std::pair<LinearSystem, std::shared_future<UpdateRoots>>> solved_;
+    SoundingPartSolves<UpdateRoots> roots_;  ///< all of a comparison's
 };
 
 }  // namespace archet
