@@ -13,11 +13,13 @@
 #include <limits>
 #include <random>
 
+#include "archet/builders/bowed_string.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/simulation.hpp"
 #include "archet/physics/uniform_span.hpp"
+#include "archet/physics/unlinked_runs.hpp"
 #include "test_support.hpp"
 
 namespace archet {
@@ -549,6 +551,165 @@ TEST(ChainKernel, AStateSavedBeforeHoldsTheFixedMatsWhereTheyAre) {
         loaded.step();
         ASSERT_EQ(loaded.position(end), 0.002) << "step " << i;
     }
+}
+
+// Unlinked MATs: chain links absent on both sides of first … last (no element behind them,
+// zero coefficients), every other link standing for an element, and the runs found as compile()
+// finds them.
+void make_unlinked(CompiledLevel& lv, const Spans& unlinked) {
+    lv.chain_element.assign(lv.size + 2, 0);
+    lv.chain_element[0] = lv.chain_element[lv.size] = -1;  // the padding's links
+    for (auto [first, last] : unlinked)
+        for (int j = first - 1; j <= last; ++j) {
+            lv.chain_k[j] = lv.chain_zdt[j] = lv.chain_length[j] = 0.0;
+            lv.chain_element[j] = -1;
+        }
+    fold_grounds(lv);
+    lv.unlinked = find_unlinked_runs(lv);
+    find_uniform_runs(lv);
+}
+
+Spans unlinked_spans(const CompiledLevel& lv) {
+    Spans out;
+    for (const UnlinkedRun& run : lv.unlinked) out.emplace_back(run.first, run.last);
+    return out;
+}
+
+// The rounds wholly inside an unlinked run move their MATs by their own update alone, and give
+// the scheme's bits: with the T²/m of those MATs made NaN (which the chain's update would
+// spread), and with MATs at rest exactly at +0 and −0, whose links' forces are zeros of either
+// sign. Runs of alike MATs and unlinked runs share the loop, each MAT taken one way: an unlinked
+// run of alike MATs is in no run of alike MATs.
+TEST(ChainKernel, UnlinkedRunsGiveTheSchemesBits) {
+    std::mt19937_64 random(2026);
+    int checked = 0;
+    for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
+        if (!chain_build_runs_here(build)) continue;
+        for (bool lengths : {false, true})
+            for (const Spans& layout : {Spans{{20, 60}}, Spans{{1, 40}}, Spans{{9, 40}, {60, 120}},
+                                        Spans{{3, 36}, {70, 101}}}) {
+                CompiledLevel lv = random_level(120, lengths, true, random);
+                make_alike(lv, 40, 90);           // across an unlinked run's end, or inside one
+                for (int s = 31; s <= 38; ++s) {  // at rest exactly, at zeros of both signs
+                    lv.ground_rest[s] = 0.0;
+                    lv.buffer[0][s] = s % 2 ? -0.0 : 0.0, lv.buffer[2][s] = s % 4 < 2 ? -0.0 : 0.0;
+                }
+                make_unlinked(lv, layout);
+                ASSERT_EQ(unlinked_spans(lv), layout);
+                const int short_first = layout.back().first == 70 ? 50 : -1;
+                if (short_first > 0) {  // fewer than UnlinkedRun::kShortest: in no run
+                    make_unlinked(lv, {layout[0], {short_first, short_first + 10}, layout[1]});
+                    ASSERT_EQ(unlinked_spans(lv), layout);
+                }
+                for (const UnlinkedRun& run : lv.unlinked) {
+                    ASSERT_TRUE(run.moves_alone());
+                    for (const UniformSpan& alike : lv.uniform.all())
+                        ASSERT_TRUE(alike.last < run.first || run.last < alike.first)
+                            << "alike " << alike.first << "…" << alike.last;
+                }
+                std::vector<double> forces;
+                const std::vector<double> expected = scheme(lv, forces);
+                const double nan = std::numeric_limits<double>::quiet_NaN();
+                for (const UnlinkedRun& run : lv.unlinked) {
+                    const SharedRounds alone = run.rounds(lanes(build));
+                    for (int s = alone.begin; s < alone.end; ++s) lv.coeff[s] = nan;
+                }
+                SCOPED_TRACE(std::string(chain_build_name(build)) + (lengths ? " lengths" : ""));
+                integrate_chain(lv, lv.buffer[1].data(), build);
+                for (int s = 1; s <= lv.size; ++s)
+                    ASSERT_EQ(std::memcmp(&expected[s], &lv.buffer[1][s], 8), 0)
+                        << "MAT " << s << ": " << expected[s] << " vs " << lv.buffer[1][s];
+                ++checked;
+            }
+    }
+    EXPECT_GT(checked, 0);
+}
+
+// A MAT at −0 whose ground folds to an e of −0 (a rest of −0) has an own update of −0, where
+// the chain's adds the links' +0 and gives +0: its run is then left to the chain's rounds (and
+// the loop gives the scheme's +0), and moves alone again once the ground folds to +0.
+TEST(ChainKernel, ANegativeZeroOwnUpdateKeepsItsRunInTheChainsRounds) {
+    std::mt19937_64 random(7);
+    CompiledLevel lv = random_level(64, false, true, random);
+    constexpr int kAtRest = 20;
+    double* x = lv.buffer[0].data();
+    double* xp = lv.buffer[2].data();
+    // The links on either side give +0 and −0: 0·d + 0·(d − d⁻) with d > 0, then with d < 0.
+    x[kAtRest - 1] = 1e-4, xp[kAtRest - 1] = 0.0;
+    x[kAtRest] = -0.0, xp[kAtRest] = 0.0, lv.ground_rest[kAtRest] = -0.0;
+    x[kAtRest + 1] = 1e-4, xp[kAtRest + 1] = -1e-4;
+    make_unlinked(lv, {{9, 40}});
+    ASSERT_EQ(unlinked_spans(lv), (Spans{{9, 40}}));
+    ASSERT_EQ(lv.unlinked[0].negative_zero_rests, 1);
+    std::vector<double> forces;
+    const std::vector<double> expected = scheme(lv, forces);
+    ASSERT_TRUE(expected[kAtRest] == 0.0 && !std::signbit(expected[kAtRest]));
+    for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
+        if (!chain_build_runs_here(build)) continue;
+        SCOPED_TRACE(chain_build_name(build));
+        CompiledLevel in_rounds = lv;
+        integrate_chain(in_rounds, in_rounds.buffer[1].data(), build);
+        for (int s = 1; s <= lv.size; ++s)
+            ASSERT_EQ(std::memcmp(&expected[s], &in_rounds.buffer[1][s], 8), 0) << "MAT " << s;
+        CompiledLevel alone = lv;  // what moving it alone would give: −0
+        alone.unlinked[0].negative_zero_rests = 0;
+        integrate_chain(alone, alone.buffer[1].data(), build);
+        EXPECT_TRUE(std::signbit(alone.buffer[1][kAtRest]));
+    }
+    lv.ground_rest[kAtRest] = 0.0;
+    fold_ground(lv, kAtRest);
+    refolded_unlinked(lv, kAtRest, true);
+    EXPECT_TRUE(lv.unlinked[0].moves_alone());
+}
+
+// A state is all numbers: one that gives an absent link a stiffness links the MATs on either
+// side, and their run is dropped (the loop then takes that link, as the scheme does).
+TEST(ChainKernel, AStateThatLinksAnUnlinkedRunDropsIt) {
+    std::mt19937_64 random(5);
+    CompiledLevel lv = random_level(100, false, true, random);
+    make_unlinked(lv, {{10, 45}, {55, 90}});
+    lv.chain_k[60] = 1e3;
+    recheck_unlinked_runs(lv);
+    EXPECT_EQ(unlinked_spans(lv), (Spans{{10, 45}}));
+    std::vector<double> forces;
+    const std::vector<double> expected = scheme(lv, forces);
+    integrate_chain(lv, lv.buffer[1].data());
+    for (int s = 1; s <= lv.size; ++s)
+        ASSERT_EQ(std::memcmp(&expected[s], &lv.buffer[1][s], 8), 0) << "MAT " << s;
+}
+
+// A bowed string in modal form, its modes moved alone, gives the bits it gives with its modes in
+// the chain's rounds, sample for sample and probe for probe, across live changes of a mode's
+// ground that give it an e of −0 (a stiffness of 0 with a rest below 0: its run then stays in
+// the chain's rounds) and take it back.
+TEST(ChainKernel, AModalStringSoundsTheSameWithItsModesMovedAlone) {
+    BowedStringOptions o;
+    o.structure = Structure::Modal;
+    o.masses = 60;
+    Model model = build_bowed_string(o);
+    model.find_mat("mode3")->position = -1e-9;  // its rest
+    const CompiledModel compiled = compile(model);
+    ASSERT_EQ(compiled.levels[0].unlinked.size(), 1u);
+    const UnlinkedRun run = compiled.levels[0].unlinked[0];
+    EXPECT_GE(run.last - run.first + 1, 60) << "every mode is in the run";
+    Simulation alone(compiled), in_rounds(compiled);
+    in_rounds.model().levels[0].unlinked.clear();
+    const auto stiffness = alone.model().resolve_parameter({"mode3", "stiffness"});
+    const double k = alone.read_slot(stiffness);
+    std::vector<double> a(4800), b(4800);
+    for (int part = 0; part < 4; ++part) {
+        const double set = part == 1 ? 0.0 : part == 2 ? 0.5 * k : k;
+        if (part > 0) alone.write_slot(stiffness, set), in_rounds.write_slot(stiffness, set);
+        EXPECT_EQ(alone.model().levels[0].unlinked[0].moves_alone(), part != 1) << "part " << part;
+        ASSERT_EQ(alone.run(a), a.size());
+        ASSERT_EQ(in_rounds.run(b), b.size());
+        ASSERT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0) << "part " << part;
+        for (std::size_t p = 0; p < alone.probe_count(); ++p) {
+            const double pa = alone.probe(p), pb = in_rounds.probe(p);
+            ASSERT_EQ(std::memcmp(&pa, &pb, 8), 0) << "probe " << p;
+        }
+    }
+    EXPECT_GT(*std::max_element(a.begin(), a.end()), 1e-3) << "it was bowed";
 }
 
 }  // namespace

@@ -217,7 +217,8 @@ void run_chain(ChainLoop loop, CompiledLevel& lv, double* xn) {
                              lv.update_x.data(),
                              lv.update_xp.data(),
                              lv.update_rest.data(),
-                             &lv.uniform};
+                             &lv.uniform,
+                             lv.unlinked};
     loop(arrays, lv.size - lv.fixed_after, lv.has_chain_lengths, grounds_in_chain_loop(lv));
 }
 

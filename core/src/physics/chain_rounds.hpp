@@ -3,6 +3,8 @@
 // them for each instruction set, the bowed chain's loop inlines them into its own builds).
 // Private to the physics sources.
 
+#include <span>
+
 #include "archet/physics/compiled_model.hpp"
 #include "double_vectors.hpp"
 
@@ -39,6 +41,7 @@ struct ChainArrays {
     const double* c;               ///< T²/m
     const double *a, *b, *e;       ///< the grounds folded into the update (fold_ground())
     const UniformRuns* uniform;    ///< MATs whose coefficients are broadcast rather than read
+    std::span<const UnlinkedRun> unlinked;  ///< MATs moved by their own update alone
 };
 
 // A MAT's new position from its two chain links, and its ground where the loop takes them.
@@ -68,10 +71,7 @@ class ChainRounds {
           a_(arrays.a),
           b_(arrays.b),
           e_(arrays.e) {
-        // Link 0, on the left of MAT 1, enters as the last lane of the round before the first.
-        forces_[W - 1] = link_force<kWithLength>(x_[0] - x_[1], xp_[0] - xp_[1], k_[0], z_[0],
-                                                 kWithLength ? length_[0] : 0.0);
-        xs_ = load<V>(x_ + 1), xps_ = load<V>(xp_ + 1);
+        enter(1);
     }
 
     /// The rounds that start at storage `begin` (1 + a multiple of W) and before `end`,
@@ -86,7 +86,26 @@ class ChainRounds {
                    load<V>(shared.c), load<V>(shared.a), load<V>(shared.b), load<V>(shared.e)});
     }
 
+    /// The same over MATs of an unlinked run that moves alone: each by its own update, which
+    /// is the chain's to the bit (unlinked_runs.hpp says why).
+    [[gnu::always_inline]] void run_unlinked(int begin, int end) {
+        static_assert(kWithGrounds, "a MAT's own update without a ground may be -0");
+        for (int s = begin; s < end; s += W)
+            store(xn_ + s,
+                  (load<V>(a_ + s) * load<V>(x_ + s) + load<V>(b_ + s) * load<V>(xp_ + s)) +
+                      load<V>(e_ + s));
+        enter(end);
+    }
+
   private:
+    // The round from storage s on carries the force of the link on its left in the last lane
+    // of the forces before it (link 0, for MAT 1's), and the positions it reads first.
+    [[gnu::always_inline]] void enter(int s) {
+        forces_[W - 1] = link_force<kWithLength>(x_[s - 1] - x_[s], xp_[s - 1] - xp_[s], k_[s - 1],
+                                                 z_[s - 1], kWithLength ? length_[s - 1] : 0.0);
+        xs_ = load<V>(x_ + s), xps_ = load<V>(xp_ + s);
+    }
+
     // x[s + 1 … s + W]. On AVX-512, shifted in from the vector after: one shuffle, where a
     // 64-byte load one MAT off would straddle two cache lines every time. On the narrower
     // builds, loaded again, every other load straddling two lines on AVX2: its shift takes two
@@ -160,20 +179,37 @@ class ChainRounds {
 // the storage, whose zero coefficients keep them zero (while the motion is finite: a blown-up
 // level, which is never stepped again, may leave NaN there), and each round also reads the
 // vector after its own from x and x⁻ (CompiledLevel::kReadAhead ≥ 2W − 1). The rounds that
-// lie wholly inside one of the level's runs of alike MATs broadcast its coefficients (the
-// runs are disjoint and in order, so are their rounds).
+// lie wholly inside one of the level's runs of alike MATs broadcast its coefficients, those
+// wholly inside an unlinked run move their MATs by their own update (the runs of both kinds
+// are disjoint and in order, so are their rounds).
 template <int W, bool kWithLength, bool kWithGrounds>
 [[gnu::always_inline]] inline void chain_loop(const ChainArrays& arrays, int n) {
     static_assert(CompiledLevel::kReadAhead >= 2 * W - 1);
     ChainRounds<W, kWithLength, kWithGrounds> rounds(arrays);
     int s = 1;
+    // The unlinked runs that start before `limit` (only a level whose grounds the loop takes
+    // has any: find_unlinked_runs()).
+    std::size_t f = 0;
+    auto unlinked_before = [&](int limit) {
+        if constexpr (kWithGrounds)
+            for (; f < arrays.unlinked.size() && arrays.unlinked[f].first < limit; ++f) {
+                const UnlinkedRun& run = arrays.unlinked[f];
+                const SharedRounds alone = run.rounds(W);
+                if (alone.begin == alone.end || !run.moves_alone()) continue;
+                rounds.run(s, alone.begin);
+                rounds.run_unlinked(alone.begin, alone.end);
+                s = alone.end;
+            }
+    };
     for (const UniformSpan& run : arrays.uniform->all()) {
         const SharedRounds shared = run.rounds(W);
         if (shared.begin == shared.end) continue;
+        unlinked_before(run.first);
         rounds.run(s, shared.begin);
         rounds.run_shared(shared.begin, shared.end, run.lanes);
         s = shared.end;
     }
+    unlinked_before(n + 1);
     rounds.run(s, n + 1);
 }
 

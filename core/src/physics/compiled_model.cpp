@@ -161,6 +161,7 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
     }
     hold_fixed_tail(lv);
     fold_grounds(lv);
+    lv.unlinked = find_unlinked_runs(lv);
     find_uniform_runs(lv);
     find_element_runs(lv);
 }

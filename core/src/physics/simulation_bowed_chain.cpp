@@ -453,7 +453,7 @@ template <int W, bool kWithGrounds, bool kWithBody>
     // Without rest lengths: runs_as_bowed_chain().
     chain_rounds::chain_loop<W, false, kWithGrounds>(
         {x, xp, xn, frame.chain_k, frame.chain_zdt, frame.chain_length, c, frame.update_x,
-         frame.update_xp, frame.update_rest, &audio.uniform},
+         frame.update_xp, frame.update_rest, &audio.uniform, audio.unlinked},
         frame.mats);
     level_forces::recompute_used_chain_forces(frame.forces_used, audio, x, xp, f);
     level_forces::add_touched(frame.touched, c, ext, frame.held, xn);

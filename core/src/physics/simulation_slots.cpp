@@ -4,6 +4,7 @@
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/simulation.hpp"
 #include "archet/physics/uniform_span.hpp"
+#include "archet/physics/unlinked_runs.hpp"
 
 namespace archet {
 
@@ -19,10 +20,13 @@ auto& finger_field(Finger& f, ParameterSlot::Kind kind) {
                                        : f.pressure;
 }
 
-// What follows a change of MAT s's ground: its folded update, its run of alike MATs.
+// What follows a change of MAT s's ground: its folded update, its run of alike MATs or of
+// unlinked ones.
 void ground_changed(CompiledLevel& lv, int s) {
+    const bool was_negative_zero = is_negative_zero(lv.update_rest[s]);
     fold_ground(lv, s);
     split_uniform_run(lv, s);
+    refolded_unlinked(lv, s, was_negative_zero);
 }
 
 // A MAT's mass, with what follows it: T²/m, its folded ground, the modal points' responses.

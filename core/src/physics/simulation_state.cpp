@@ -8,6 +8,7 @@
 #include "archet/physics/modal_point_position.hpp"
 #include "archet/physics/simulation.hpp"
 #include "archet/physics/uniform_span.hpp"
+#include "archet/physics/unlinked_runs.hpp"
 
 namespace archet {
 
@@ -73,6 +74,7 @@ void Simulation::load_state(const double* in) {
         for (auto& buffer : lv.buffer) std::fill(buffer.begin() + lv.size + 2, buffer.end(), 0.0);
         hold_fixed_tail(lv);
         fold_grounds(lv);
+        recheck_unlinked_runs(lv);
         find_uniform_runs(lv);
         find_chain_lengths(lv);
     }

@@ -76,15 +76,27 @@ void UniformRuns::split(int i, int s) {
 
 void find_uniform_runs(CompiledLevel& lv) {
     lv.uniform.clear();
+    // Short runs are not kept: not worth filling their lanes (a model swap does this on the
+    // real-time thread).
+    auto keep = [&](int first, int last) {
+        if (last - first + 1 >= UniformRuns::kShortest)
+            lv.uniform.keep(UniformSpan(first, last, chain_coefficients(lv, first)));
+    };
+    // The unlinked runs are left out: the chain loop moves their MATs by their own update.
+    auto unlinked = lv.unlinked.begin();
     int start = 1;
     for (int s = 1; s <= lv.size; ++s) {
-        const bool run_ends =
-            s == lv.size || !(chain_coefficients(lv, s + 1) == chain_coefficients(lv, start));
+        if (unlinked != lv.unlinked.end() && s == unlinked->first) {
+            keep(start, s - 1);
+            s = unlinked->last, start = s + 1;
+            ++unlinked;
+            continue;
+        }
+        const bool run_ends = s == lv.size ||
+                              (unlinked != lv.unlinked.end() && s + 1 == unlinked->first) ||
+                              !(chain_coefficients(lv, s + 1) == chain_coefficients(lv, start));
         if (!run_ends) continue;
-        // Short runs are not kept: not worth filling their lanes (a model swap does this on the
-        // real-time thread).
-        if (s - start + 1 >= UniformRuns::kShortest)
-            lv.uniform.keep(UniformSpan(start, s, chain_coefficients(lv, start)));
+        keep(start, s);
         start = s + 1;
     }
 }

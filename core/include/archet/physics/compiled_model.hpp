@@ -13,6 +13,7 @@
 #include "archet/model/model.hpp"
 #include "archet/physics/mat_array.hpp"
 #include "archet/physics/uniform_span.hpp"
+#include "archet/physics/unlinked_runs.hpp"
 
 namespace archet {
 
@@ -154,6 +155,10 @@ struct CompiledLevel {
     /// ((a·x[n] + b·x[n−1]) + e) + T²/m·(forces). Refreshed whenever T²/m or a ground changes.
     MatArray update_x, update_xp, update_rest;  ///< a, b, e per storage index
     UniformRuns uniform;  ///< kept by whatever writes the arrays above (uniform_span.hpp)
+    /// MATs without chain links, which the chain loop moves by their own update: found with the
+    /// level, checked again after a loaded state or a ground folded again (unlinked_runs.hpp),
+    /// and left out of `uniform`.
+    std::vector<UnlinkedRun> unlinked;
     std::vector<CompiledGesturePoint> gestures;
     std::vector<int> bows;     ///< indices into CompiledModel::bows
     std::vector<int> fingers;  ///< indices into CompiledModel::fingers
