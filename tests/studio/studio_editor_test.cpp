@@ -12,6 +12,7 @@
 #include <QApplication>
 #include <QDir>
 #include <QGraphicsView>
+#include <QHeaderView>
 #include <QLabel>
 #include <QSignalSpy>
 #include <QStandardPaths>
@@ -22,6 +23,7 @@
 #include <numbers>
 #include <set>
 
+#include "archet/analysis/modal_analysis.hpp"
 #include "archet/builders/bowed_string.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
@@ -508,6 +510,31 @@ TEST(ModesPanelTest, FindsTheStringsFundamental) {
     ASSERT_TRUE(test::wait_until([&] { return !panel.computing(); }, 30000));
     EXPECT_NEAR(panel.fundamental(), 220.0, 1e-6);
     EXPECT_GT(panel.mode_count(), 20);
+}
+
+// Every mode is listed, up to the string's highest (a 214-mass string has more than 200), in
+// columns wide enough for what they show: a frequency of 1 kHz and more is not cut short.
+TEST(ModesPanelTest, ListsEveryModeInColumnsWideEnoughForThem) {
+    ModelDocument document;
+    ModesPanel panel(document);
+    const Model model = load_model_file(test::resource("models/bowed-string-110.json"));
+    document.reset(model);
+    ASSERT_TRUE(test::wait_until([&] { return !panel.computing(); }, 30000));
+    EXPECT_EQ(panel.mode_count(), static_cast<int>(analyse_modes(model).modes.size()));
+    EXPECT_GT(panel.mode_count(), 200);
+    panel.resize(320, 600);  // as narrow as the studio's side panel gets
+    panel.show();
+    const QTableWidget* table = panel.findChild<QTableWidget*>();
+    ASSERT_NE(table, nullptr);
+    for (int column = 0; column < table->columnCount(); ++column) {
+        const QString header = table->horizontalHeaderItem(column)->text();
+        int widest = table->horizontalHeader()->fontMetrics().horizontalAdvance(header);
+        for (int row = 0; row < table->rowCount(); ++row)
+            widest = std::max(
+                widest, table->fontMetrics().horizontalAdvance(table->item(row, column)->text()));
+        EXPECT_GT(table->horizontalHeader()->sectionSize(column), widest)
+            << "column " << header.toStdString();
+    }
 }
 
 // An edit of the bow leaves the string as it was: its modes are shown again without another

@@ -17,8 +17,6 @@
 namespace archet::ui {
 
 namespace {
-constexpr int kRowsShown = 40;  // the first partials are what the ear judges
-
 // A frequency as one reads it: "220.0 Hz", one decimal (a tenth of a hertz is a cent at 170 Hz).
 QString hertz(double frequency) {
     return QObject::tr("%1 Hz").arg(frequency, 0, 'f', 1);
@@ -40,7 +38,10 @@ ModesPanel::ModesPanel(ModelDocument& document, QWidget* parent)
         {tr("mode"), tr("frequency"), tr("partial"), tr("cents"), tr("T60 s")});
     table_->verticalHeader()->setVisible(false);
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-    table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+    // Each column as wide as what it shows (a narrow panel scrolls rather than cutting
+    // "220.0 Hz" to "22…"); the last takes what is left.
+    table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    table_->horizontalHeader()->setStretchLastSection(true);
     cents_ = new QCustomPlot;
     cents_->setMinimumHeight(120);
     cents_->xAxis->setLabel(tr("partial"));
@@ -96,7 +97,7 @@ void ModesPanel::show_modes(const ModalAnalysis& modes) {
                  QString::fromStdString(modes.rate), hertz(modes.fundamental)));
     QVector<double> partials, cents;
     int row = 0;
-    for (std::size_t i = 0; i < modes.modes.size() && row < kRowsShown; ++i, ++row) {
+    for (std::size_t i = 0; i < modes.modes.size(); ++i, ++row) {
         const ModeInfo& m = modes.modes[i];
         table_->insertRow(row);
         auto cell = [&](int column, const QString& text) {
