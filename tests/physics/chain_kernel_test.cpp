@@ -640,7 +640,7 @@ TEST(ChainKernel, ANegativeZeroOwnUpdateKeepsItsRunInTheChainsRounds) {
     x[kAtRest + 1] = 1e-4, xp[kAtRest + 1] = -1e-4;
     make_unlinked(lv, {{9, 40}});
     ASSERT_EQ(unlinked_spans(lv), (Spans{{9, 40}}));
-    ASSERT_EQ(lv.unlinked[0].negative_zero_rests, 1);
+    ASSERT_EQ(lv.unlinked[0].zero_prone_rests, 1);
     std::vector<double> forces;
     const std::vector<double> expected = scheme(lv, forces);
     ASSERT_TRUE(expected[kAtRest] == 0.0 && !std::signbit(expected[kAtRest]));
@@ -652,7 +652,7 @@ TEST(ChainKernel, ANegativeZeroOwnUpdateKeepsItsRunInTheChainsRounds) {
         for (int s = 1; s <= lv.size; ++s)
             ASSERT_EQ(std::memcmp(&expected[s], &in_rounds.buffer[1][s], 8), 0) << "MAT " << s;
         CompiledLevel alone = lv;  // what moving it alone would give: −0
-        alone.unlinked[0].negative_zero_rests = 0;
+        alone.unlinked[0].zero_prone_rests = 0;
         integrate_chain(alone, alone.buffer[1].data(), build);
         EXPECT_TRUE(std::signbit(alone.buffer[1][kAtRest]));
     }
@@ -660,6 +660,36 @@ TEST(ChainKernel, ANegativeZeroOwnUpdateKeepsItsRunInTheChainsRounds) {
     fold_ground(lv, kAtRest);
     refolded_unlinked(lv, kAtRest, true);
     EXPECT_TRUE(lv.unlinked[0].moves_alone());
+}
+
+// The round after an unlinked run takes, on its left, the force of the link just before it:
+// a zero whose sign shows on a MAT at −0 with a rest of −0 (its own update −0) between that
+// link's +0 and a link of its own at +0. The link before the run gives −0, which the round
+// would add had it carried that force across the run (every build's rounds end at MAT 48).
+TEST(ChainKernel, TheRoundAfterAnUnlinkedRunTakesTheForceOfTheLinkBeforeIt) {
+    std::mt19937_64 random(3);
+    CompiledLevel lv = random_level(64, false, true, random);
+    double* x = lv.buffer[0].data();
+    double* xp = lv.buffer[2].data();
+    x[8] = -1e-4, xp[8] = 0.0, x[9] = 1e-4, xp[9] = 0.0;    // link 8, before the run: −0
+    x[48] = 1e-4;                                           // link 48, after it: +0
+    x[49] = -0.0, xp[49] = 0.0, lv.ground_rest[49] = -0.0;  // its own update −0
+    x[50] = -0.0, xp[50] = 0.0;                             // link 49, its own: +0
+    make_unlinked(lv, {{9, 48}});
+    ASSERT_EQ(unlinked_spans(lv), (Spans{{9, 48}}));
+    ASSERT_TRUE(lv.unlinked[0].moves_alone());
+    std::vector<double> forces;
+    const std::vector<double> expected = scheme(lv, forces);
+    ASSERT_TRUE(std::signbit(forces[8]) && !std::signbit(forces[48]) && !std::signbit(forces[49]));
+    ASSERT_TRUE(expected[49] == 0.0 && !std::signbit(expected[49]));
+    for (ChainBuild build : {ChainBuild::Plain, ChainBuild::Avx2, ChainBuild::Avx512}) {
+        if (!chain_build_runs_here(build)) continue;
+        SCOPED_TRACE(chain_build_name(build));
+        CompiledLevel level = lv;
+        integrate_chain(level, level.buffer[1].data(), build);
+        for (int s = 1; s <= lv.size; ++s)
+            ASSERT_EQ(std::memcmp(&expected[s], &level.buffer[1][s], 8), 0) << "MAT " << s;
+    }
 }
 
 // A state is all numbers: one that gives an absent link a stiffness links the MATs on either
@@ -701,6 +731,12 @@ TEST(ChainKernel, AModalStringSoundsTheSameWithItsModesMovedAlone) {
         const double set = part == 1 ? 0.0 : part == 2 ? 0.5 * k : k;
         if (part > 0) alone.write_slot(stiffness, set), in_rounds.write_slot(stiffness, set);
         EXPECT_EQ(alone.model().levels[0].unlinked[0].moves_alone(), part != 1) << "part " << part;
+        // A state loaded (a take's, a hand-over's) counts the rests it brings again.
+        std::vector<double> state(alone.state_size());
+        alone.save_state(state.data());
+        Simulation loaded(compiled);
+        loaded.load_state(state.data());
+        EXPECT_EQ(loaded.model().levels[0].unlinked[0].moves_alone(), part != 1) << "part " << part;
         ASSERT_EQ(alone.run(a), a.size());
         ASSERT_EQ(in_rounds.run(b), b.size());
         ASSERT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0) << "part " << part;

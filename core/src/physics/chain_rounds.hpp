@@ -189,11 +189,13 @@ template <int W, bool kWithLength, bool kWithGrounds>
     int s = 1;
     // The unlinked runs that start before `limit` (only a level whose grounds the loop takes
     // has any: find_unlinked_runs()).
-    std::size_t f = 0;
+    std::size_t next_unlinked = 0;
     auto unlinked_before = [&](int limit) {
         if constexpr (kWithGrounds)
-            for (; f < arrays.unlinked.size() && arrays.unlinked[f].first < limit; ++f) {
-                const UnlinkedRun& run = arrays.unlinked[f];
+            for (; next_unlinked < arrays.unlinked.size() &&
+                   arrays.unlinked[next_unlinked].first < limit;
+                 ++next_unlinked) {
+                const UnlinkedRun& run = arrays.unlinked[next_unlinked];
                 const SharedRounds alone = run.rounds(W);
                 if (alone.begin == alone.end || !run.moves_alone()) continue;
                 rounds.run(s, alone.begin);

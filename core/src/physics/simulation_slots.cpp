@@ -23,10 +23,10 @@ auto& finger_field(Finger& f, ParameterSlot::Kind kind) {
 // What follows a change of MAT s's ground: its folded update, its run of alike MATs or of
 // unlinked ones.
 void ground_changed(CompiledLevel& lv, int s) {
-    const bool was_negative_zero = is_negative_zero(lv.update_rest[s]);
+    const bool was_zero_prone = may_leave_negative_zero(lv.update_rest[s]);
     fold_ground(lv, s);
     split_uniform_run(lv, s);
-    refolded_unlinked(lv, s, was_negative_zero);
+    refolded_unlinked(lv, s, was_zero_prone);
 }
 
 // A MAT's mass, with what follows it: T²/m, its folded ground, the modal points' responses.

@@ -86,8 +86,7 @@ void find_uniform_runs(CompiledLevel& lv) {
     auto unlinked = lv.unlinked.begin();
     int start = 1;
     for (int s = 1; s <= lv.size; ++s) {
-        if (unlinked != lv.unlinked.end() && s == unlinked->first) {
-            keep(start, s - 1);
+        if (unlinked != lv.unlinked.end() && s == unlinked->first) {  // (the run before ended)
             s = unlinked->last, start = s + 1;
             ++unlinked;
             continue;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -26,9 +27,9 @@ bool knows_its_links(const CompiledLevel& lv) {
     return static_cast<int>(lv.chain_element.size()) >= lv.size + 1;
 }
 
-int negative_zero_rests(const CompiledLevel& lv, const UnlinkedRun& run) {
+int zero_prone_rests(const CompiledLevel& lv, const UnlinkedRun& run) {
     int count = 0;
-    for (int s = run.first; s <= run.last; ++s) count += is_negative_zero(lv.update_rest[s]);
+    for (int s = run.first; s <= run.last; ++s) count += may_leave_negative_zero(lv.update_rest[s]);
     return count;
 }
 
@@ -45,7 +46,7 @@ std::vector<UnlinkedRun> find_unlinked_runs(const CompiledLevel& lv) {
         if (unlinked || first == 0) continue;
         if (s - first >= UnlinkedRun::kShortest) {
             UnlinkedRun& run = runs.emplace_back(first, s - 1);
-            run.negative_zero_rests = negative_zero_rests(lv, run);
+            run.zero_prone_rests = zero_prone_rests(lv, run);
         }
         first = 0;
     }
@@ -58,21 +59,23 @@ void recheck_unlinked_runs(CompiledLevel& lv) {
             if (!absent_link(lv, j)) return true;
         return false;
     });
-    for (UnlinkedRun& run : lv.unlinked) run.negative_zero_rests = negative_zero_rests(lv, run);
+    for (UnlinkedRun& run : lv.unlinked) run.zero_prone_rests = zero_prone_rests(lv, run);
 }
 
-void refolded_unlinked(CompiledLevel& lv, int s, bool was_negative_zero) {
+void refolded_unlinked(CompiledLevel& lv, int s, bool was_zero_prone) {
     const auto after =
         std::upper_bound(lv.unlinked.begin(), lv.unlinked.end(), s,
                          [](int s, const UnlinkedRun& run) { return s < run.first; });
     if (after == lv.unlinked.begin()) return;
     UnlinkedRun& run = *std::prev(after);
     if (s <= run.last)
-        run.negative_zero_rests += is_negative_zero(lv.update_rest[s]) - was_negative_zero;
+        run.zero_prone_rests += may_leave_negative_zero(lv.update_rest[s]) - was_zero_prone;
 }
 
-bool is_negative_zero(double e) {
-    return std::bit_cast<std::uint64_t>(e) == std::uint64_t{1} << 63;
+bool may_leave_negative_zero(double e) {
+    // Below 2^−969 in size, a sum with e may fall below the smallest normal (2^−1022): e and
+    // its addend are multiples of ulps of at least 2^−1022 above it, a sum of nothing smaller.
+    return std::bit_cast<std::uint64_t>(e) != 0 && std::abs(e) < 0x1p-969;
 }
 
 }  // namespace archet

@@ -6,9 +6,13 @@
 // motion is finite.
 //
 // Why the same bits: the chain's update adds T²/m·(f_left − f_right), a zero, to the MAT's own
-// update ((a·x + b·x⁻) + e), which leaves every value as it is but −0 (−0 + (+0) is +0). The own
-// update is −0 only where a·x + b·x⁻ and e both are: never while no e is −0, which each run
-// keeps track of (`moves_alone`). (Motion no longer finite differs: 0·∞ is NaN in a link.)
+// update ((a·x + b·x⁻) + e), which leaves every value as it is but −0 (−0 + (+0) is +0). A sum
+// p + e is −0 only where both are, or, on a thread that flushes subnormal results to zero (the
+// render threads do: DenormalGuard), where it falls below the smallest normal; neither can
+// happen while e is +0 or at least 2^−969 in size, which is every e but those of a rest of −0,
+// of a ground with no stiffness and a rest below 0, or of a rest within some 1e−290 m of 0. Each
+// run counts its MATs with such an e (`zero_prone_rests`) and is left to the chain's rounds while
+// it has any. (Motion no longer finite differs too: 0·∞ is NaN in a link, not in an own update.)
 
 #include <vector>
 
@@ -27,10 +31,10 @@ struct UnlinkedRun {
     static constexpr int kShortest = 32;
 
     int first = 1, last = 0;
-    /// How many of its MATs have a folded e of −0 (fold_ground()): the chain loop moves them
-    /// by their own update only while there are none.
-    int negative_zero_rests = 0;
-    bool moves_alone() const { return negative_zero_rests == 0; }
+    /// How many of its MATs have a folded e (fold_ground()) that may leave their own update at
+    /// −0 (may_leave_negative_zero()): the chain loop moves them alone only while there are none.
+    int zero_prone_rests = 0;
+    bool moves_alone() const { return zero_prone_rests == 0; }
     /// Its rounds of W = 2, 4 or 8 MATs (shared_rounds()).
     SharedRounds rounds(int W) const { return shared_rounds(first, last, W); }
 };
@@ -48,11 +52,12 @@ std::vector<UnlinkedRun> find_unlinked_runs(const CompiledLevel& lv);
 void recheck_unlinked_runs(CompiledLevel& lv);
 
 /// After MAT s's ground is folded again (a live change of its ground or its mass), whose e was
-/// −0 before if `was_negative_zero`: its run's count of −0 rests, in constant time on the
-/// real-time thread (a glide may change every mode of a string at every block).
-void refolded_unlinked(CompiledLevel& lv, int s, bool was_negative_zero);
+/// zero-prone before if `was_zero_prone`: its run's count, in constant time on the real-time
+/// thread (a glide may change every mode of a string at every block).
+void refolded_unlinked(CompiledLevel& lv, int s, bool was_zero_prone);
 
-/// Whether a folded e is −0 (its bits: −0 == +0).
-bool is_negative_zero(double e);
+/// Whether a MAT's own update ((a·x + b·x⁻) + e) may be −0 for some motion: e is not +0 and
+/// smaller than 2^−969 in size (−0, a subnormal, a tiny rest's).
+bool may_leave_negative_zero(double e);
 
 }  // namespace archet
