@@ -47,8 +47,8 @@ struct UnlinkedRun {
 std::vector<UnlinkedRun> find_unlinked_runs(const CompiledLevel& lv);
 
 /// After a state is loaded and the grounds folded again: drops the runs it has linked (a state
-/// is all numbers, an absent link's among them) and counts their −0 rests again. In place, as a
-/// hand-over on the real-time thread loads states.
+/// is all numbers, an absent link's among them) and counts their zero-prone rests again. In place,
+/// as a hand-over on the real-time thread loads states.
 void recheck_unlinked_runs(CompiledLevel& lv);
 
 /// After MAT s's ground is folded again (a live change of its ground or its mass), whose e was
