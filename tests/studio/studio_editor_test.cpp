@@ -537,6 +537,23 @@ TEST(ModesPanelTest, ListsEveryModeInColumnsWideEnoughForThem) {
     }
 }
 
+// The cents chart has room for its axis label, in a panel as small as the studio's side panel
+// gets on a 1000-pixel screen (about 400 by 420).
+TEST(ModesPanelTest, TheCentsChartHasRoomForItsAxisLabel) {
+    ModelDocument document;
+    ModesPanel panel(document);
+    document.reset(load_model_file(test::resource("models/bowed-string-110.json")));
+    ASSERT_TRUE(test::wait_until([&] { return !panel.computing(); }, 30000));
+    panel.resize(400, 420);
+    panel.show();
+    QCustomPlot* chart = panel.findChild<QCustomPlot*>();
+    ASSERT_NE(chart, nullptr);
+    chart->replot();
+    const int label =
+        QFontMetrics(chart->yAxis->labelFont()).horizontalAdvance(chart->yAxis->label());
+    EXPECT_GE(chart->axisRect()->height(), label) << chart->yAxis->label().toStdString();
+}
+
 // An edit of the bow leaves the string as it was: its modes are shown again without another
 // eigenvalue solve. An edit of the string solves it again.
 TEST(ModesPanelTest, SolvesAgainOnlyWhenAnEditChangesTheString) {

@@ -43,7 +43,7 @@ ModesPanel::ModesPanel(ModelDocument& document, QWidget* parent)
     table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
     table_->horizontalHeader()->setStretchLastSection(true);
     cents_ = new QCustomPlot;
-    cents_->setMinimumHeight(120);
+    cents_->setMinimumHeight(220);  // room for its axis label and five ticks
     cents_->xAxis->setLabel(tr("partial"));
     cents_->yAxis->setLabel(tr("cents from k·f1"));
     auto* bars = new QCPBars(cents_->xAxis, cents_->yAxis);
@@ -96,10 +96,10 @@ void ModesPanel::show_modes(const ModalAnalysis& modes) {
             .arg(QString::fromStdString(count_of(modes.modes.size(), "mode", "modes")),
                  QString::fromStdString(modes.rate), hertz(modes.fundamental)));
     QVector<double> partials, cents;
+    table_->setRowCount(static_cast<int>(modes.modes.size()));
     int row = 0;
     for (std::size_t i = 0; i < modes.modes.size(); ++i, ++row) {
         const ModeInfo& m = modes.modes[i];
-        table_->insertRow(row);
         auto cell = [&](int column, const QString& text) {
             table_->setItem(row, column, new QTableWidgetItem(text));
         };
