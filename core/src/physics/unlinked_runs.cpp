@@ -45,8 +45,9 @@ std::vector<UnlinkedRun> find_unlinked_runs(const CompiledLevel& lv) {
         if (unlinked && first == 0) first = s;
         if (unlinked || first == 0) continue;
         if (s - first >= UnlinkedRun::kShortest) {
-            UnlinkedRun& run = runs.emplace_back(first, s - 1);
+            UnlinkedRun run{.first = first, .last = s - 1};
             run.zero_prone_rests = zero_prone_rests(lv, run);
+            runs.push_back(run);
         }
         first = 0;
     }
