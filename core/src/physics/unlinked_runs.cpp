@@ -13,11 +13,10 @@ namespace archet {
 
 namespace {
 
-// Chain link j (joining storage j and j + 1) stands for no element and moves nothing.
+// Chain link j (joining storage j and j + 1) stands for no element and moves nothing; on a
+// level that knows its links (knows_its_links()).
 bool absent_link(const CompiledLevel& lv, int j) {
-    const bool no_element =
-        j >= static_cast<int>(lv.chain_element.size()) || lv.chain_element[j] < 0;
-    return no_element && lv.chain_k[j] == 0.0 && lv.chain_zdt[j] == 0.0 &&
+    return lv.chain_element[j] < 0 && lv.chain_k[j] == 0.0 && lv.chain_zdt[j] == 0.0 &&
            lv.chain_length[j] == 0.0;
 }
 
