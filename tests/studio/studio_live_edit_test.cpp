@@ -418,7 +418,8 @@ TEST_P(LiveEditAtRate, TheWholeLoopRunsAtTheDevicesRate) {
     const QString spectrum = window->scopes().plot(ScopePanel::Scope::Spectrum).xAxis->label();
     EXPECT_TRUE(spectrum.contains("resolution")) << spectrum.toStdString();
     const double resolution = spectrum.section("resolution ", 1).section(" Hz", 0, 0).toDouble();
-    const double window_samples = spectrum.section(": ", 1).section("-sample", 0, 0).toDouble();
+    const double window_samples =
+        spectrum.section(':', 1).section("-sample", 0, 0).trimmed().toDouble();
     EXPECT_NEAR(resolution, rate / window_samples, 0.05) << spectrum.toStdString();
     // The inspector checks stability at the rate the engine runs at, not the file's 48 kHz: a
     // stiffness between the two rates' limits is refused at 44.1 kHz and taken at 96 kHz.

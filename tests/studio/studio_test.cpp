@@ -270,6 +270,37 @@ TEST(Studio, WithoutAnEngineBinaryItSaysSoAndStaysUp) {
     EXPECT_EQ(window.document().model().find_lia("friction")->mu_static, 0.7);
 }
 
+// Every line the inspector shows of a string mass reads whole in the studio's side panel, at
+// the window's own size: a long one (the stability margin) wraps rather than widening the
+// inspector past the edge of its tab.
+TEST(Studio, TheInspectorOfAStringMassReadsWholeInItsTab) {
+    EngineClientOptions o = engine_options();
+    o.archet_binary = "/nonexistent/archet";  // the inspector needs no engine
+    MainWindow window(o);
+    ASSERT_TRUE(window.open_file(test::resource("models/bowed-string-110.json").c_str()));
+    window.show();
+    auto* inspector = window.findChild<Inspector*>();
+    ASSERT_NE(inspector, nullptr);
+    inspector->show_element("s30");
+    QTest::qWait(200);                               // the layouts settle
+    const QWidget* tab = inspector->parentWidget();  // the scroll area's viewport
+    ASSERT_NE(tab, nullptr);
+    int labels = 0;
+    for (const QLabel* label : inspector->findChildren<QLabel*>()) {
+        if (!label->isVisible() || label->text().isEmpty()) continue;
+        ++labels;
+        const QString text = label->textFormat() == Qt::RichText ? QString() : label->text();
+        const QPoint right_edge = label->mapTo(tab, label->contentsRect().topRight());
+        EXPECT_LT(right_edge.x(), tab->width()) << text.toStdString();
+        const QRect needed = label->fontMetrics().boundingRect(
+            label->contentsRect(), (label->wordWrap() ? Qt::TextWordWrap : 0) | label->alignment(),
+            text);
+        EXPECT_LE(needed.width(), label->contentsRect().width()) << text.toStdString();
+        EXPECT_LE(needed.height(), label->contentsRect().height()) << text.toStdString();
+    }
+    EXPECT_GE(labels, 5) << "a title, field names, a margin, the stability line";
+}
+
 TEST(Studio, TheLibraryListsTheShippedStrings) {
     MainWindow window(engine_options());
     window.set_resources_folder(QString::fromStdString(test::resource("").string()));

@@ -138,7 +138,8 @@ void Inspector::rebuild() {
                                           .arg(unit)
                                           .arg(100 * room, 0, 'f', 1));
             margin->setStyleSheet(room < 0.1 ? "color: #b03020" : "color: gray");
-            form_->addRow(QString(), margin);
+            margin->setWordWrap(true);  // the side panel is narrower than the sentence
+            form_->addRow(margin);      // the width of both columns: fewer lines
         }
     }
     show_stability();

@@ -211,14 +211,15 @@ std::size_t ScopePanel::spectrum_window(double sample_rate) {
 }
 
 // The sound's spectrum over the newest window, Hann-windowed; its axis says the resolution
-// that window gives, or how much sound it still waits for.
+// that window gives, or how much sound it still waits for, in two lines: one is wider than the
+// plot in the studio's window.
 void ScopePanel::refresh_spectrum(const ProbeHistory& h, double sample_rate) {
     const std::size_t n = spectrum_window(sample_rate);
     const double seconds = static_cast<double>(n) / sample_rate;
     const std::vector<double> sound = h.window(ProbeHistory::kOutput, n);
     if (sound.size() < n) {
         spectrum_->graph(0)->data()->clear();
-        spectrum_->xAxis->setLabel(tr("Hz (the spectrum waits for %1 s of sound: %2 of %3 samples)")
+        spectrum_->xAxis->setLabel(tr("Hz (waiting for %1 s of sound:\n%2 of %3 samples)")
                                        .arg(seconds, 0, 'f', 2)
                                        .arg(sound.size())
                                        .arg(n));
@@ -239,7 +240,7 @@ void ScopePanel::refresh_spectrum(const ProbeHistory& h, double sample_rate) {
         db.push_back(20 * std::log10(std::abs(bins[k]) / (static_cast<double>(n) / 4) + 1e-12));
     }
     spectrum_->graph(0)->setData(hz, db, true);
-    spectrum_->xAxis->setLabel(tr("Hz (resolution %1 Hz: %2-sample Hann window, %3 s)")
+    spectrum_->xAxis->setLabel(tr("Hz (resolution %1 Hz:\n%2-sample Hann window, %3 s)")
                                    .arg(bin_hz, 0, 'f', 1)
                                    .arg(n)
                                    .arg(seconds, 0, 'f', 2));
