@@ -130,6 +130,7 @@ void ControlThread::nrt_loop() {
         CommandFrame command;
         while (commands_.try_pop(command)) nrt_handle(command);
         if (moving_bow_) nrt_send_waiting_changes();
+        if (bow_wanted_ > 0) nrt_move_bow(bow_wanted_, bow_wanted_by_);
         if (osc_) nrt_take_osc();
         if (midi_) nrt_take_midi();
         nrt_collect_retired();
@@ -223,6 +224,8 @@ void ControlThread::nrt_load(const CommandFrame& c, const std::string& path) {
 }
 
 void ControlThread::nrt_set_live_parameter(const CommandFrame& c, const ParameterName& name) {
+    // Not a value that glides: the string goes on in a model with its bow moved.
+    if (name.text() == "bow.position") return nrt_move_bow(c.value, c);
     // The moved model takes over the playing one's state, parameters included: a change made
     // in between would be lost, so it waits the millisecond or two until the hand-over.
     if (moving_bow_ && bridge_.pending.load()) {

@@ -70,7 +70,7 @@ class ControlThread {
     void nrt_take_midi();
     void nrt_note_controllers(const std::vector<midi::MidiMessage>& messages);
     void nrt_show_controllers();
-    void nrt_move_bow(double beta);
+    void nrt_move_bow(double beta, const std::optional<ipc::CommandFrame>& command);
     void nrt_send_waiting_changes();
     void nrt_say_midi(const std::string& what);
 
@@ -93,7 +93,10 @@ class ControlThread {
     std::uint64_t midi_blocks_ = 0;                       ///< blocks played at the last MIDI round
     std::uint64_t midi_dropped_said_ = 0;                 ///< dropped messages already reported
     std::map<int, midi::MidiMessage> controllers_heard_;  ///< since the last status, newest
-    double bow_wanted_ = 0;  ///< a bow position MIDI asked for and not yet made (0: none)
+    /// A bow position asked for and not yet made (0: none), and the command that asked (none:
+    /// MIDI), which hears what goes wrong.
+    double bow_wanted_ = 0;
+    std::optional<ipc::CommandFrame> bow_wanted_by_;
     std::vector<bool> unplayable_routes_;  ///< the map's parameters this model has not
     bool moving_bow_ = false;  ///< the moved model waits to take over: changes wait with it
     std::vector<std::pair<ipc::CommandFrame, ParameterName>> waiting_changes_;

@@ -60,11 +60,14 @@ void ControlThread::nrt_say_midi(const std::string& what) {
     nrt_fail({}, "MIDI: " + what);
 }
 
-// The bow's contact moved along the string (STK's CC 4): the playing model with its bow module on
-// the mass nearest β, compiled here, takes over the string's motion on the real-time thread (no
-// restart). Nothing happens until β reaches another mass. A take recording keeps the move.
-void ControlThread::nrt_move_bow(double beta) {
+// The bow's contact moved along the string (STK's CC 4, or the parameter `bow.position` from the
+// studio or OSC): the playing model with its bow module on the mass nearest β, compiled here,
+// takes over the string's motion on the real-time thread (no restart). Nothing happens until β
+// reaches another mass. A take recording keeps the move. `command`: the command that asked,
+// which hears what goes wrong (none: MIDI, whose problems are said as such).
+void ControlThread::nrt_move_bow(double beta, const std::optional<CommandFrame>& command) {
     bow_wanted_ = beta;  // kept until it is done: the last of a sweep must not be lost
+    bow_wanted_by_ = command;
     try {
         if (current_name_.empty() || bridge_.pending.load()) return;  // one move at a time
         bow_wanted_ = 0;
@@ -90,7 +93,11 @@ void ControlThread::nrt_move_bow(double beta) {
         current_model_ = std::move(moved);
         delete bridge_.pending.exchange(loaded.release());
     } catch (const std::exception& e) {
-        nrt_say_midi(std::string("bow position: ") + e.what());
+        const std::string why = std::string("bow position: ") + e.what();
+        if (command)
+            nrt_fail(*command, why);
+        else
+            nrt_say_midi(why);
     }
 }
 
@@ -127,7 +134,6 @@ void ControlThread::nrt_take_midi() {
         static_cast<double>(blocks - midi_blocks_) * output_->buffer_frames() / sample_rate_;
     midi_blocks_ = blocks;
     nrt_note_controllers(messages);
-    if (bow_wanted_ > 0) nrt_move_bow(bow_wanted_);
     if (!performer_) return;
     for (const auto& m : messages) performer_->receive(m);
     midi::MidiPerformer::Round round = performer_->advance(seconds);
@@ -137,7 +143,7 @@ void ControlThread::nrt_take_midi() {
                      " more messages refused in the same 2 ms");
     for (const auto& request : round.parameters()) {
         if (request.what == midi::ParameterRequest::What::BowPosition) {
-            nrt_move_bow(request.value);
+            nrt_move_bow(request.value, std::nullopt);
             continue;
         }
         if (request.what == midi::ParameterRequest::What::Route &&

@@ -155,6 +155,36 @@ TEST(EngineOsc, ATakeBeginsWhileAFaderStreamsAndReRendersToTheByte) {
         << "re-rendered to the byte, the glides included";
 }
 
+// /archet/param bow.position moves the bow as the studio's inspector does: the take keeps the
+// move, and re-renders to the byte.
+TEST(EngineOsc, MovesTheBowAlongTheStringWhileItPlays) {
+    const auto dir = test::temp_dir("engine-osc-bow");
+    OscEngine osc;
+    ASSERT_TRUE(osc.start(dir));
+    ASSERT_TRUE(osc.bow(0.3));
+    const auto folder = dir / "take";
+    osc.engine.link().start_take(folder.string());
+    ASSERT_TRUE(osc.engine.await(StatusKind::Take, [](const StatusFrame& f) {
+        return std::string(f.text).rfind("recording ", 0) == 0;
+    }));
+    ASSERT_TRUE(osc.bow(0.2));
+    lo_send(osc.to, "/archet/param", "sf", "bow.position", 0.25f);
+    ASSERT_TRUE(osc.bow(0.3));
+    EXPECT_GT(osc.engine.latest().values[4], 0.01) << "still pressed in";
+    osc.engine.link().stop_take();
+    std::string said;
+    ASSERT_TRUE(osc.engine.await_take_written(&said)) << said;
+    EXPECT_TRUE(osc.engine.errors().empty()) << osc.engine.errors().front();
+    const auto changes = read_parameter_changes(folder / "parameters.json");
+    ASSERT_EQ(changes.size(), 1u);
+    EXPECT_EQ(changes[0].parameter, "bow.position");
+    EXPECT_DOUBLE_EQ(changes[0].value, static_cast<double>(0.25f));
+    const auto r =
+        test::run_archet({"render", "--take", folder.string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(folder / "take.wav"));
+}
+
 TEST(EngineOsc, RefusesWhatItCannotActOnAndSaysWhy) {
     const auto dir = test::temp_dir("engine-osc-bad");
     OscEngine osc;

@@ -91,6 +91,47 @@ TEST(EngineTake, StartedMidPerformanceReRendersToTheByte) {
     expect_probes_replayed(dir);
 }
 
+// The studio's bow position (the parameter `bow.position`, as the inspector and OSC's
+// /archet/param send it) moves the bow of the playing string: the model with its bow elsewhere
+// takes over the string's whole motion, its clock included, instead of starting again from rest;
+// the bow bows on; the take keeps the move and re-renders to the byte. A β out of range is
+// refused with a sentence and moves nothing.
+TEST(EngineTake, TheStudiosBowPositionMovesTheBowOfThePlayingString) {
+    const auto dir = test::temp_dir("engine-take-bow-move");
+    EngineSession engine;
+    ASSERT_TRUE(engine.start("models/bowed-string-220.json"));
+    engine.bow(0.5);
+    const auto started = engine.link().start_take((dir / "take").string());
+    ASSERT_TRUE(engine.await(StatusKind::Take, [&](const StatusFrame& f) {
+        return f.sequence == started && std::string(f.text).rfind("recording ", 0) == 0;
+    })) << (engine.errors().empty() ? "" : engine.errors()[0]);
+    engine.bow(0.2);
+    const std::uint64_t tick = engine.latest().tick;
+    engine.link().send_parameter({"bow", "position"}, 0.3);  // from the model's 0.115
+    engine.bow(0.4);
+    EXPECT_GT(engine.latest().tick, tick + 0.3 * 48000)
+        << "the moved model counts on from the playing one's clock";
+    EXPECT_GT(std::abs(engine.latest().values[5]), 0.0) << "still bowing: friction";
+    EXPECT_GT(engine.latest().values[4], 0.01) << "and pressed in";
+    const auto refused = engine.link().send_parameter({"bow", "position"}, 0.7);
+    ASSERT_TRUE(engine.await(StatusKind::Error,
+                             [&](const StatusFrame& f) { return f.sequence == refused; }));
+    EXPECT_NE(engine.errors().back().find("β must be in (0, 0.5)"), std::string::npos)
+        << engine.errors().back();
+    engine.bow(0.1);
+    engine.link().stop_take();
+    std::string said;
+    ASSERT_TRUE(engine.await_take_written(&said)) << said;
+    EXPECT_EQ(engine.errors().size(), 1u) << engine.errors().front();
+    EXPECT_EQ(engine.realtime_allocations(), 0u);
+
+    const auto changes = read_parameter_changes(dir / "take" / "parameters.json");
+    ASSERT_EQ(changes.size(), 1u) << "the move, and not the refused β";
+    EXPECT_EQ(changes[0].parameter, "bow.position");
+    EXPECT_DOUBLE_EQ(changes[0].value, 0.3);
+    expect_replayed(dir, "the take across the move re-renders to the byte");
+}
+
 // The engine runs the string in runs of up to the hand's next tick (Simulation::run(), the
 // bowed chain's own loop, reading the probes); without an energy probe, they read no energy:
 // the take still re-renders tick by tick to the byte, its sound and every probe.

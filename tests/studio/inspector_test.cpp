@@ -6,8 +6,17 @@
 
 #include <QLabel>
 #include <QLineEdit>
+#include <QLocale>
 
+#include <cmath>
+#include <vector>
+
+#include "archet/analysis/playability.hpp"
+#include "archet/builders/bowed_string.hpp"
+#include "archet/files/model_file.hpp"
 #include "archet/model/model_parameters.hpp"
+#include "archet/model/model_variants.hpp"
+#include "archet/model/string_points.hpp"
 #include "archet/ui/inspector.hpp"
 #include "archet/ui/model_document.hpp"
 #include "test_support.hpp"
@@ -55,6 +64,57 @@ TEST(Inspector, AnEditIsCheckedByTheDocumentAndUndoes) {
     EXPECT_EQ(get_parameter(document.model(), {"k", "stiffness"}), 100);
     // The margins were probed in the document's model and put back.
     EXPECT_EQ(get_parameter(document.model(), {"a", "mass"}), 0.01);
+}
+
+// The bow's module, its contact point and its mass show where the bow meets the string (β), and
+// a new β moves the bow to the string mass nearest it in one undoable step, which listeners
+// hear as a bow move; a β out of range is refused with the reason and moves nothing. A string
+// in modal form has no masses to move to, so no field.
+TEST(Inspector, MovesTheBowAlongTheString) {
+    ModelDocument document;
+    document.reset(load_model_file(test::resource("models/bowed-string-220.json")));
+    Inspector inspector(document);
+    for (const char* element : {"friction", "bow_contact", "bow"}) {
+        inspector.show_element(element);
+        const auto* field = inspector.findChild<QLineEdit*>("bow.position");
+        ASSERT_NE(field, nullptr) << element;
+        EXPECT_NEAR(QLocale::c().toDouble(field->text()), bow_position(document.model()), 1e-6)
+            << element;
+    }
+    const double before = bow_position(document.model());
+    std::vector<ModelDocument::Change> heard;
+    QObject::connect(
+        &document, &ModelDocument::changed,
+        [&](ModelDocument::Change c, const QString&, const QString&) { heard.push_back(c); });
+    ASSERT_TRUE(inspector.move_bow(0.3)) << inspector.warning().toStdString();
+    const int masses = static_cast<int>(string_masses(document.model()).size());
+    const int nearest = static_cast<int>(std::lround(0.3 * (masses + 1)));
+    EXPECT_EQ(bow_position(document.model()), static_cast<double>(nearest) / (masses + 1));
+    EXPECT_EQ(bowed_centre(document.model(), *document.model().find_lia("friction")),
+              "s" + std::to_string(nearest));
+    EXPECT_EQ(document.undo_stack().undoText().toStdString(), "Move the bow to β = 0.3");
+    // Its drawing went with it: the contact, the bow and the hand's points above the new centre.
+    const Model& moved = document.model();
+    const double centre_x = moved.find_mat("s" + std::to_string(nearest))->display->first;
+    for (const char* part : {"bow_contact", "bow", "hand_slide"})
+        EXPECT_EQ(moved.find_mat(part)->display->first, centre_x) << part;
+    document.undo_stack().undo();
+    EXPECT_EQ(bow_position(document.model()), before);
+    EXPECT_EQ(heard, (std::vector{ModelDocument::Change::BowMove, ModelDocument::Change::BowMove}));
+
+    EXPECT_TRUE(inspector.move_bow(before + 0.001)) << "nearest the same mass";
+    EXPECT_EQ(document.undo_stack().count(), 1) << "which moves nothing";
+    EXPECT_FALSE(inspector.move_bow(0.7));
+    EXPECT_TRUE(inspector.warning().contains("β must be in (0, 0.5)"))
+        << inspector.warning().toStdString();
+    EXPECT_EQ(bow_position(document.model()), before);
+    EXPECT_EQ(document.undo_stack().count(), 1);
+
+    BowedStringOptions modal;
+    modal.pitch = 220, modal.masses = 40, modal.structure = Structure::Modal;
+    document.reset(build_bowed_string(modal));
+    inspector.show_element("friction");
+    EXPECT_EQ(inspector.findChild<QLineEdit*>("bow.position"), nullptr);
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 
 #include <cmath>
 
+#include "archet/analysis/playability.hpp"
 #include "archet/builders/bowed_string.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/files/take_file.hpp"
@@ -221,6 +222,28 @@ TEST_F(LiveEdit, MovingAnElementToAnotherRate) {
     ASSERT_TRUE(wait_until([&] { return loads == 2; }, 60000)) << said();
     bow(*window, stroke, 0.5);
     expect_the_pad_bows_after([&] { window->document().set_rate(mass, "haptic"); });
+}
+
+// The inspector's bow position moves the bow of the playing string: the engine goes on with the
+// string's motion in the model with its bow moved, with no reload (and no start from rest), and
+// undo moves it back the same way.
+TEST_F(LiveEdit, MovingTheBowFromTheInspectorKeepsTheStringPlaying) {
+    auto* inspector = window->findChild<Inspector*>();
+    ASSERT_NE(inspector, nullptr);
+    inspector->show_element("friction");
+    const double beta = bow_position(window->document().model());
+    ASSERT_TRUE(inspector->move_bow(0.3)) << inspector->warning().toStdString();
+    EXPECT_NEAR(bow_position(window->document().model()), 0.3, 0.01);
+    bow(*window, stroke, 1.0);
+    expect_bowing_in_the_last_second();
+    window->document().undo_stack().undo();
+    EXPECT_EQ(bow_position(window->document().model()), beta);
+    bow(*window, stroke, 1.0);
+    expect_bowing_in_the_last_second();
+    EXPECT_EQ(loads, 1) << "the bow moved in the playing model, not by reloading it; " << said();
+    for (const QString& m : messages)
+        EXPECT_FALSE(m.contains("bow position") || m.contains("bow.position")) << m.toStdString();
+    EXPECT_EQ(window->engine().status().realtime_allocations, 0u);
 }
 
 // Undo can bring back a value that does not validate: checked, not glided into the engine,

@@ -7,6 +7,7 @@
 #include <QLineEdit>
 #include <QVBoxLayout>
 
+#include "archet/analysis/playability.hpp"
 #include "archet/common/number_text.hpp"
 #include "archet/model/model_parameters.hpp"
 #include "archet/model/stability.hpp"
@@ -77,6 +78,47 @@ bool Inspector::edit(const QString& parameter, double value) {
     return true;
 }
 
+bool Inspector::move_bow(double beta) {
+    warning_.clear();
+    warning_label_->clear();
+    try {
+        document_.move_bow(beta);
+    } catch (const std::exception& e) {
+        warning_ = tr("Not applied: %1").arg(QString::fromUtf8(e.what()));
+        warning_label_->setText(warning_);
+        rebuild();
+        return false;
+    }
+    return true;
+}
+
+// β on the bow's module, its contact point and its own mass, for a bowed chain of masses
+// s1…sN (bow_position() is 0 for any other: a modal string has no masses to move to).
+void Inspector::add_bow_position(const std::string& id) {
+    const Model& model = document_.model();
+    const Lia* bow = nullptr;
+    for (const Lia& l : model.lias)
+        if (l.kind == LiaKind::BowFriction) bow = &l;
+    if (!bow || (id != bow->id && id != bow->bowed_string() && id != bow->bow())) return;
+    const double beta = bow_position(model);
+    if (beta <= 0) return;
+    auto* field = new QLineEdit(QString::number(beta, 'g', 6));
+    field->setObjectName("bow.position");
+    auto* validator = new QDoubleValidator(field);
+    validator->setLocale(QLocale::c());
+    field->setValidator(validator);
+    field->setToolTip(
+        tr("bow.position: where the bow meets the string, from the bridge over the "
+           "string's length, above 0 to below 0.5; the bow moves to the nearest "
+           "string mass and a playing string goes on"));
+    connect(field, &QLineEdit::editingFinished, this, [this, field, beta] {
+        bool ok = false;
+        const double value = QLocale::c().toDouble(field->text(), &ok);
+        if (ok && value != beta) move_bow(value);
+    });
+    form_->addRow(tr("bow position β"), field);
+}
+
 void Inspector::rebuild() {
     while (form_->rowCount() > 0) form_->removeRow(0);
     const Model& model = document_.model();
@@ -142,6 +184,7 @@ void Inspector::rebuild() {
             form_->addRow(margin);      // the width of both columns: fewer lines
         }
     }
+    add_bow_position(id);
     show_stability();
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "archet/analysis/playability.hpp"
 #include "archet/model/model_parameters.hpp"
 #include "archet/ui/elided_label.hpp"
 #include "archet/ui/gesture_pad.hpp"
@@ -64,7 +65,8 @@ void MainWindow::connect_engine() {
     connect(&display_, &QTimer::timeout, this, &MainWindow::refresh);
 }
 
-// The engine follows the document: a parameter glides in, anything else reloads the model.
+// The engine follows the document: a parameter glides in, a moved bow takes the string's motion
+// over, anything else reloads the model.
 // A model that does not validate stays in the editor (the engine keeps the last good one).
 // The document has already checked a parameter edit; only a new structure is validated here.
 void MainWindow::model_changed(int change, const QString& element, const QString& name) {
@@ -79,6 +81,9 @@ void MainWindow::model_changed(int change, const QString& element, const QString
         engine_->send_parameter(edited, get_parameter(model, edited));
     };
     if (kind == ModelDocument::Change::Parameter && !engine_behind_) return glide();
+    // The playing string goes on with its bow moved (undone, moved back).
+    if (kind == ModelDocument::Change::BowMove && !engine_behind_)
+        return engine_->send_parameter({"bow", "position"}, bow_position(model));
     if (!parameter) pad_->set_notice(unplayable_reason(model));
     try {
         document_->validate();  // a new structure, or a value that undo or redo brought back

@@ -6,11 +6,13 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "archet/analysis/playability.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/common/number_text.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_parameters.hpp"
 #include "archet/model/model_validation.hpp"
+#include "archet/model/model_variants.hpp"
 
 namespace archet::ui {
 
@@ -257,6 +259,21 @@ void ModelDocument::edit_parameter(const ParameterName& name, double value) {
         set_parameter_validated(model_, name, value);
     }
     undo_.push(new ParameterEdit(*this, name, before, value));  // its first redo() announces it
+}
+
+void ModelDocument::move_bow(double beta) {
+    Model after = model_;
+    set_variant_parameter(after, "bow.position", beta);
+    if (bow_position(after) == bow_position(model_)) return;  // β is still nearest the same mass
+    {
+        const RunningRate at(after, running_rate_);
+        validate_model(after);
+    }
+    QString bow;
+    for (const Lia& l : after.lias)
+        if (l.kind == LiaKind::BowFriction) bow = QString::fromStdString(l.id);
+    push(tr("Move the bow to β = %1").arg(beta, 0, 'g', 4), std::move(after), Change::BowMove, bow,
+         "position");
 }
 
 void ModelDocument::set_rate(const QString& id, const QString& rate) {

@@ -21,6 +21,28 @@ std::set<std::string> bow_parts(const Model& model) {
     return parts;
 }
 
+// The bow's drawing follows it along the string: its own masses (and its contact point, when it
+// has a width) and the hand's points that hold them move by `shift` across the editor.
+void shift_bow_drawing(Model& model, const Lia& bow, double shift) {
+    std::set<std::string> moved{bow.bow(), bow.press, bow.surface};
+    if (bowed_centre(model, bow) != bow.bowed_string()) moved.insert(bow.bowed_string());
+    for (const Lia& l : model.lias) {
+        const Mat* from = model.find_mat(l.from);
+        const Mat* to = model.find_mat(l.to);
+        if (from && from->kind == MatKind::Gesture && moved.count(l.to)) moved.insert(l.from);
+        if (to && to->kind == MatKind::Gesture && moved.count(l.from)) moved.insert(l.to);
+    }
+    for (Mat& m : model.mats)
+        if (m.display && moved.count(m.id)) m.display->first += shift;
+}
+
+// How far across the editor the string mass `to` is drawn from `from` (0 when either is not).
+double drawn_apart(const Model& model, const std::string& from, const std::string& to) {
+    const Mat* a = model.find_mat(from);
+    const Mat* b = model.find_mat(to);
+    return a && b && a->display && b->display ? b->display->first - a->display->first : 0.0;
+}
+
 }  // namespace
 
 // The chain's masses s1…sN, in order, as the bowed-string builder names them.
@@ -70,18 +92,20 @@ void set_variant_parameter(Model& model, const std::string& name, double value) 
         const int n = static_cast<int>(masses.size());
         const int index = std::clamp(static_cast<int>(std::lround(value * (n + 1))), 1, n);
         Mat* contact = model.find_mat(bow->bowed_string());
-        if (contact && bowed_centre(model, *bow) != bow->bowed_string()) {
+        const std::string was_centred = bowed_centre(model, *bow);
+        if (contact && was_centred != bow->bowed_string()) {
             // A bow with a width: its contact point reads the masses around the new centre.
             const int half = static_cast<int>(contact->modes.size()) / 2;
             const int centre = std::clamp(index, 1 + half, n - half);
             for (int k = 0; k < static_cast<int>(contact->modes.size()); ++k)
                 contact->modes[k] = masses[centre - half + k - 1];
-            return;
+        } else {
+            const std::string old = bow->bowed_string(), bowed = masses[index - 1];
+            bow->to = bowed;  // the bowed string mass (see Lia::bowed_string)
+            for (auto& p : model.probes)
+                if (p.element == old) p.element = bowed;
         }
-        const std::string old = bow->bowed_string(), bowed = masses[index - 1];
-        bow->to = bowed;  // the bowed string mass (see Lia::bowed_string)
-        for (auto& p : model.probes)
-            if (p.element == old) p.element = bowed;
+        shift_bow_drawing(model, *bow, drawn_apart(model, was_centred, bowed_centre(model, *bow)));
         return;
     }
     set_parameter(model, ParameterName::parse(name), value);

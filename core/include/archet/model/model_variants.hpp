@@ -20,7 +20,8 @@ std::vector<std::string> string_masses(const Model& model);
 
 /// Sets a named parameter (string.damping, bow.position) or ELEMENT.PARAM; throws InputError
 /// naming what is wrong. bow.position moves the bow module (and the probes that watched the
-/// bowed mass) to the string mass nearest β·(N+1).
+/// bowed mass) to the string mass nearest β·(N+1), and its drawing in the editor with it (its
+/// masses and the hand's points that hold them).
 void set_variant_parameter(Model& model, const std::string& name, double value);
 
 /// "string.damping=0.001,0.01" → name and values; throws InputError.

@@ -1,7 +1,8 @@
 #pragma once
 // The selected element's parameters, with their units and ranges, and the stability margin
-// of its rate level. A value is checked before it is applied: one out of range, or one that
-// would make the scheme unstable, is refused with the reason and the model is left as it was.
+// of its rate level; on the bow (its module, contact or mass), where it meets the string. A value
+// is checked before it is applied: one out of range, or one that would make the scheme unstable, is
+// refused with the reason and the model is left as it was.
 
 #include <QString>
 #include <QWidget>
@@ -25,9 +26,13 @@ class Inspector : public QWidget {
     const QString& warning() const { return warning_; }
     /// Applies a typed value as the field would; returns whether it was applied.
     bool edit(const QString& parameter, double value);
+    /// Moves the bow to β as its field would (ModelDocument::move_bow()); returns whether it
+    /// moved.
+    bool move_bow(double beta);
 
   private:
     void rebuild();
+    void add_bow_position(const std::string& id);
     void show_stability();
 
     ModelDocument& document_;

@@ -22,8 +22,10 @@ class ModelDocument : public QObject {
 
   public:
     /// Parameter: a fresh edit, validated. ReplayedParameter: one set back or again by undo
-    /// or redo, to a value that was not checked against the model as it is now.
-    enum class Change { Structure, Parameter, ReplayedParameter, Layout };
+    /// or redo, to a value that was not checked against the model as it is now. BowMove: the
+    /// bow module moved along the string (`bow.position`), which a playing string goes on
+    /// through; `element` is the bow module.
+    enum class Change { Structure, Parameter, ReplayedParameter, Layout, BowMove };
 
     explicit ModelDocument(QObject* parent = nullptr);
 
@@ -50,6 +52,12 @@ class ModelDocument : public QObject {
     /// change keeps a valid model valid: listeners need not check it again.
     void edit_parameter(const ParameterName& name, double value);
     void set_rate(const QString& id, const QString& rate);
+    /// Moves the bow module to the string mass nearest β, the bow's distance from the bridge
+    /// over the string's length (set_variant_parameter()'s `bow.position`); a β nearest the mass
+    /// it bows already changes nothing (no undo step). Throws InputError
+    /// for a β outside (0, 0.5), a model that is not a bowed chain of masses s1…sN, or a move
+    /// that leaves the model invalid at the running rate.
+    void move_bow(double beta);
 
     /// The selected MATs and the links among them, as model JSON (for the clipboard).
     QString copy(const QStringList& ids) const;
