@@ -309,41 +309,6 @@ TEST(GraphLabelsTest, ALongStringFitsWithReadableLabelsAndZoomingInShowsThemAll)
     EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-graph-zoomed.png")));
 }
 
-// No id label covers another node: the body's modes hang in a column under the bridge, where
-// labels under their nodes would hide them (and the nodes the labels: "bridge" read "cridge"),
-// so those stand beside their nodes. The bridge keeps its label.
-TEST(GraphLabelsTest, NoLabelCoversAnotherNode) {
-    ModelDocument document;
-    GraphView view(document);
-    view.resize(1100, 200);  // as wide as the studio's graph, about
-    view.show();
-    document.reset(load_model_file(test::resource("models/bowed-string-220.json")));
-    view.fit();
-    QApplication::processEvents();
-    std::vector<QRectF> nodes;
-    std::vector<const QGraphicsItem*> node_items;
-    for (const auto* label : view.labels()) {
-        node_items.push_back(label->parentItem());
-        nodes.push_back(view.mapFromScene(label->parentItem()->sceneBoundingRect())
-                            .boundingRect()
-                            .adjusted(2, 2, -2, -2));  // its rim, which a label may touch
-    }
-    bool bridge_labelled = false;
-    for (const auto* label : view.labels()) {
-        if (!label->isVisible()) continue;
-        bridge_labelled = bridge_labelled || label->text() == "bridge";
-        const QRectF box = view.label_on_screen(*label);
-        for (std::size_t n = 0; n < nodes.size(); ++n)
-            if (node_items[n] != label->parentItem()) {
-                EXPECT_FALSE(box.intersects(nodes[n])) << label->text().toStdString() << " covers "
-                                                       << view.labels()[n]->text().toStdString();
-            }
-    }
-    EXPECT_TRUE(bridge_labelled);
-    QDir().mkpath(ARCHET_ARTIFACT_DIR);
-    EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-graph-body.png")));
-}
-
 TEST_F(Editor, AnEditedModelSavesAndReloadsIdentically) {
     document.add_mat(MatKind::Oscillator, {50, 60});
     document.edit_parameter({"k2", "stiffness"}, 250);

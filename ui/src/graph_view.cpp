@@ -20,14 +20,12 @@ constexpr double kRadius = 9;
 // and a click this near a node or link picks it.
 constexpr double kMinNodePixels = 3.5;
 constexpr double kPickPixels = 8;
-constexpr int kIdRole = 0;    // QGraphicsItem::data key holding the element id
-constexpr int kNodeRole = 1;  // and one marking the nodes (MATs, bow modules, a finger)
+constexpr int kIdRole = 0;  // QGraphicsItem::data key holding the element id
 // Labels keep their size on screen whatever the zoom; where they would overlap, some are
 // hidden (the tooltip and the selection still show every id).
 constexpr int kLabelPixels = 11;
 constexpr int kBadgePixels = 9;
 constexpr double kLabelGap = 4;  // px between two labels shown side by side
-constexpr int kNodeRim = 2;      // px of a node's box on screen a label may touch
 
 // A label drawn at screen size under its node, centred on it.
 QGraphicsSimpleTextItem* add_label(QGraphicsItem* node, const QString& text, int pixels,
@@ -42,36 +40,6 @@ QGraphicsSimpleTextItem* add_label(QGraphicsItem* node, const QString& text, int
     const QRectF box = label->boundingRect();
     label->setTransform(QTransform::fromTranslate(-box.width() / 2, below < 0 ? -box.height() : 0));
     return label;
-}
-
-// Where an id label may stand by its node: under it, centred (first) or starting or ending at
-// it, or beside it, level with it.
-enum class LabelSide { Below, BelowRight, BelowLeft, Left, Right };
-
-void place_label(QGraphicsSimpleTextItem& label, LabelSide side) {
-    const QRectF box = label.boundingRect();
-    switch (side) {
-        case LabelSide::Below:
-            label.setPos(0, kRadius + 1);
-            label.setTransform(QTransform::fromTranslate(-box.width() / 2, 0));
-            return;
-        case LabelSide::BelowRight:
-            label.setPos(0, kRadius + 1);
-            label.setTransform(QTransform::fromTranslate(-4, 0));
-            return;
-        case LabelSide::BelowLeft:
-            label.setPos(0, kRadius + 1);
-            label.setTransform(QTransform::fromTranslate(4 - box.width(), 0));
-            return;
-        case LabelSide::Left:
-            label.setPos(-kRadius - 1, 0);
-            label.setTransform(QTransform::fromTranslate(-box.width() - 2, -box.height() / 2));
-            return;
-        case LabelSide::Right:
-            label.setPos(kRadius + 1, 0);
-            label.setTransform(QTransform::fromTranslate(2, -box.height() / 2));
-            return;
-    }
 }
 
 QColor colour_of(MatKind kind) {
@@ -158,7 +126,6 @@ void GraphView::add_finger(const Lia& finger, const std::map<std::string, QPoint
     auto* item = scene_.addPolygon(fingertip, QPen(ink), QColor(170, 200, 235));
     item->setPos(tip);
     nodes_.push_back(item);
-    item->setData(kNodeRole, true);
     item->setData(kIdRole, QString::fromStdString(finger.id));
     item->setFlag(QGraphicsItem::ItemIsSelectable);
     item->setFlag(QGraphicsItem::ItemIgnoresTransformations);  // a fingertip at any zoom
@@ -201,7 +168,6 @@ void GraphView::rebuild() {
                 scene_.addPolygon(diamond, QPen(QColor(180, 60, 40)), QColor(240, 180, 160));
             item->setPos(centre);
             nodes_.push_back(item);
-            item->setData(kNodeRole, true);
             item->setData(kIdRole, QString::fromStdString(l.id));
             item->setFlag(QGraphicsItem::ItemIsSelectable);
             item->setToolTip(tr("%1: bow–string module").arg(QString::fromStdString(l.id)));
@@ -225,7 +191,6 @@ void GraphView::rebuild() {
         node->setPen(QPen(palette().color(QPalette::Base), 1.5));
         node->setPos(at[m.id]);
         nodes_.push_back(node);
-        node->setData(kNodeRole, true);
         node->setData(kIdRole, QString::fromStdString(m.id));
         node->setFlags(QGraphicsItem::ItemIsSelectable | QGraphicsItem::ItemIsMovable);
         node->setToolTip(tr("%1: %2 at rate %3")
@@ -252,54 +217,23 @@ void GraphView::scale_nodes() {
 }
 
 // Shows the labels that fit on screen without overlapping: the selected nodes' ids first, then
-// the rate badges (few, and they say what the colours do not), then the other ids in model
-// order. An id stands under its node, or beside it where that would cover another node (the
-// body's modes hang in a column under the bridge, the hand's points above the bow).
+// the others in model order, then the rate badges.
 void GraphView::thin_labels() {
     std::vector<QGraphicsSimpleTextItem*> order;
     for (QGraphicsSimpleTextItem* label : labels_)
         if (label->parentItem()->isSelected()) order.push_back(label);
     const std::size_t always_shown = order.size();
-    order.insert(order.end(), badges_.begin(), badges_.end());
-    const std::size_t badges_end = order.size();
     for (QGraphicsSimpleTextItem* label : labels_)
         if (!label->parentItem()->isSelected()) order.push_back(label);
+    order.insert(order.end(), badges_.begin(), badges_.end());
     std::vector<QRectF> shown;
-    auto free = [&](const QRectF& box) {
-        return std::none_of(shown.begin(), shown.end(),
-                            [&](const QRectF& other) { return other.intersects(box); });
-    };
     for (std::size_t i = 0; i < order.size(); ++i) {
-        QGraphicsSimpleTextItem& label = *order[i];
-        const bool badge = i >= always_shown && i < badges_end;
-        bool placed = false;
-        for (const LabelSide side : {LabelSide::Below, LabelSide::BelowRight, LabelSide::BelowLeft,
-                                     LabelSide::Left, LabelSide::Right}) {
-            if (!badge) place_label(label, side);
-            const QRectF box = label_on_screen(label).adjusted(-kLabelGap, 0, kLabelGap, 0);
-            if (free(box) && (badge || !covers_a_node(label_on_screen(label), label))) {
-                placed = true;
-                break;
-            }
-            if (badge) break;  // a rate badge stands above its node or not at all
-        }
-        if (!placed && !badge) place_label(label, LabelSide::Below);
-        label.setVisible(placed || i < always_shown);
-        if (label.isVisible())
-            shown.push_back(label_on_screen(label).adjusted(-kLabelGap, 0, kLabelGap, 0));
+        const QRectF box = label_on_screen(*order[i]).adjusted(-kLabelGap, 0, kLabelGap, 0);
+        const bool free = std::none_of(shown.begin(), shown.end(),
+                                       [&](const QRectF& other) { return other.intersects(box); });
+        order[i]->setVisible(free || i < always_shown);
+        if (order[i]->isVisible()) shown.push_back(box);
     }
-}
-
-// Whether a label's box on screen covers a node other than its own (as drawn, less its rim: a
-// label's box has room above its letters).
-bool GraphView::covers_a_node(const QRectF& box, const QGraphicsSimpleTextItem& label) const {
-    const QPolygonF area = mapToScene(box.toAlignedRect());
-    for (const QGraphicsItem* item : scene_.items(area, Qt::IntersectsItemBoundingRect)) {
-        if (item == label.parentItem() || !item->data(kNodeRole).toBool()) continue;
-        const QRectF node = mapFromScene(item->sceneBoundingRect()).boundingRect();
-        if (node.adjusted(kNodeRim, kNodeRim, -kNodeRim, -kNodeRim).intersects(box)) return true;
-    }
-    return false;
 }
 
 QRectF GraphView::label_on_screen(const QGraphicsSimpleTextItem& label) const {

@@ -72,7 +72,6 @@ class GraphView : public QGraphicsView {
     void zoom_about(double scale, QPoint view_point);
     void fit_scene_rect();
     void thin_labels();
-    bool covers_a_node(const QRectF& box, const QGraphicsSimpleTextItem& label) const;
     void scale_nodes();
     void pan_by(QPoint pixels);
     QRectF fitted_rect() const;
