@@ -64,11 +64,21 @@ void Inspector::show_element(const QString& id) {
 }
 
 bool Inspector::edit(const QString& parameter, double value) {
+    // The document checks it once: the table's range, then stability.
+    return apply([&] {
+        document_.edit_parameter({element_.toStdString(), parameter.toStdString()}, value);
+    });
+}
+
+bool Inspector::move_bow(double beta) {
+    return apply([&] { document_.move_bow(beta); });
+}
+
+bool Inspector::apply(const std::function<void()>& change) {
     warning_.clear();
     warning_label_->clear();
     try {
-        // The document checks it once: the table's range, then stability.
-        document_.edit_parameter({element_.toStdString(), parameter.toStdString()}, value);
+        change();
     } catch (const std::exception& e) {
         warning_ = tr("Not applied: %1").arg(QString::fromUtf8(e.what()));
         warning_label_->setText(warning_);
@@ -78,18 +88,20 @@ bool Inspector::edit(const QString& parameter, double value) {
     return true;
 }
 
-bool Inspector::move_bow(double beta) {
-    warning_.clear();
-    warning_label_->clear();
-    try {
-        document_.move_bow(beta);
-    } catch (const std::exception& e) {
-        warning_ = tr("Not applied: %1").arg(QString::fromUtf8(e.what()));
-        warning_label_->setText(warning_);
-        rebuild();
-        return false;
-    }
-    return true;
+// A field for a number, typed in the C locale; `typed` gets it when typing ends.
+QLineEdit* Inspector::number_field(const QString& name, const QString& text,
+                                   const std::function<void(double)>& typed) {
+    auto* field = new QLineEdit(text);
+    field->setObjectName(name);
+    auto* validator = new QDoubleValidator(field);
+    validator->setLocale(QLocale::c());
+    field->setValidator(validator);
+    connect(field, &QLineEdit::editingFinished, this, [field, typed] {
+        bool ok = false;
+        const double value = QLocale::c().toDouble(field->text(), &ok);
+        if (ok) typed(value);
+    });
+    return field;
 }
 
 // β on the bow's module, its contact point and its own mass, for a bowed chain of masses
@@ -102,20 +114,14 @@ void Inspector::add_bow_position(const std::string& id) {
     if (!bow || (id != bow->id && id != bow->bowed_string() && id != bow->bow())) return;
     const double beta = bow_position(model);
     if (beta <= 0) return;
-    auto* field = new QLineEdit(QString::number(beta, 'g', 6));
-    field->setObjectName("bow.position");
-    auto* validator = new QDoubleValidator(field);
-    validator->setLocale(QLocale::c());
-    field->setValidator(validator);
+    QLineEdit* field =
+        number_field("bow.position", QString::number(beta, 'g', 6), [this, beta](double value) {
+            if (value != beta) move_bow(value);
+        });
     field->setToolTip(
         tr("bow.position: where the bow meets the string, from the bridge over the "
            "string's length, above 0 to below 0.5; the bow moves to the nearest "
            "string mass and a playing string goes on"));
-    connect(field, &QLineEdit::editingFinished, this, [this, field, beta] {
-        bool ok = false;
-        const double value = QLocale::c().toDouble(field->text(), &ok);
-        if (ok && value != beta) move_bow(value);
-    });
     form_->addRow(tr("bow position β"), field);
 }
 
@@ -154,19 +160,14 @@ void Inspector::rebuild() {
     form_->addRow(tr("Rate level"), rates);
     for (const ParameterInfo& p : element_parameters(model, id)) {
         const QString name = QString::fromStdString(p.name);
-        auto* field = new QLineEdit(QString::number(get_parameter(model, {id, p.name}), 'g', 10));
-        field->setObjectName(name);
-        auto* validator = new QDoubleValidator(field);
-        validator->setLocale(QLocale::c());
-        field->setValidator(validator);
+        QLineEdit* field =
+            number_field(name, QString::number(get_parameter(model, {id, p.name}), 'g', 10),
+                         [this, name](double value) {
+                             const double now = get_parameter(
+                                 document_.model(), {element_.toStdString(), name.toStdString()});
+                             if (value != now) edit(name, value);
+                         });
         field->setToolTip(range_text(p));
-        connect(field, &QLineEdit::editingFinished, this, [this, field, name] {
-            bool ok = false;
-            const double value = QLocale::c().toDouble(field->text(), &ok);
-            const double now =
-                get_parameter(document_.model(), {element_.toStdString(), name.toStdString()});
-            if (ok && value != now) edit(name, value);
-        });
         const QString unit = QString::fromStdString(p.unit);
         form_->addRow(unit.isEmpty() ? name : tr("%1 (%2)").arg(name, unit), field);
         // This element's own margin: how far the value may go before the scheme turns unstable.

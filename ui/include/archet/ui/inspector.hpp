@@ -6,9 +6,11 @@
 
 #include <QString>
 #include <QWidget>
+#include <functional>
 
 class QFormLayout;
 class QLabel;
+class QLineEdit;
 
 namespace archet::ui {
 
@@ -31,6 +33,10 @@ class Inspector : public QWidget {
     bool move_bow(double beta);
 
   private:
+    /// Makes `change`, or says why it was refused and shows the value still in force.
+    bool apply(const std::function<void()>& change);
+    QLineEdit* number_field(const QString& name, const QString& text,
+                            const std::function<void(double)>& typed);
     void rebuild();
     void add_bow_position(const std::string& id);
     void show_stability();
