@@ -1,17 +1,21 @@
-// The modal string: one damped oscillator per mode of the free chain, modal points at its
-// ends and the bowing point. Its partials are the chaplet's, and bowed with the same gesture
-// it plays the same sound to round-off.
+// The modal string: one damped oscillator per mode of the free chain, a modal point at each of
+// its masses. Its partials are the chaplet's; bowed with the same gesture it plays the same
+// sound and takes the same shape to round-off; the points nothing reads cost its step nothing.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "archet/analysis/modal_analysis.hpp"
 #include "archet/builders/bowed_string.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_validation.hpp"
+#include "archet/model/string_points.hpp"
 #include "archet/physics/compiled_model.hpp"
+#include "archet/physics/simulation.hpp"
 #include "test_support.hpp"
 
 namespace archet {
@@ -62,6 +66,40 @@ TEST_P(ModalString, PlaysTheSameAsTheChaplet) {
     EXPECT_LT(difference, 1e-6);
 }
 
+// Every mass of the chain has its point in the modal form, which is where the chaplet's mass
+// is when both are bowed alike: the string's shape, drawn from either, is the same.
+TEST_P(ModalString, EveryMassHasAPointThatMovesAsTheChapletsMassDoes) {
+    const Model chain_model = build(GetParam(), Structure::Chain);
+    Model modal_model = build(GetParam(), Structure::Modal);
+    modal_model.gesture = chain_model.gesture, modal_model.output_gain = chain_model.output_gain;
+    const std::vector<std::string> shape = string_points(chain_model);
+    ASSERT_EQ(string_points(modal_model), shape) << "the bridge, s1…sN and the nut in both";
+    // The bow is as wide as its hair: the modal string's point at the bowed mass is where the
+    // bow touches (¼, ½, ¼ of the shapes there and beside it), the chaplet's contact point.
+    const Lia* bow = chain_model.find_lia("friction");
+    ASSERT_NE(bow, nullptr);
+    const std::string centre = bowed_centre(chain_model, *bow);
+    ASSERT_NE(centre, bow->bowed_string()) << "a contact point, not the mass";
+    Simulation chain(compile(chain_model));
+    Simulation modal(compile(modal_model));
+    double difference = 0, peak = 0;
+    for (int i = 1; i <= 48000; ++i) {
+        chain.step(), modal.step();
+        if (i % 4800 != 0) continue;
+        for (const std::string& id : shape) {
+            const MatSlot mass =
+                chain.model().mat_slots.at(id == centre ? bow->bowed_string() : id);
+            const double x = chain.position(mass), v = chain.velocity(mass);
+            const MatSlot point = modal.model().mat_slots.at(id);
+            difference = std::max(difference, std::abs(modal.position(point) - x));
+            difference = std::max(difference, std::abs(modal.velocity(point) - v) / 48000);
+            peak = std::max(peak, std::abs(x));
+        }
+    }
+    EXPECT_GT(peak, 1e-5) << "the string was bowed";
+    EXPECT_LT(difference, 1e-6 * peak);
+}
+
 INSTANTIATE_TEST_SUITE_P(Tunings, ModalString,
                          ::testing::Values(Tuning::Homogeneous, Tuning::Harmonic));
 
@@ -75,6 +113,29 @@ TEST(ModalString, FileRoundTripsAndNamesItsParts) {
     EXPECT_EQ(point->kind, MatKind::ModalPoint);
     EXPECT_EQ(point->modes.size(), 60u);
     EXPECT_NE(text.find("\"type\": \"modal_point\""), std::string::npos);
+}
+
+// The points nothing reads cost the step nothing: they are left out of it, and the string
+// plays the same bytes as with its read points alone.
+TEST(ModalString, TheStepLeavesOutThePointsNothingReads) {
+    const Model model = build(Tuning::Homogeneous, Structure::Modal, 220, true);
+    const CompiledModel compiled = compile(model);
+    const CompiledLevel& audio = compiled.levels[0];
+    EXPECT_EQ(audio.modal_points.size(), 3u) << "s1 and s60 (their links) and s7 (the bow)";
+    EXPECT_EQ(audio.derived_points.size(), 57u);
+    for (const CompiledModalPoint& p : audio.derived_points)
+        EXPECT_GT(p.index, audio.size - audio.fixed_after) << "held after the chain loop's MATs";
+
+    Model read_alone = model;
+    std::erase_if(read_alone.mats, [](const Mat& m) {
+        return m.kind == MatKind::ModalPoint && m.id != "s1" && m.id != "s7" && m.id != "s60";
+    });
+    Simulation with_all(compiled), with_read(compile(read_alone));
+    std::vector<double> a(48000), b(48000);
+    ASSERT_EQ(with_all.run(a), a.size());
+    ASSERT_EQ(with_read.run(b), b.size());
+    EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.01) << "it was bowed";
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0);
 }
 
 TEST(ModalString, ValidationNamesABadModalPoint) {

@@ -21,6 +21,7 @@
 #include <set>
 #include <thread>
 
+#include "archet/builders/bowed_string.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/link/engine_link.hpp"
 #include "archet/model/string_points.hpp"
@@ -295,6 +296,72 @@ TEST(EngineProcess, LoadsPlaysStreamsAndTakesParameters) {
     ASSERT_TRUE(
         wait_for([&] { return link.liveness() == EngineLink::Liveness::Exited; }, kGenerous));
     EXPECT_EQ(link.exit_status(), 0);
+}
+
+// A string in modal form is drawn whole, as a chain is: the engine sends the positions of its
+// bridge, of every mass's point and of its nut, though the step moves only the three points
+// that its end links and its bow read (the others are summed from the modes for the frame).
+TEST(EngineProcess, DrawsTheShapeOfAStringInModalForm) {
+    BowedStringOptions o;
+    o.pitch = 220, o.structure = Structure::Modal, o.paper = true;  // 60 masses
+    const Model modal = build_bowed_string(o);
+    const std::vector<std::string> points = string_points(modal);
+    ASSERT_EQ(points.size(), 62u) << "the bridge, s1…s60 and the nut";
+    std::size_t friction = modal.probes.size();
+    for (std::size_t p = 0; p < modal.probes.size(); ++p)
+        if (modal.probes[p].kind == ProbeKind::FrictionForce) friction = p;
+    ASSERT_LT(friction, modal.probes.size());
+    const auto dir = test::temp_dir("engine-modal-shape");
+    write_file_atomically(dir / "modal.json", format_model(modal));
+
+    EngineLink link(options());
+    link.start();
+    ASSERT_TRUE(
+        wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, kGenerous));
+    std::vector<std::string> errors;
+    ASSERT_TRUE(wait_status(link, StatusKind::ModelLoaded,
+                            link.load_model((dir / "modal.json").string()), errors))
+        << (errors.empty() ? "" : errors[0]);
+    link.play();
+    auto probes = link.probes();
+    std::uint64_t frames = 0;
+    double max_friction = 0;
+    ASSERT_TRUE(wait_for(
+        [&] {
+            const double t = static_cast<double>(frames) / 48000;
+            link.gesture(0.1 * std::max(0.0, t - 0.05), std::min(0.0015, t * 0.05));
+            link.heartbeat();
+            ProbeFrame f;
+            while (probes.try_pop(f)) {
+                ++frames;
+                max_friction = std::max(max_friction, std::abs(f.values[friction]));
+            }
+            return frames >= 24000 && max_friction > 0.01;
+        },
+        kGenerous))
+        << frames << " frames, friction " << max_friction;
+
+    // A frame of the bowed string, every point away from its rest (that each is where the
+    // chaplet's mass would be, modal_structure_test.cpp holds).
+    auto shapes = link.shapes();
+    ShapeFrame shape{};
+    double peak = 0;
+    ASSERT_TRUE(wait_for(
+        [&] {
+            link.heartbeat();
+            while (shapes.try_pop(shape)) {
+                peak = 0;
+                for (std::uint32_t i = 0; i < shape.count; ++i)
+                    peak = std::max(peak, std::abs(double{shape.positions[i]}));
+                if (shape.count == points.size() && peak > 0) return true;
+            }
+            return false;
+        },
+        kGenerous))
+        << "the last frame has " << shape.count << " points, of peak " << peak;
+    int moved = 0;
+    for (std::uint32_t i = 1; i + 1 < shape.count; ++i) moved += shape.positions[i] != 0.0f;
+    EXPECT_EQ(moved, 60) << "each mass's point, not only the three the step moves";
 }
 
 TEST(EngineProcess, ARunawayIsMutedWithinABlockAndTheModelReset) {

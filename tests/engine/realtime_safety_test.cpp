@@ -32,6 +32,7 @@
 #include "archet/builders/bowed_string.hpp"
 #include "archet/engine/realtime_engine.hpp"
 #include "archet/link/engine_link.hpp"
+#include "archet/model/string_points.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/modal_point_position.hpp"
 #include "archet/physics/simulation.hpp"
@@ -354,15 +355,20 @@ TEST(RealtimeSafety, StepProbesAndOutputMakeNoForbiddenCall) {
 }
 
 // A string in modal form: its points of a term per mode sum their modes (modal_kernel.cpp) and
-// take the bow's and the bridges' forces at every step, a mode's mass set while it plays moves
+// take the bow's and the bridges' forces at every step, its shape is read as the engine draws
+// it (the points the step leaves out summed then), a mode's mass set while it plays moves
 // its points' responses, and the engine's swap to a recompiled model (continue_from) reads the
 // points afresh from their modes, on a marked thread.
 TEST(RealtimeSafety, AModalStringStepsWithoutAForbiddenCall) {
     BowedStringOptions o;
     o.structure = Structure::Modal;
     o.masses = 40;
-    const CompiledModel compiled = compile(build_bowed_string(o));
+    const Model model = build_bowed_string(o);
+    const CompiledModel compiled = compile(model);
     Simulation sim(compiled), swapped_in(compiled);
+    std::vector<MatSlot> shape;  // as the engine draws it: most are points the step leaves out
+    for (const std::string& id : string_points(model)) shape.push_back(compiled.mat_slots.at(id));
+    ASSERT_GT(compiled.levels[0].derived_points.size(), 30u);
     std::vector<double> scratch(sim.state_size());
     const auto mode_mass = sim.model().resolve_parameter({"mode3", "mass"});
     std::size_t longest_point = 0;
@@ -375,6 +381,8 @@ TEST(RealtimeSafety, AModalStringStepsWithoutAForbiddenCall) {
         for (int i = 0; i < 24000; ++i) {
             sim.step();
             sink += sim.output(), loudest = std::max(loudest, std::abs(sim.output()));
+            if (i % 960 == 0)
+                for (MatSlot s : shape) sink += sim.position(s);
         }
         sim.write_slot(mode_mass, 1.01 * sim.read_slot(mode_mass));
         for (int i = 0; i < 480; ++i) sim.step(), sink += sim.output();

@@ -285,13 +285,12 @@ double force_for_press(const Model& model, double press) {
 }
 
 double bow_position(const Model& model) {
-    const Lia& bow = bow_module(model);
-    int n = 0, bowed = 0;
-    for (int i = 1; model.find_mat("s" + std::to_string(i)); ++i) {
-        n = i;
-        if (bowed_centre(model, bow) == "s" + std::to_string(i)) bowed = i;
-    }
-    return n > 0 && bowed > 0 ? static_cast<double>(bowed) / (n + 1) : 0.0;
+    const std::string centre = bowed_centre(model, bow_module(model));
+    const std::vector<std::string> masses = string_masses(model);
+    const auto bowed = std::find(masses.begin(), masses.end(), centre);
+    return bowed == masses.end() ? 0.0
+                                 : static_cast<double>(bowed - masses.begin() + 1) /
+                                       static_cast<double>(masses.size() + 1);
 }
 
 SchellengLines schelleng_lines(const Model& model) {

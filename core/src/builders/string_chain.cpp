@@ -276,7 +276,10 @@ void make_modal(Model& model, int n, int bowed, const StringLosses& losses, bool
         modes.push_back(m);
         for (int i = 0; i < n; ++i) shapes[i].push_back(phi[i]);
     }
-    for (int i : {1, bowed, n}) {
+    // Every mass of the chain has its point, so the string's shape can be drawn; the step
+    // moves only those something reads (the ends' links, the bow): the others are summed from
+    // the modes when asked (CompiledLevel::derived_points).
+    for (int i = 1; i <= n; ++i) {
         Mat p;
         p.id = mass_id(i), p.kind = MatKind::ModalPoint, p.rate = "audio";
         for (int mode = 0; mode < n; ++mode) p.modes.push_back("mode" + std::to_string(mode + 1));

@@ -45,11 +45,15 @@ double drawn_apart(const Model& model, const std::string& from, const std::strin
 
 }  // namespace
 
-// The chain's masses s1…sN, in order, as the bowed-string builder names them.
+// The chain's masses s1…sN, in order, as the bowed-string builder names them (a string in
+// modal form has points there, not masses: none).
 std::vector<std::string> string_masses(const Model& model) {
     std::vector<std::string> masses;
-    for (int i = 1; model.find_mat("s" + std::to_string(i)); ++i)
-        masses.push_back("s" + std::to_string(i));
+    for (int i = 1;; ++i) {
+        const Mat* m = model.find_mat("s" + std::to_string(i));
+        if (!m || (m->kind != MatKind::Mass && m->kind != MatKind::Oscillator)) break;
+        masses.push_back(m->id);
+    }
     return masses;
 }
 

@@ -46,6 +46,18 @@ std::vector<std::string> string_points(const Model& model) {
             neighbours.emplace(l.from, l.to);
             neighbours.emplace(l.to, l.from);
         }
+        // The points of one modal structure are one body: a string in modal form is its
+        // points, which share its modes and no link. Each joins the first point reading each
+        // of its modes.
+        std::map<std::string, std::string> first_reader;
+        std::set<std::pair<std::string, std::string>> joined;
+        for (const auto& m : model.mats)
+            if (m.kind == MatKind::ModalPoint)
+                for (const auto& mode : m.modes) {
+                    const std::string& first = first_reader.emplace(mode, m.id).first->second;
+                    if (first != m.id && joined.insert({first, m.id}).second)
+                        neighbours.emplace(first, m.id), neighbours.emplace(m.id, first);
+                }
         std::vector<std::string> frontier(bowed.begin(), bowed.end());
         reached = bowed;
         while (!frontier.empty()) {

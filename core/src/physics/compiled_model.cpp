@@ -10,6 +10,7 @@
 #include "archet/physics/chain_kernel.hpp"
 #include "archet/physics/modal_point_position.hpp"
 #include "archet/physics/uniform_span.hpp"
+#include "derived_points.hpp"
 
 namespace archet {
 
@@ -104,10 +105,10 @@ std::vector<int> order_level(const Model& model, const std::set<std::string>& le
     return order;
 }
 
-// One compiled level's arrays, its MATs in `order` (chains consecutive), each chain link
-// stored with the MAT before it.
+// One compiled level's arrays, its MATs in `order` (chains consecutive, the derived points
+// last), each chain link stored with the MAT before it.
 void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<int>& order,
-                const std::vector<int>& chain_link_after) {
+                const std::vector<int>& chain_link_after, const std::vector<bool>& derived) {
     CompiledLevel& lv = c.levels[li];
     lv.size = static_cast<int>(order.size());
     const int storage = lv.size + 2;
@@ -123,6 +124,7 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
     lv.chain_element.assign(storage, -1);
     lv.element_of.assign(storage, -1);
     lv.modal_point_of.assign(storage, -1);
+    lv.derived_point_of.assign(storage, -1);
     for (int k = 0; k < lv.size; ++k) {
         const int s = k + 1;
         const Mat& m = model.mats[order[k]];
@@ -134,7 +136,9 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
         // Initial state: x[0] = position, x[−1] = position − velocity·T.
         lv.x()[s] = m.position;
         lv.x_prev()[s] = movable ? m.position - m.velocity * lv.dt : m.position;
-        lv.fixed_after = m.kind == MatKind::Fixed ? lv.fixed_after + 1 : 0;
+        const bool held = m.kind == MatKind::Fixed || derived[order[k]];
+        lv.fixed_after = held ? lv.fixed_after + 1 : 0;
+        lv.derived_after += derived[order[k]];
         if (m.kind == MatKind::Oscillator) {
             lv.grounds.push_back({s, order[k]});
             lv.ground_k[s] = m.stiffness, lv.ground_zdt[s] = m.damping / lv.dt;
@@ -169,7 +173,7 @@ void fill_level(CompiledModel& c, const Model& model, int li, const std::vector<
 // Rate levels that share a divider tick together: they compile into one level, so links
 // between them are ordinary links rather than rate crossings. Fastest first.
 void compile_levels(CompiledModel& c, const Model& model, std::map<std::string, int>& level_index,
-                    std::vector<bool>& is_chain_link) {
+                    std::vector<bool>& is_chain_link, const std::vector<bool>& derived) {
     MatIndex mat_index;
     mat_index.reserve(model.mats.size());
     for (int i = 0; i < static_cast<int>(model.mats.size()); ++i) mat_index[model.mats[i].id] = i;
@@ -185,14 +189,16 @@ void compile_levels(CompiledModel& c, const Model& model, std::map<std::string, 
         lv.inverse_divider = 1.0 / divider;
         lv.dt = divider / c.sample_rate;
         std::vector<int> chain_link_after;
-        const std::vector<int> order =
+        std::vector<int> order =
             order_level(model, ids, mat_index, is_chain_link, chain_link_after);
-        fill_level(c, model, li, order, chain_link_after);
+        hold_derived_points_last(order, chain_link_after, derived);
+        fill_level(c, model, li, order, chain_link_after, derived);
     }
 }
 
-void compile_modal_points(CompiledModel& c, const Model& model) {
-    for (const auto& m : model.mats) {
+void compile_modal_points(CompiledModel& c, const Model& model, const std::vector<bool>& derived) {
+    for (std::size_t i = 0; i < model.mats.size(); ++i) {
+        const Mat& m = model.mats[i];
         if (m.kind != MatKind::ModalPoint) continue;
         const MatSlot p = slot_of(c, m.id);
         CompiledLevel& lv = c.levels[p.level];
@@ -204,6 +210,13 @@ void compile_modal_points(CompiledModel& c, const Model& model) {
         for (std::size_t k = 1; k < point.modes.size(); ++k)
             in_order = in_order && point.modes[k] == point.modes[0] + static_cast<int>(k);
         point.first_mode = in_order ? point.modes[0] : -1;
+        if (derived[i]) {  // held where it is now
+            const double position = modal_point_position(point, lv.x()) + 0.0;
+            for (auto& buffer : lv.buffer) buffer[p.index] = position;
+            lv.derived_point_of[p.index] = static_cast<int>(lv.derived_points.size());
+            lv.derived_points.push_back(std::move(point));
+            continue;
+        }
         // A modal point has no position of its own: it is where its modes put it.
         lv.x()[p.index] = modal_point_position(point, lv.x());
         lv.x_prev()[p.index] = modal_point_position(point, lv.x_prev());
@@ -396,8 +409,9 @@ CompiledModel compile(const Model& model, double sample_rate) {
     c.output_gain = model.output_gain;
     std::map<std::string, int> level_index;
     std::vector<bool> is_chain_link(model.lias.size(), false);
-    compile_levels(c, model, level_index, is_chain_link);
-    compile_modal_points(c, model);
+    const std::vector<bool> derived = find_derived_points(model);
+    compile_levels(c, model, level_index, is_chain_link, derived);
+    compile_modal_points(c, model, derived);
     compile_links(c, model, level_index, is_chain_link);
     plan_modal_moves(c);
     compile_readouts(c, model);

@@ -120,7 +120,7 @@ void Simulation::apply_controls() {
                 signal = gesture_axis(c.axis, time());
                 break;
             case Control::Source::Position:
-                signal = position(c.position_of);
+                signal = stored_position(c.position_of);
                 break;
         }
         write_slot(c.target, std::clamp(c.offset + c.gain * signal, c.minimum, c.maximum));

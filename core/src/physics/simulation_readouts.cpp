@@ -4,9 +4,24 @@
 #include <algorithm>
 #include <cmath>
 
+#include "archet/physics/modal_point_position.hpp"
 #include "archet/physics/simulation.hpp"
 
 namespace archet {
+
+double Simulation::position(MatSlot s) const {
+    const CompiledLevel& lv = model_.levels[s.level];
+    const int derived = lv.derived_point_of[s.index];
+    return derived < 0 ? lv.x()[s.index] : modal_point_position(lv.derived_points[derived], lv.x());
+}
+
+double Simulation::velocity(MatSlot s) const {
+    const CompiledLevel& lv = model_.levels[s.level];
+    const int derived = lv.derived_point_of[s.index];
+    if (derived < 0) return stored_velocity(s);
+    const CompiledModalPoint& p = lv.derived_points[derived];
+    return (modal_point_position(p, lv.x()) - modal_point_position(p, lv.x_prev())) / lv.dt;
+}
 
 GestureSample Simulation::device_force() const {
     GestureSample f{};
@@ -19,10 +34,10 @@ GestureSample Simulation::device_force() const {
 double Simulation::probe(std::size_t i) const {
     const CompiledProbe& p = model_.probes[i];
     switch (p.kind) {
-        case ProbeKind::Position:
-            return position(p.mat);
+        case ProbeKind::Position:  // (a MAT a probe reads is stepped)
+            return stored_position(p.mat);
         case ProbeKind::Velocity:
-            return velocity(p.mat);
+            return stored_velocity(p.mat);
         case ProbeKind::Force:
             return model_.levels[p.mat.level].watched_force[p.watched];
         case ProbeKind::NormalForce:

@@ -83,15 +83,17 @@ void find_uniform_runs(CompiledLevel& lv) {
             lv.uniform.keep(UniformSpan(first, last, chain_coefficients(lv, first)));
     };
     // The unlinked runs are left out: the chain loop moves their MATs by their own update.
+    // Over the chain loop's MATs alone: it stops before the held ones at the end.
+    const int last_moving = lv.size - lv.fixed_after;
     auto unlinked = lv.unlinked.begin();
     int start = 1;
-    for (int s = 1; s <= lv.size; ++s) {
+    for (int s = 1; s <= last_moving; ++s) {
         if (unlinked != lv.unlinked.end() && s == unlinked->first) {  // (the run before ended)
             s = unlinked->last, start = s + 1;
             ++unlinked;
             continue;
         }
-        const bool run_ends = s == lv.size ||
+        const bool run_ends = s == last_moving ||
                               (unlinked != lv.unlinked.end() && s + 1 == unlinked->first) ||
                               !(chain_coefficients(lv, s + 1) == chain_coefficients(lv, start));
         if (!run_ends) continue;

@@ -19,8 +19,8 @@ namespace archet {
 enum class Tuning { Homogeneous, Harmonic };
 
 /// Chain: the chaplet of masses and links. Modal: its exact modal equivalent, one damped
-/// oscillator per mode of the free chain, with modal points (equivalent MATs) at its two ends
-/// and the bowing point, so the same bridges and bow attach to it.
+/// oscillator per mode of the free chain, with a modal point (an equivalent MAT) at each of its
+/// masses, so the same bridges and bow attach to it and its shape can be drawn.
 enum class Structure { Chain, Modal };
 
 struct BowedStringOptions {

@@ -72,10 +72,10 @@ void fold_ground(CompiledLevel& level, int s);
 /// fold_ground() for every MAT of the level.
 void fold_grounds(CompiledLevel& level);
 
-/// Whether the chain loop also takes the level's grounds: when most MATs have one (a string
-/// with losses to its rest points); a few bridges do not repay the loop's extra flops.
+/// Whether the chain loop also takes the level's grounds: when most MATs it steps have one (a
+/// string with losses to its rest points); a few bridges do not repay the loop's extra flops.
 inline bool grounds_in_chain_loop(const CompiledLevel& level) {
-    return 2 * level.grounds.size() > static_cast<std::size_t>(level.size);
+    return 2 * level.grounds.size() > static_cast<std::size_t>(level.size - level.derived_after);
 }
 
 /// Writes x[n+1] of every MAT of the level into `xn` from its chain links (and its grounds,

@@ -125,9 +125,11 @@ struct CompiledLevel {
     double inverse_divider = 1;
     double dt = 0;
     int size = 0;  ///< MATs at this level
-    /// How many MATs at the end of the storage are fixed: the chain loop stops before them,
-    /// since they hold their position in all three buffers (it would write it back unchanged).
+    /// How many MATs at the end of the storage are held: the chain loop stops before them. The
+    /// fixed MATs hold their position in all three buffers (the loop would write it back
+    /// unchanged); the derived points after them are not stepped at all.
     int fixed_after = 0;
+    int derived_after = 0;  ///< of those, the derived points (the last ones)
     /// Zeros after the storage of the arrays the chain loop uses (positions, chain links,
     /// T²/m, the folded grounds): it updates whole vectors of up to 8 MATs, the last one running
     /// past the last MAT into these zeros (which it leaves zero), and reads the vector after each
@@ -164,6 +166,12 @@ struct CompiledLevel {
     std::vector<int> fingers;  ///< indices into CompiledModel::fingers
     std::vector<CompiledModalPoint> modal_points;
     std::vector<int> modal_point_of;  ///< storage index → index into modal_points, or −1
+    /// Modal points that nothing in the step reads (no link, bow, finger, control, probe or
+    /// output: a modal string's points between its ends and its bow, kept to draw its shape).
+    /// The step leaves them out, at the end of the storage; Simulation::position() sums their
+    /// modes when asked. Their buffers hold where they were when compiled.
+    std::vector<CompiledModalPoint> derived_points;
+    std::vector<int> derived_point_of;  ///< storage index → index into derived_points, or −1
     /// Storage index → 1 for a plain mass that a modal point reads as one of its modes: after
     /// a finger's or a bow's push on one, the points follow their modes (plan_modal_moves()).
     std::vector<char> read_by_point;

@@ -114,7 +114,9 @@ class Simulation {
     double probe(std::size_t i) const;
     std::size_t probe_count() const { return model_.probes.size(); }
 
-    double position(MatSlot s) const { return model_.levels[s.level].x()[s.index]; }
+    /// Where MAT s is after the last step, and its velocity over that step: a modal point the
+    /// step leaves out (CompiledLevel::derived_points) summed from its modes.
+    double position(MatSlot s) const;
     double velocity(MatSlot s) const;
 
     /// Stored energy in its discrete-consistent form (J): kinetic ½m((x[n]−x[n−1])/T)², plus
@@ -141,6 +143,9 @@ class Simulation {
     void compute_link_forces(CompiledLevel& level);
     void compute_hand_link_forces();
     void compute_cross_link_forces();
+    /// position() and velocity() of a MAT the step moves, as stored.
+    double stored_position(MatSlot s) const { return model_.levels[s.level].x()[s.index]; }
+    double stored_velocity(MatSlot s) const;
     /// Where a cross-rate link sees its end s: at its tick in this step, or at the next step's.
     double seen_position(MatSlot s, CompiledCrossLink::EndRate rate, bool between_steps) const;
     void integrate(CompiledLevel& level);
@@ -223,7 +228,7 @@ inline bool Simulation::count_down_levels(int first) {
 }
 
 // Inline: the output and the probes read it at every step.
-inline double Simulation::velocity(MatSlot s) const {
+inline double Simulation::stored_velocity(MatSlot s) const {
     const CompiledLevel& lv = model_.levels[s.level];
     return (lv.x()[s.index] - lv.x_prev()[s.index]) / lv.dt;
 }
@@ -243,10 +248,10 @@ inline double Simulation::output() const {
         double v = 0;
         switch (o.signal) {
             case Output::Signal::Position:
-                v = position(o.mat);
+                v = stored_position(o.mat);
                 break;
             case Output::Signal::Velocity:
-                v = velocity(o.mat);
+                v = stored_velocity(o.mat);
                 break;
             case Output::Signal::Force:
                 v = model_.levels[o.mat.level].watched_force[o.watched];
@@ -290,7 +295,7 @@ inline void Simulation::push_pair(CompiledLevel& lv, int a, double force_a, int 
 // ahead), so a gesture track or a simulated slower mass are followed without delay.
 inline double Simulation::seen_position(MatSlot s, CompiledCrossLink::EndRate rate,
                                         bool between_steps) const {
-    if (rate != CompiledCrossLink::EndRate::Slower) return position(s);
+    if (rate != CompiledCrossLink::EndRate::Slower) return stored_position(s);
     const CompiledLevel& lv = model_.levels[s.level];
     double done = period_done_[s.level];
     if (between_steps) {  // the next step's view
