@@ -14,6 +14,7 @@
 #include <QGraphicsView>
 #include <QHeaderView>
 #include <QLabel>
+#include <QScrollBar>
 #include <QSignalSpy>
 #include <QStandardPaths>
 #include <QTableWidget>
@@ -298,15 +299,58 @@ TEST(GraphLabelsTest, ALongStringFitsWithReadableLabelsAndZoomingInShowsThemAll)
                       Qt::NoModifier, Qt::NoScrollPhase, false);
     QApplication::sendEvent(view.viewport(), &wheel);
     expect_readable_and_apart("zoomed in");
-    int in_view = 0;
-    for (const auto* label : view.labels()) {
-        const QPoint node = view.mapFromScene(label->parentItem()->scenePos());
-        if (!view.viewport()->rect().contains(node)) continue;
-        ++in_view;
-        EXPECT_TRUE(label->isVisible()) << label->text().toStdString();
-    }
-    EXPECT_GE(in_view, 3);
+    auto expect_every_node_in_view_labelled = [&](const char* when) {
+        int in_view = 0;
+        for (const auto* label : view.labels()) {
+            const QPoint node = view.mapFromScene(label->parentItem()->scenePos());
+            if (!view.viewport()->rect().contains(node)) continue;
+            ++in_view;
+            EXPECT_TRUE(label->isVisible()) << when << ": " << label->text().toStdString();
+        }
+        EXPECT_GE(in_view, 3) << when;
+    };
+    expect_every_node_in_view_labelled("zoomed in");
     EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-graph-zoomed.png")));
+
+    // Scrolled to the nut: the labels there, off screen until now, are placed and shown.
+    view.horizontalScrollBar()->setValue(view.horizontalScrollBar()->maximum());
+    QApplication::processEvents();
+    expect_readable_and_apart("scrolled");
+    expect_every_node_in_view_labelled("scrolled");
+}
+
+// No id label covers another node: the body's modes hang in a column under the bridge, where
+// labels under their nodes would hide them (and the nodes the labels: "bridge" read "cridge"),
+// so those stand beside their nodes. The bridge keeps its label.
+TEST(GraphLabelsTest, NoLabelCoversAnotherNode) {
+    ModelDocument document;
+    GraphView view(document);
+    view.resize(1100, 200);  // about as wide as the studio's graph
+    view.show();
+    document.reset(load_model_file(test::resource("models/bowed-string-220.json")));
+    view.fit();
+    QApplication::processEvents();
+    std::vector<QRectF> nodes;
+    for (const auto* label : view.labels())
+        nodes.push_back(view.mapFromScene(label->parentItem()->sceneBoundingRect())
+                            .boundingRect()
+                            .adjusted(2, 2, -2, -2));  // its rim, which a label may touch
+    bool bridge_labelled = false;
+    int beside = 0;
+    for (const auto* label : view.labels()) {
+        if (!label->isVisible()) continue;
+        bridge_labelled = bridge_labelled || label->text() == "bridge";
+        const QRectF box = view.label_on_screen(*label);
+        beside += box.top() < view.mapFromScene(label->parentItem()->scenePos()).y();
+        for (std::size_t n = 0; n < nodes.size(); ++n)
+            if (view.labels()[n] != label)
+                EXPECT_FALSE(box.intersects(nodes[n])) << label->text().toStdString() << " covers "
+                                                       << view.labels()[n]->text().toStdString();
+    }
+    EXPECT_TRUE(bridge_labelled);
+    EXPECT_GT(beside, 0) << "some stand beside their nodes";
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-graph-body.png")));
 }
 
 TEST_F(Editor, AnEditedModelSavesAndReloadsIdentically) {

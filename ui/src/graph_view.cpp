@@ -5,8 +5,10 @@
 #include <QGraphicsSimpleTextItem>
 #include <QKeyEvent>
 #include <QMouseEvent>
+#include <QScrollBar>
 #include <algorithm>
 #include <map>
+#include <optional>
 
 #include "archet/model/finger_contact.hpp"
 #include "archet/ui/model_document.hpp"
@@ -25,7 +27,11 @@ constexpr int kIdRole = 0;  // QGraphicsItem::data key holding the element id
 // hidden (the tooltip and the selection still show every id).
 constexpr int kLabelPixels = 11;
 constexpr int kBadgePixels = 9;
-constexpr double kLabelGap = 4;  // px between two labels shown side by side
+constexpr double kLabelGap = 4;              // px between two labels shown side by side
+constexpr double kLabelBelow = kRadius + 1;  // scene units from a node's centre to its id
+constexpr double kNodeRim = 2;               // px of a node's box on screen that a label may touch
+constexpr double kNodeCell = 32;             // px, the side of a cell of the nodes' grid on screen
+constexpr double kNear = 80;  // px around the viewport whose nodes' labels are placed
 
 // A label drawn at screen size under its node, centred on it.
 QGraphicsSimpleTextItem* add_label(QGraphicsItem* node, const QString& text, int pixels,
@@ -93,6 +99,8 @@ GraphView::GraphView(ModelDocument& document, QWidget* parent)
         fitting_ = true;
         fit();
     });
+    for (QScrollBar* bar : {horizontalScrollBar(), verticalScrollBar()})
+        connect(bar, &QScrollBar::valueChanged, this, [this] { schedule_thin_labels(); });
     connect(&scene_, &QGraphicsScene::selectionChanged, this, [this] {
         thin_labels();
         emit selection_changed(selected_ids());
@@ -139,7 +147,8 @@ void GraphView::rebuild() {
     const QStringList keep = selected_ids();
     const QSignalBlocker quiet(&scene_);
     scene_.clear();
-    labels_.clear(), badges_.clear(), nodes_.clear();
+    labels_.clear(), label_sides_.clear(), label_nodes_.clear(), badges_.clear();
+    nodes_.clear();
     rubber_line_ = nullptr;
     const Model& model = document_.model();
     std::map<std::string, QPointF> at;
@@ -197,7 +206,9 @@ void GraphView::rebuild() {
                              .arg(QString::fromStdString(m.id), to_string(m.kind),
                                   QString::fromStdString(m.rate)));
         labels_.push_back(add_label(node, QString::fromStdString(m.id), kLabelPixels,
-                                    palette().color(QPalette::Text), kRadius + 1));
+                                    palette().color(QPalette::Text), kLabelBelow));
+        label_sides_.push_back(LabelSide::Below);
+        label_nodes_.push_back(nodes_.size() - 1);
         const QString badge = rate_badge(model, m.rate);
         if (!badge.isEmpty())
             badges_.push_back(add_label(node, badge, kBadgePixels, QColor(230, 140, 30), -kRadius));
@@ -217,23 +228,81 @@ void GraphView::scale_nodes() {
 }
 
 // Shows the labels that fit on screen without overlapping: the selected nodes' ids first, then
-// the others in model order, then the rate badges.
+// the others in model order, then the rate badges. An id stands under its node and is hidden
+// where it would overlap a label shown before it; where under it would cover another node, it
+// stands beside or above it (graph_label_layout.hpp). Only the nodes on screen or near it are
+// looked at: a scroll places the labels again (schedule_thin_labels()).
 void GraphView::thin_labels() {
-    std::vector<QGraphicsSimpleTextItem*> order;
-    for (QGraphicsSimpleTextItem* label : labels_)
-        if (label->parentItem()->isSelected()) order.push_back(label);
-    const std::size_t always_shown = order.size();
-    for (QGraphicsSimpleTextItem* label : labels_)
-        if (!label->parentItem()->isSelected()) order.push_back(label);
-    order.insert(order.end(), badges_.begin(), badges_.end());
-    std::vector<QRectF> shown;
-    for (std::size_t i = 0; i < order.size(); ++i) {
-        const QRectF box = label_on_screen(*order[i]).adjusted(-kLabelGap, 0, kLabelGap, 0);
-        const bool free = std::none_of(shown.begin(), shown.end(),
-                                       [&](const QRectF& other) { return other.intersects(box); });
-        order[i]->setVisible(free || i < always_shown);
-        if (order[i]->isVisible()) shown.push_back(box);
+    const QTransform view = viewportTransform();
+    const QRectF near = QRectF(viewport()->rect()).adjusted(-kNear, -kNear, kNear, kNear);
+    const QRectF near_in_scene = mapToScene(near.toAlignedRect()).boundingRect();
+    NodeBoxes nodes(near, kNodeCell);
+    std::vector<QTransform> to_screen(nodes_.size());
+    std::vector<char> nearby(nodes_.size(), 0);
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+        if (!near_in_scene.contains(nodes_[i]->scenePos())) continue;
+        nearby[i] = 1;
+        to_screen[i] = nodes_[i]->deviceTransform(view);
+        nodes.add(nodes_[i], to_screen[i]
+                                 .mapRect(nodes_[i]->boundingRect())
+                                 .adjusted(kNodeRim, kNodeRim, -kNodeRim, -kNodeRim));
     }
+    std::vector<std::size_t> order;  // indices into labels_
+    for (std::size_t i = 0; i < labels_.size(); ++i)
+        if (labels_[i]->parentItem()->isSelected()) order.push_back(i);
+    const std::size_t always_shown = order.size();
+    for (std::size_t i = 0; i < labels_.size(); ++i)
+        if (!labels_[i]->parentItem()->isSelected()) order.push_back(i);
+    std::vector<QRectF> shown;
+    auto free = [&](const QRectF& box) {
+        return std::none_of(shown.begin(), shown.end(),
+                            [&](const QRectF& other) { return other.intersects(box); });
+    };
+    auto spaced = [](const QRectF& box) { return box.adjusted(-kLabelGap, 0, kLabelGap, 0); };
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        QGraphicsSimpleTextItem& label = *labels_[order[k]];
+        const std::size_t node = label_nodes_[order[k]];
+        if (!nearby[node]) {
+            label.setVisible(false);
+            continue;
+        }
+        auto box_on = [&](LabelSide side) {
+            return label_box(label, to_screen[node], side, kLabelBelow);
+        };
+        std::optional<LabelSide> side;
+        if (free(spaced(box_on(LabelSide::Below)))) {
+            if (!nodes.covers_another(box_on(LabelSide::Below), label.parentItem()))
+                side = LabelSide::Below;
+            for (std::size_t i = 0; !side && i < std::size(kLabelSidesBeside); ++i) {
+                const QRectF box = box_on(kLabelSidesBeside[i]);
+                if (free(spaced(box)) && !nodes.covers_another(box, label.parentItem()))
+                    side = kLabelSidesBeside[i];
+            }
+        }
+        LabelSide& placed = label_sides_[order[k]];
+        const LabelSide wanted = side.value_or(LabelSide::Below);
+        if (wanted != placed) place_label(label, wanted, kLabelBelow), placed = wanted;
+        label.setVisible(side.has_value() || k < always_shown);
+        if (label.isVisible()) shown.push_back(spaced(box_on(wanted)));
+    }
+    for (QGraphicsSimpleTextItem* badge : badges_) {
+        const QRectF box = spaced(label_on_screen(*badge));
+        badge->setVisible(free(box));
+        if (badge->isVisible()) shown.push_back(box);
+    }
+}
+
+// One pass after the scroll bars have settled: a zoom about a point moves both.
+void GraphView::schedule_thin_labels() {
+    if (thin_labels_pending_) return;
+    thin_labels_pending_ = true;
+    QMetaObject::invokeMethod(
+        this,
+        [this] {
+            thin_labels_pending_ = false;
+            thin_labels();
+        },
+        Qt::QueuedConnection);
 }
 
 QRectF GraphView::label_on_screen(const QGraphicsSimpleTextItem& label) const {

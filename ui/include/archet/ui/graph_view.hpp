@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "archet/model/model.hpp"
+#include "archet/ui/graph_label_layout.hpp"
 
 class QGraphicsSimpleTextItem;
 
@@ -72,6 +73,7 @@ class GraphView : public QGraphicsView {
     void zoom_about(double scale, QPoint view_point);
     void fit_scene_rect();
     void thin_labels();
+    void schedule_thin_labels();
     void scale_nodes();
     void pan_by(QPoint pixels);
     QRectF fitted_rect() const;
@@ -92,7 +94,10 @@ class GraphView : public QGraphicsView {
     bool panning_ = false;
     bool panned_ = false;  ///< the background drag moved the view (else it was a click)
     bool fitting_ = true;  ///< follows the view's size until the user zooms or pans
+    bool thin_labels_pending_ = false;
     std::vector<QGraphicsSimpleTextItem*> labels_;  ///< the MATs' ids
+    std::vector<LabelSide> label_sides_;            ///< where each id stands by its node
+    std::vector<std::size_t> label_nodes_;          ///< and its node, in nodes_
     std::vector<QGraphicsSimpleTextItem*> badges_;  ///< their rate levels, where not audio
     std::vector<QGraphicsItem*> nodes_;  ///< MATs and bow modules, kept a least size on screen
     QRectF graph_bounds_;                ///< the nodes and links, labels left out
