@@ -14,16 +14,6 @@ namespace archet {
 
 using namespace ipc;
 
-namespace {
-
-const Lia* bow_module_of(const Model& model) {
-    for (const auto& l : model.lias)
-        if (l.kind == LiaKind::BowFriction) return &l;
-    return nullptr;
-}
-
-}  // namespace
-
 // A performer for the model just loaded; a model MIDI cannot bow is
 // said once and then not played from MIDI.
 void ControlThread::nrt_prepare_performer() {
@@ -73,8 +63,8 @@ void ControlThread::nrt_move_bow(double beta, const std::optional<CommandFrame>&
         bow_wanted_ = 0;
         Model moved = current_model_;
         set_variant_parameter(moved, "bow.position", beta);
-        const Lia* bow = bow_module_of(moved);
-        const Lia* was = bow_module_of(current_model_);
+        const Lia* bow = first_bow(moved);
+        const Lia* was = first_bow(current_model_);
         if (!bow || !was || bowed_centre(moved, *bow) == bowed_centre(current_model_, *was)) return;
         validate_model(moved);
         auto loaded =

@@ -246,5 +246,18 @@ TEST(Compare, BowPositionMovesTheBowAndItsProbes) {
     EXPECT_EQ(model.find_lia("bow_hold")->damping, 10.0) << "the hand's links are not the string";
 }
 
+// With two bow modules, β moves the one the pad, OSC and MIDI bow with and the studio shows:
+// the first (first_bow()). It moved the last, while the engine moved the first.
+TEST(Compare, BowPositionMovesTheFirstBowAsThePadPlaysIt) {
+    Model model = load_model_file(test::resource("models/bowed-string-220-paper.json"));
+    Lia second = *model.find_lia("friction");
+    second.id = "second_bow", second.to = "s40";
+    model.lias.push_back(second);
+    set_variant_parameter(model, "bow.position", 0.2);
+    EXPECT_EQ(first_bow(model)->id, "friction");
+    EXPECT_EQ(model.find_lia("friction")->to, "s12") << "round(0.2 · 61)";
+    EXPECT_EQ(model.find_lia("second_bow")->to, "s40") << "the other bow stays where it was";
+}
+
 }  // namespace
 }  // namespace archet

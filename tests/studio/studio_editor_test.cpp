@@ -342,10 +342,11 @@ TEST(GraphLabelsTest, NoLabelCoversAnotherNode) {
         bridge_labelled = bridge_labelled || label->text() == "bridge";
         const QRectF box = view.label_on_screen(*label);
         beside += box.top() < view.mapFromScene(label->parentItem()->scenePos()).y();
-        for (std::size_t n = 0; n < nodes.size(); ++n)
-            if (view.labels()[n] != label)
-                EXPECT_FALSE(box.intersects(nodes[n])) << label->text().toStdString() << " covers "
-                                                       << view.labels()[n]->text().toStdString();
+        for (std::size_t n = 0; n < nodes.size(); ++n) {
+            if (view.labels()[n] == label) continue;
+            EXPECT_FALSE(box.intersects(nodes[n])) << label->text().toStdString() << " covers "
+                                                   << view.labels()[n]->text().toStdString();
+        }
     }
     EXPECT_TRUE(bridge_labelled);
     EXPECT_GT(beside, 0) << "some stand beside their nodes";

@@ -108,9 +108,7 @@ QLineEdit* Inspector::number_field(const QString& name, const QString& text,
 // s1…sN (bow_position() is 0 for any other: a modal string has no masses to move to).
 void Inspector::add_bow_position(const std::string& id) {
     const Model& model = document_.model();
-    const Lia* bow = nullptr;
-    for (const Lia& l : model.lias)
-        if (l.kind == LiaKind::BowFriction) bow = &l;
+    const Lia* bow = first_bow(model);
     if (!bow || (id != bow->id && id != bow->bowed_string() && id != bow->bow())) return;
     const double beta = bow_position(model);
     if (beta <= 0) return;

@@ -26,8 +26,7 @@ namespace {
 QString unplayable_reason(const Model& model) {
     const bool hand = std::any_of(model.mats.begin(), model.mats.end(),
                                   [](const Mat& m) { return m.kind == MatKind::Gesture; });
-    const bool bow = std::any_of(model.lias.begin(), model.lias.end(),
-                                 [](const Lia& l) { return l.kind == LiaKind::BowFriction; });
+    const bool bow = first_bow(model) != nullptr;
     if (!hand)
         return QObject::tr(
             "This model has no hand (gesture point): the pad has nothing to move. "

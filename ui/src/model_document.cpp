@@ -269,9 +269,7 @@ void ModelDocument::move_bow(double beta) {
         const RunningRate at(after, running_rate_);
         validate_model(after);
     }
-    QString bow;
-    for (const Lia& l : after.lias)
-        if (l.kind == LiaKind::BowFriction) bow = QString::fromStdString(l.id);
+    const QString bow = QString::fromStdString(first_bow(after)->id);  // (the move needs one)
     push(tr("Move the bow to β = %1").arg(beta, 0, 'g', 4), std::move(after), Change::BowMove, bow,
          "position");
 }

@@ -33,9 +33,7 @@ std::optional<ComparisonRun> render_variant(const Model& model, const Gesture& g
     Model variant = model;
     set_variant_parameter(variant, parameter, value);
     validate_model(variant);
-    const Lia* bow = nullptr;
-    for (const auto& l : variant.lias)
-        if (l.kind == LiaKind::BowFriction) bow = &l;
+    const Lia* bow = first_bow(variant);
     if (!bow) throw InputError(variant.name, "has no bow module to compare bowing with");
 
     ComparisonRun run;

@@ -86,8 +86,7 @@ double spectral_centroid(const std::vector<double>& x, double fs) {
 }
 
 const Lia& bow_module(const Model& model) {
-    for (const auto& l : model.lias)
-        if (l.kind == LiaKind::BowFriction) return l;
+    if (const Lia* bow = first_bow(model)) return *bow;
     throw InputError(model.name, "has no bow module (bow_friction) to map");
 }
 

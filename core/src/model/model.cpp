@@ -1,6 +1,7 @@
 #include "archet/model/model.hpp"
 
 #include <algorithm>
+#include <utility>
 
 namespace archet {
 
@@ -48,6 +49,16 @@ const Lia* first_finger(const Model& model) {
     for (const auto& l : model.lias)
         if (l.kind == LiaKind::Finger) return &l;
     return nullptr;
+}
+
+const Lia* first_bow(const Model& model) {
+    for (const auto& l : model.lias)
+        if (l.kind == LiaKind::BowFriction) return &l;
+    return nullptr;
+}
+
+Lia* first_bow(Model& model) {
+    return const_cast<Lia*>(first_bow(std::as_const(model)));
 }
 
 const char* to_string(LiaKind k) {

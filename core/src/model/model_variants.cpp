@@ -88,9 +88,7 @@ void set_variant_parameter(Model& model, const std::string& name, double value) 
     if (name == "bow.position") {
         if (!(value > 0 && value < 0.5)) throw InputError(name, "β must be in (0, 0.5)");
         const auto masses = string_masses(model);
-        Lia* bow = nullptr;
-        for (auto& l : model.lias)
-            if (l.kind == LiaKind::BowFriction) bow = &l;
+        Lia* bow = first_bow(model);
         if (!bow || masses.size() < 3)
             throw InputError(name, "needs a bowed chain of masses s1…sN (a built bowed string)");
         const int n = static_cast<int>(masses.size());

@@ -154,6 +154,10 @@ struct Model {
 /// The model's first finger (a link of kind Finger), or null: what the pad's keys, OSC and
 /// MIDI move.
 const Lia* first_finger(const Model& model);
+/// The model's first bow module (a link of kind BowFriction), or null: what the pad, OSC and
+/// MIDI bow with, and what `bow.position` moves.
+const Lia* first_bow(const Model& model);
+Lia* first_bow(Model& model);
 
 const char* to_string(MatKind);
 const char* to_string(LiaKind);
