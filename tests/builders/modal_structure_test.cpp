@@ -115,6 +115,25 @@ TEST(ModalString, FileRoundTripsAndNamesItsParts) {
     EXPECT_NE(text.find("\"type\": \"modal_point\""), std::string::npos);
 }
 
+// The string's shape is the bowed string alone: a second point on the body's modes (a second
+// string's bridge, say) shares modes with the bridge, not with the bowed string.
+TEST(ModalString, TheShapeLeavesOutOtherPointsOfTheBody) {
+    for (Structure structure : {Structure::Chain, Structure::Modal}) {
+        Model model = build(Tuning::Homogeneous, structure, 220, false);
+        const std::vector<std::string> shape = string_points(model);
+        Mat other_bridge = *model.find_mat("bridge");  // a point on the body's modes
+        other_bridge.id = "other_bridge";
+        Mat other_string;
+        other_string.id = "other_string", other_string.mass = 1e-4;
+        Lia link;
+        link.id = "other_link", link.kind = LiaKind::Spring, link.stiffness = 100;
+        link.from = "other_bridge", link.to = "other_string";
+        model.mats.push_back(other_bridge), model.mats.push_back(other_string);
+        model.lias.push_back(link);
+        EXPECT_EQ(string_points(model), shape);
+    }
+}
+
 // The points nothing reads cost the step nothing: they are left out of it, and the string
 // plays the same bytes as with its read points alone.
 TEST(ModalString, TheStepLeavesOutThePointsNothingReads) {

@@ -203,12 +203,20 @@ TEST(ModalPoint, AContinuedModalStringPlaysOnToTheSameBits) {
 // A take of an older revision re-renders to the byte unless its model computes differently
 // now: the modal string's long points do since revision 3; the shipped string's (a bridge on
 // six body modes, a bow over three masses) do not, nor does its bow since revision 4 (a take
-// re-renders with the friction's divisions).
+// re-renders with the friction's divisions). Since revision 6 the modal string's points that
+// nothing reads are not counted in the grounds' choice: its grounds join the chain loop.
 TEST(ModalPoint, OnlyPointsOfMoreThanEightTermsComputeDifferentlySinceRevision3) {
-    static_assert(kSchemeRevision == 5);
-    const CompiledModel modal = compile(build_bowed_string(modal_string()));
+    static_assert(kSchemeRevision == 6);
+    const Model modal_model = build_bowed_string(modal_string());
+    const CompiledModel modal = compile(modal_model);
     EXPECT_EQ(scheme_change_since(modal, 2), SchemeChange::Rounding);
-    EXPECT_EQ(scheme_change_since(modal, 3), SchemeChange::None);
+    EXPECT_EQ(scheme_change_since(modal, 5), SchemeChange::Rounding) << "its grounds, since 6";
+    EXPECT_EQ(scheme_change_since(modal, 6), SchemeChange::None);
+    Model read_points_alone = modal_model;  // as the builder made it before revision 6
+    std::erase_if(read_points_alone.mats, [](const Mat& m) {
+        return m.kind == MatKind::ModalPoint && m.id != "s1" && m.id != "s7" && m.id != "s60";
+    });
+    EXPECT_EQ(scheme_change_since(compile(read_points_alone), 3), SchemeChange::None);
     BowedStringOptions shipped;
     shipped.pitch = 220;
     const CompiledModel string = compile(build_bowed_string(shipped));

@@ -31,7 +31,9 @@ constexpr double kLabelGap = 4;              // px between two labels shown side
 constexpr double kLabelBelow = kRadius + 1;  // scene units from a node's centre to its id
 constexpr double kNodeRim = 2;               // px of a node's box on screen that a label may touch
 constexpr double kNodeCell = 32;             // px, the side of a cell of the nodes' grid on screen
-constexpr double kNear = 80;  // px around the viewport whose nodes' labels are placed
+// px around the viewport within which a node's label is placed: a label stands up to a node's
+// radius at the largest zoom (80 px) and its own width from the node's centre.
+constexpr double kNear = 200;
 
 // A label drawn at screen size under its node, centred on it.
 QGraphicsSimpleTextItem* add_label(QGraphicsItem* node, const QString& text, int pixels,
@@ -111,6 +113,7 @@ GraphView::GraphView(ModelDocument& document, QWidget* parent)
 // The scene deselects its items as it goes: nobody should hear of it by then.
 GraphView::~GraphView() {
     scene_.blockSignals(true);
+    for (QScrollBar* bar : {horizontalScrollBar(), verticalScrollBar()}) bar->disconnect(this);
 }
 
 void GraphView::set_tool(Tool tool, MatKind mat, LiaKind link) {
@@ -233,6 +236,7 @@ void GraphView::scale_nodes() {
 // stands beside or above it (graph_label_layout.hpp). Only the nodes on screen or near it are
 // looked at: a scroll places the labels again (schedule_thin_labels()).
 void GraphView::thin_labels() {
+    thin_labels_pending_ = false;
     const QTransform view = viewportTransform();
     const QRectF near = QRectF(viewport()->rect()).adjusted(-kNear, -kNear, kNear, kNear);
     const QRectF near_in_scene = mapToScene(near.toAlignedRect()).boundingRect();
@@ -292,15 +296,15 @@ void GraphView::thin_labels() {
     }
 }
 
-// One pass after the scroll bars have settled: a zoom about a point moves both.
+// One pass after the scroll bars have settled (a zoom about a point moves both), unless one
+// has run since (thin_labels() clears the flag).
 void GraphView::schedule_thin_labels() {
     if (thin_labels_pending_) return;
     thin_labels_pending_ = true;
     QMetaObject::invokeMethod(
         this,
         [this] {
-            thin_labels_pending_ = false;
-            thin_labels();
+            if (thin_labels_pending_) thin_labels();
         },
         Qt::QueuedConnection);
 }

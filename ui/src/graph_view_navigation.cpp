@@ -111,6 +111,7 @@ void GraphView::wheelEvent(QWheelEvent* e) {
 void GraphView::resizeEvent(QResizeEvent* e) {
     QGraphicsView::resizeEvent(e);
     if (fitting_) fit();
+    schedule_thin_labels();  // nodes a larger view now shows (their labels were left out)
 }
 
 // Ctrl+= (or Ctrl++), Ctrl+- and Ctrl+0 when the view has the keys (the main window's View

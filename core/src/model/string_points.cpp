@@ -1,5 +1,6 @@
 #include "archet/model/string_points.hpp"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -46,20 +47,20 @@ std::vector<std::string> string_points(const Model& model) {
             neighbours.emplace(l.from, l.to);
             neighbours.emplace(l.to, l.from);
         }
-        // The points of one modal structure are one body: a string in modal form is its
-        // points, which share its modes and no link. Each joins the first point reading each
-        // of its modes.
-        std::map<std::string, std::string> first_reader;
-        std::set<std::pair<std::string, std::string>> joined;
-        for (const auto& m : model.mats)
-            if (m.kind == MatKind::ModalPoint)
-                for (const auto& mode : m.modes) {
-                    const std::string& first = first_reader.emplace(mode, m.id).first->second;
-                    if (first != m.id && joined.insert({first, m.id}).second)
-                        neighbours.emplace(first, m.id), neighbours.emplace(m.id, first);
-                }
-        std::vector<std::string> frontier(bowed.begin(), bowed.end());
+        // A bowed modal point is a string in modal form: its points share its modes and no
+        // link, and are the string too (not the points of other bodies the string touches,
+        // such as a second bridge on the body's modes).
         reached = bowed;
+        std::set<std::string> bowed_modes;
+        for (const auto& id : bowed)
+            if (const Mat* m = model.find_mat(id); m && m->kind == MatKind::ModalPoint)
+                bowed_modes.insert(m->modes.begin(), m->modes.end());
+        for (const auto& m : model.mats)
+            if (m.kind == MatKind::ModalPoint &&
+                std::any_of(m.modes.begin(), m.modes.end(),
+                            [&](const std::string& mode) { return bowed_modes.count(mode); }))
+                reached.insert(m.id);
+        std::vector<std::string> frontier(reached.begin(), reached.end());
         while (!frontier.empty()) {
             const std::string at = frontier.back();
             frontier.pop_back();

@@ -34,17 +34,27 @@ bool reads_a_point_stale_before_revision_5(const CompiledModel& model) {
     return false;
 }
 
+// Before revision 6, the modal points nothing reads were stepped, and counted in the choice
+// of taking the grounds in the chain loop (the decision made for the others' arithmetic).
+bool grounds_choice_moved_in_revision_6(const CompiledLevel& level) {
+    const bool counting_all = 2 * level.grounds.size() > static_cast<std::size_t>(level.size);
+    return level.derived_after > 0 && grounds_in_chain_loop(level) != counting_all;
+}
+
 }  // namespace
 
 SchemeChange scheme_change_since(const CompiledModel& model, int revision) {
-    static_assert(kSchemeRevision == 5, "say here what the new revision changes");
+    static_assert(kSchemeRevision == 6, "say here what the new revision changes");
     // 5: a finger or a bow moves the points reading the plain mass it pushes.
     if (revision < 5 && reads_a_point_stale_before_revision_5(model)) return SchemeChange::Fix;
-    // 4: the friction's reciprocals; a take re-renders with the divisions it was played with
-    // (Simulation::compute_as_of()), so nothing differs.
     const auto any_level = [&](bool (*changed)(const CompiledLevel&)) {
         return std::any_of(model.levels.begin(), model.levels.end(), changed);
     };
+    // 6: the grounds' choice counts only the MATs the chain loop steps.
+    if (revision < 6 && any_level(grounds_choice_moved_in_revision_6))
+        return SchemeChange::Rounding;
+    // 4: the friction's reciprocals; a take re-renders with the divisions it was played with
+    // (Simulation::compute_as_of()), so nothing differs.
     // 3: a modal point of more than eight terms sums them in interleaved partial sums.
     if (revision < 3 && any_level(has_long_modal_point)) return SchemeChange::Rounding;
     // 2: grounds folded into the chain loop's update.

@@ -72,9 +72,10 @@ double Simulation::gesture_axis(GestureAxis axis, double t) const {
 }
 
 void Simulation::compute_as_of(int revision) {
-    static_assert(kSchemeRevision == 5, "say here how to compute as an older revision, if it can");
+    static_assert(kSchemeRevision == 6, "say here how to compute as an older revision, if it can");
     // Revision 5 is a fix (a push reaching the modal points that read its mass): not undone, and
-    // render --take says where the older take may differ (scheme_change_since()).
+    // render --take says where the older take may differ (scheme_change_since()); so is 6 (the
+    // grounds' choice, made when the model is compiled).
     if (revision < 1 || revision > kSchemeRevision)
         throw std::invalid_argument("scheme revision " + std::to_string(revision) +
                                     " is not 1 to " + std::to_string(kSchemeRevision));

@@ -16,9 +16,12 @@
 //   5  a fix, not arithmetic: a finger or a bow that pushes a plain mass a modal point reads
 //      moves that point before anything reads it (Simulation::push_pair()); before,
 //      a bow could read such a point, and a step end with it, where the push had not moved it
+//   6  a level's grounds go into the chain loop when most of the MATs it steps have one: the
+//      modal points that nothing reads, which the step now leaves out (derived points,
+//      physics/compiled_model.hpp), are no longer counted
 
 namespace archet {
 
-constexpr int kSchemeRevision = 5;
+constexpr int kSchemeRevision = 6;
 
 }  // namespace archet

@@ -1,7 +1,7 @@
 #pragma once
 // Which MATs are the string, for drawing its shape: those reached from a bowed mass through
-// the model's links, and from a modal point to the points sharing its modes (a string in modal
-// form), without crossing into a bow (its bow, pressure mass and surface), in model order. A free
+// the model's links without crossing into a bow (its bow, pressure mass and surface), in model
+// order; a bowed modal point (a string in modal form) reaches the points sharing its modes. A free
 // mass added beside the string, or the bow and the hand, is not the string. Without a bow, every
 // MAT but the gesture points.
 

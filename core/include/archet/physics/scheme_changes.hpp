@@ -11,7 +11,9 @@ namespace archet {
 /// grounds folds them into the update's coefficients; from revision 3 on, a modal point of more
 /// than eight terms sums them in interleaved partial sums (both rounding: the same physics).
 /// From revision 5 on, a finger or a bow that pushes a plain mass a modal point reads moves
-/// that point before anything reads it (a fix). Revision 4's friction is not among them: a
+/// that point before anything reads it (a fix). From revision 6 on, the choice of taking the
+/// grounds in the chain loop leaves out the modal points nothing reads (rounding, where that
+/// turns the choice). Revision 4's friction is not among them: a
 /// simulation told to compute as of an older revision (Simulation::compute_as_of()) divides as
 /// that revision did.
 enum class SchemeChange { None, Rounding, Fix };
