@@ -35,18 +35,16 @@ constexpr double kNodeCell = 32;             // px, the side of a cell of the no
 // radius at the largest zoom (80 px) and its own width from the node's centre.
 constexpr double kNear = 200;
 
-// A label drawn at screen size under its node, centred on it.
+// A label drawn at screen size on `side` of its node, `gap` scene units from its centre.
 QGraphicsSimpleTextItem* add_label(QGraphicsItem* node, const QString& text, int pixels,
-                                   const QColor& colour, double below) {
+                                   const QColor& colour, LabelSide side, double gap) {
     auto* label = new QGraphicsSimpleTextItem(text, node);
     QFont font = label->font();
     font.setPixelSize(pixels);
     label->setFont(font);
     label->setBrush(colour);
     label->setFlag(QGraphicsItem::ItemIgnoresTransformations);
-    label->setPos(0, below);
-    const QRectF box = label->boundingRect();
-    label->setTransform(QTransform::fromTranslate(-box.width() / 2, below < 0 ? -box.height() : 0));
+    place_label(*label, side, gap);
     return label;
 }
 
@@ -209,12 +207,14 @@ void GraphView::rebuild() {
                              .arg(QString::fromStdString(m.id), to_string(m.kind),
                                   QString::fromStdString(m.rate)));
         labels_.push_back(add_label(node, QString::fromStdString(m.id), kLabelPixels,
-                                    palette().color(QPalette::Text), kLabelBelow));
+                                    palette().color(QPalette::Text), LabelSide::Below,
+                                    kLabelBelow));
         label_sides_.push_back(LabelSide::Below);
         label_nodes_.push_back(nodes_.size() - 1);
         const QString badge = rate_badge(model, m.rate);
         if (!badge.isEmpty())
-            badges_.push_back(add_label(node, badge, kBadgePixels, QColor(230, 140, 30), -kRadius));
+            badges_.push_back(add_label(node, badge, kBadgePixels, QColor(230, 140, 30),
+                                        LabelSide::Above, kRadius));
     }
     graph_bounds_ = QRectF();
     for (QGraphicsItem* item : scene_.items())
