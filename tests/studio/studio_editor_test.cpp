@@ -354,6 +354,50 @@ TEST(GraphLabelsTest, NoLabelCoversAnotherNode) {
     EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-graph-body.png")));
 }
 
+// A MAT of a slower level hemmed in below and beside by other nodes stands its id above it;
+// its rate badge then stands over the id, rather than hidden under it.
+TEST(GraphLabelsTest, ARateBadgeStandsOverAnIdThatTookThePlaceAbove) {
+    auto mass = [](const char* id, const char* rate, double x, double y) {
+        return std::string(R"({"id": ")") + id + R"(", "type": "mass", "rate": ")" + rate +
+               R"(", "mass": 0.001, "display": [)" + std::to_string(x) + ", " + std::to_string(y) +
+               "]}";
+    };
+    const std::string text =
+        R"({"format": "archet-model", "version": 1, "sample_rate": 48000,
+            "rates": [{"id": "audio", "divider": 1}, {"id": "haptic", "divider": 16}],
+            "masses": [)" +
+        mass("hemmed", "haptic", 0, 0) + "," + mass("under", "audio", 0, 22) + "," +
+        mass("left", "audio", -22, 0) + "," + mass("right", "audio", 22, 0) + "," +
+        mass("far_left", "audio", -400, 0) + "," + mass("far_right", "audio", 400, 0) +
+        R"(], "links": [], "outputs": [{"element": "under", "signal": "position"}]})";
+    ModelDocument document;
+    GraphView view(document);
+    view.resize(900, 300);
+    view.show();
+    document.reset(parse_model(text));
+    view.fit();
+    QApplication::processEvents();
+    ASSERT_NEAR(view.zoom(), 1.0, 0.6) << "the far nodes keep the fitted view near one to one";
+    const QGraphicsSimpleTextItem* id = nullptr;
+    for (const auto* label : view.labels())
+        if (label->text() == "hemmed") id = label;
+    ASSERT_NE(id, nullptr);
+    ASSERT_TRUE(id->isVisible());
+    const QRectF id_box = view.label_on_screen(*id);
+    const QPointF node = view.mapFromScene(id->parentItem()->scenePos());
+    ASSERT_LT(id_box.bottom(), node.y()) << "hemmed in below and beside, the id stands above";
+    ASSERT_EQ(view.badges().size(), 1u);
+    const QGraphicsSimpleTextItem& badge = *view.badges()[0];
+    EXPECT_EQ(badge.text(), "haptic");
+    EXPECT_TRUE(badge.isVisible());
+    const QRectF badge_box = view.label_on_screen(badge);
+    EXPECT_FALSE(badge_box.intersects(id_box));
+    EXPECT_LE(badge_box.bottom(), id_box.top() + 0.5) << "the badge stands over the id";
+    EXPECT_NEAR(badge_box.center().x(), node.x(), 1.0);
+    QDir().mkpath(ARCHET_ARTIFACT_DIR);
+    EXPECT_TRUE(view.grab().save(QDir(ARCHET_ARTIFACT_DIR).filePath("studio-graph-badge.png")));
+}
+
 TEST_F(Editor, AnEditedModelSavesAndReloadsIdentically) {
     document.add_mat(MatKind::Oscillator, {50, 60});
     document.edit_parameter({"k2", "stiffness"}, 250);

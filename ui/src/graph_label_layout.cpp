@@ -24,32 +24,32 @@ QPointF anchor(LabelSide side, double gap) {
     return {};
 }
 
-QPointF offset(LabelSide side, const QSizeF& size) {
+QPointF offset(LabelSide side, const QSizeF& size, double lift) {
     switch (side) {
         case LabelSide::Below:
-            return {-size.width() / 2, 0};
+            return {-size.width() / 2, lift};
         case LabelSide::Above:
-            return {-size.width() / 2, -size.height()};
+            return {-size.width() / 2, -size.height() - lift};
         case LabelSide::Left:
-            return {-size.width() - kBeside, -size.height() / 2};
+            return {-size.width() - kBeside - lift, -size.height() / 2};
         case LabelSide::Right:
-            return {kBeside, -size.height() / 2};
+            return {kBeside + lift, -size.height() / 2};
     }
     return {};
 }
 
 }  // namespace
 
-void place_label(QGraphicsSimpleTextItem& label, LabelSide side, double gap) {
-    const QPointF shift = offset(side, label.boundingRect().size());
+void place_label(QGraphicsSimpleTextItem& label, LabelSide side, double gap, double lift) {
+    const QPointF shift = offset(side, label.boundingRect().size(), lift);
     label.setPos(anchor(side, gap));
     label.setTransform(QTransform::fromTranslate(shift.x(), shift.y()));
 }
 
 QRectF label_box(const QGraphicsSimpleTextItem& label, const QTransform& node_to_screen,
-                 LabelSide side, double gap) {
+                 LabelSide side, double gap, double lift) {
     const QSizeF size = label.boundingRect().size();
-    return {node_to_screen.map(anchor(side, gap)) + offset(side, size), size};
+    return {node_to_screen.map(anchor(side, gap)) + offset(side, size, lift), size};
 }
 
 NodeBoxes::NodeBoxes(const QRectF& area, double cell)

@@ -149,6 +149,7 @@ void GraphView::rebuild() {
     const QSignalBlocker quiet(&scene_);
     scene_.clear();
     labels_.clear(), label_sides_.clear(), label_nodes_.clear(), badges_.clear();
+    badge_labels_.clear(), badge_lifts_.clear();
     nodes_.clear();
     rubber_line_ = nullptr;
     const Model& model = document_.model();
@@ -212,9 +213,12 @@ void GraphView::rebuild() {
         label_sides_.push_back(LabelSide::Below);
         label_nodes_.push_back(nodes_.size() - 1);
         const QString badge = rate_badge(model, m.rate);
-        if (!badge.isEmpty())
+        if (!badge.isEmpty()) {
             badges_.push_back(add_label(node, badge, kBadgePixels, QColor(230, 140, 30),
                                         LabelSide::Above, kRadius));
+            badge_labels_.push_back(labels_.size() - 1);
+            badge_lifts_.push_back(0);
+        }
     }
     graph_bounds_ = QRectF();
     for (QGraphicsItem* item : scene_.items())
@@ -289,10 +293,22 @@ void GraphView::thin_labels() {
         label.setVisible(side.has_value() || k < always_shown);
         if (label.isVisible()) shown.push_back(spaced(box_on(wanted)));
     }
-    for (QGraphicsSimpleTextItem* badge : badges_) {
-        const QRectF box = spaced(label_on_screen(*badge));
-        badge->setVisible(free(box));
-        if (badge->isVisible()) shown.push_back(box);
+    // A badge stands above its node, and over the node's id where the id stands there.
+    for (std::size_t b = 0; b < badges_.size(); ++b) {
+        QGraphicsSimpleTextItem& badge = *badges_[b];
+        const std::size_t id = badge_labels_[b], node = label_nodes_[id];
+        if (!nearby[node]) {
+            badge.setVisible(false);
+            continue;
+        }
+        const bool id_above = labels_[id]->isVisible() && label_sides_[id] == LabelSide::Above;
+        const double gap = id_above ? kLabelBelow : kRadius;
+        const double lift = id_above ? labels_[id]->boundingRect().height() : 0.0;
+        if (lift != badge_lifts_[b])
+            place_label(badge, LabelSide::Above, gap, lift), badge_lifts_[b] = lift;
+        const QRectF box = spaced(label_box(badge, to_screen[node], LabelSide::Above, gap, lift));
+        badge.setVisible(free(box));
+        if (badge.isVisible()) shown.push_back(box);
     }
 }
 
@@ -315,6 +331,10 @@ QRectF GraphView::label_on_screen(const QGraphicsSimpleTextItem& label) const {
 
 std::vector<const QGraphicsSimpleTextItem*> GraphView::labels() const {
     return {labels_.begin(), labels_.end()};
+}
+
+std::vector<const QGraphicsSimpleTextItem*> GraphView::badges() const {
+    return {badges_.begin(), badges_.end()};
 }
 
 QStringList GraphView::selected_ids() const {

@@ -20,12 +20,12 @@ inline constexpr LabelSide kLabelSidesBeside[] = {LabelSide::Left, LabelSide::Ri
                                                   LabelSide::Above};
 
 /// Puts an id label (a child of its node, drawn at screen size) on `side` of its node, `gap`
-/// scene units from its centre.
-void place_label(QGraphicsSimpleTextItem& label, LabelSide side, double gap);
+/// scene units from its centre and `lift` pixels further out (past another label there).
+void place_label(QGraphicsSimpleTextItem& label, LabelSide side, double gap, double lift = 0);
 
 /// Where `label` would stand on screen on `side`, its node drawn by `node_to_screen`.
 QRectF label_box(const QGraphicsSimpleTextItem& label, const QTransform& node_to_screen,
-                 LabelSide side, double gap);
+                 LabelSide side, double gap, double lift = 0);
 
 /// The boxes on screen of the nodes in and near the viewport, kept in a grid of square cells
 /// over it, to find in a few lookups which nodes a label's box would cover.

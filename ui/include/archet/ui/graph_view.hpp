@@ -52,6 +52,8 @@ class GraphView : public QGraphicsView {
     QPointF node_position(const QString& id) const;
     /// The MATs' id labels (some hidden where they would overlap) and where each is on screen.
     std::vector<const QGraphicsSimpleTextItem*> labels() const;
+    /// The rate badges of the MATs off the audio rate (hidden where they would overlap).
+    std::vector<const QGraphicsSimpleTextItem*> badges() const;
     QRectF label_on_screen(const QGraphicsSimpleTextItem& label) const;
 
   signals:
@@ -99,6 +101,8 @@ class GraphView : public QGraphicsView {
     std::vector<LabelSide> label_sides_;            ///< where each id stands by its node
     std::vector<std::size_t> label_nodes_;          ///< and its node, in nodes_
     std::vector<QGraphicsSimpleTextItem*> badges_;  ///< their rate levels, where not audio
+    std::vector<std::size_t> badge_labels_;         ///< each badge's node's id, in labels_
+    std::vector<double> badge_lifts_;    ///< px each badge stands over its place (past the id)
     std::vector<QGraphicsItem*> nodes_;  ///< MATs and bow modules, kept a least size on screen
     QRectF graph_bounds_;                ///< the nodes and links, labels left out
     QPoint pan_last_;
