@@ -138,6 +138,34 @@ TEST(Cli, BenchReportsJsonWithTheDocumentedKeys) {
         EXPECT_NE(r.out.find(key), std::string::npos) << key << " in " << r.out;
 }
 
+// A string in modal form has a point at every mass that only its modes move: bench says how
+// many, and costs the step per mass it steps (the points were counted as masses it steps).
+TEST(Cli, BenchCountsAModalStringsDrawnPointsApart) {
+    const auto dir = test::temp_dir("bench-modal");
+    const std::string model = (dir / "modal.json").string();
+    auto r = test::run_archet(
+        {"new", "bowed-string", "--pitch", "880", "--structure", "modal", "-o", model});
+    ASSERT_EQ(r.status, 0) << r.err;
+    r = test::run_archet({"bench", model, "--seconds", "0.05", "--json"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    const std::size_t masses = json["masses"], derived = json["derived_points"];
+    EXPECT_GT(derived, 10u) << r.out;
+    EXPECT_LT(derived, masses);
+    r = test::run_archet({"bench", model, "--seconds", "0.05"});
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::string said = std::to_string(masses) + " masses (" + std::to_string(derived) +
+                             " of them points the modes draw)";
+    EXPECT_NE(r.out.find(said), std::string::npos) << r.out;
+    const auto at = r.out.find(" ns per sample");
+    const auto per = r.out.find(" ns per stepped mass");
+    ASSERT_NE(at, std::string::npos);
+    ASSERT_NE(per, std::string::npos) << r.out;
+    const double ns = std::stod(r.out.substr(r.out.rfind(' ', at - 1) + 1));
+    const double ns_per_mass = std::stod(r.out.substr(r.out.rfind(' ', per - 1) + 1));
+    EXPECT_NEAR(ns_per_mass, ns / static_cast<double>(masses - derived), 0.01) << r.out;
+}
+
 }  // namespace
 }  // namespace archet
 
