@@ -74,6 +74,8 @@ class GraphView : public QGraphicsView {
     void apply_zoom();
     void zoom_about(double scale, QPoint view_point);
     void fit_scene_rect();
+    /// The node's id label and, off the audio rate, its rate badge (graph_view_labels.cpp).
+    void add_labels(QGraphicsItem* node, const Mat& m, const Model& model);
     void thin_labels();
     void schedule_thin_labels();
     void scale_nodes();
