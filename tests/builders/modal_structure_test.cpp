@@ -9,10 +9,12 @@
 #include <cstring>
 
 #include "archet/analysis/modal_analysis.hpp"
+#include "archet/analysis/playability.hpp"
 #include "archet/builders/bowed_string.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_validation.hpp"
+#include "archet/model/model_variants.hpp"
 #include "archet/model/string_points.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/simulation.hpp"
@@ -74,21 +76,24 @@ TEST_P(ModalString, EveryMassHasAPointThatMovesAsTheChapletsMassDoes) {
     modal_model.gesture = chain_model.gesture, modal_model.output_gain = chain_model.output_gain;
     const std::vector<std::string> shape = string_points(chain_model);
     ASSERT_EQ(string_points(modal_model), shape) << "the bridge, s1…sN and the nut in both";
-    // The bow is as wide as its hair: the modal string's point at the bowed mass is where the
-    // bow touches (¼, ½, ¼ of the shapes there and beside it), the chaplet's contact point.
+    // The bow is as wide as its hair: both strings have a contact point of their own (¼, ½, ¼
+    // of the string at the bowed mass and beside it), centred on the same mass.
     const Lia* bow = chain_model.find_lia("friction");
     ASSERT_NE(bow, nullptr);
     const std::string centre = bowed_centre(chain_model, *bow);
     ASSERT_NE(centre, bow->bowed_string()) << "a contact point, not the mass";
+    EXPECT_EQ(modal_model.find_lia("friction")->bowed_string(), bow->bowed_string());
+    EXPECT_EQ(bowed_centre(modal_model, *modal_model.find_lia("friction")), centre);
+    std::vector<std::string> points = shape;
+    points.push_back(bow->bowed_string());
     Simulation chain(compile(chain_model));
     Simulation modal(compile(modal_model));
     double difference = 0, peak = 0;
     for (int i = 1; i <= 48000; ++i) {
         chain.step(), modal.step();
         if (i % 4800 != 0) continue;
-        for (const std::string& id : shape) {
-            const MatSlot mass =
-                chain.model().mat_slots.at(id == centre ? bow->bowed_string() : id);
+        for (const std::string& id : points) {
+            const MatSlot mass = chain.model().mat_slots.at(id);
             const double x = chain.position(mass), v = chain.velocity(mass);
             const MatSlot point = modal.model().mat_slots.at(id);
             difference = std::max(difference, std::abs(modal.position(point) - x));
@@ -155,6 +160,71 @@ TEST(ModalString, TheStepLeavesOutThePointsNothingReads) {
     ASSERT_EQ(with_read.run(b), b.size());
     EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.01) << "it was bowed";
     EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0);
+}
+
+// A bow with a width touches a string in modal form through a contact point of its own, so
+// the point at the bowed mass keeps its shape. It plays the bytes it played when the bowed point
+// itself held the mixed weights (before the bow could move along a modal string).
+TEST(ModalString, AWideBowTouchesThroughItsOwnContactAndPlaysAsBefore) {
+    const Model model = build(Tuning::Homogeneous, Structure::Modal, 440);
+    const Lia* bow = model.find_lia("friction");
+    ASSERT_NE(bow, nullptr);
+    ASSERT_EQ(bow->bowed_string(), "bow_contact");
+    const std::string centre = bowed_centre(model, *bow);
+    ASSERT_EQ(centre.front(), 's');
+    const int i = std::stoi(centre.substr(1));
+    const Mat& before = *model.find_mat("s" + std::to_string(i - 1));
+    const Mat& at = *model.find_mat(centre);
+    const Mat& after = *model.find_mat("s" + std::to_string(i + 1));
+    const Mat& contact = *model.find_mat("bow_contact");
+    ASSERT_EQ(contact.weights.size(), at.weights.size());
+    for (std::size_t k = 0; k < contact.weights.size(); ++k)
+        ASSERT_EQ(contact.weights[k],
+                  0.25 * before.weights[k] + 0.5 * at.weights[k] + 0.25 * after.weights[k]);
+    const std::vector<std::string> shape = string_points(model);
+    EXPECT_EQ(std::count(shape.begin(), shape.end(), "bow_contact"), 0)
+        << "the contact is not a point of the string's shape";
+
+    // The string as it was built before: the bowed point mixed, no contact.
+    Model mixed = model;
+    mixed.find_mat(centre)->weights = contact.weights;
+    mixed.find_lia("friction")->to = centre;
+    for (Probe& p : mixed.probes)
+        if (p.element == "bow_contact") p.element = centre;
+    std::erase_if(mixed.mats, [](const Mat& m) { return m.id == "bow_contact"; });
+    Simulation now(compile(model)), then(compile(mixed));
+    std::vector<double> a(24000), b(24000);
+    ASSERT_EQ(now.run(a), a.size());
+    ASSERT_EQ(then.run(b), b.size());
+    EXPECT_GT(*std::max_element(a.begin(), a.end()), 0.01) << "it was bowed";
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0);
+}
+
+// bow.position moves the bow along a string in modal form, with a width or hair-wide: the
+// string then plays the bytes of the one built with its bow there, and says where it is bowed.
+TEST(ModalString, MovingTheBowPlaysAsTheStringBuiltThere) {
+    const Gesture steady = load_gesture_file(test::resource("gestures/steady-bow.json"));
+    for (bool point_bow : {false, true}) {
+        BowedStringOptions o;
+        o.pitch = 440, o.structure = Structure::Modal, o.point_bow = point_bow;
+        o.bow_position = 0.12, o.bow_position_fixed = true;
+        o.with_gesture = false, o.output_gain = 1.0;  // played with steady-bow.json
+        Model moved = build_bowed_string(o);
+        o.bow_position = 0.2;
+        const Model built = build_bowed_string(o);
+        set_variant_parameter(moved, "bow.position", 0.2);
+        const std::string what = point_bow ? "hair-wide bow" : "bow with a width";
+        EXPECT_EQ(bow_position(moved), bow_position(built)) << what;
+        EXPECT_NEAR(bow_position(moved), 0.2, 0.01) << what;
+        EXPECT_EQ(string_points(moved), string_points(built)) << what;
+        Simulation a_sim(compile(moved)), b_sim(compile(built));
+        a_sim.set_gesture_track(&steady), b_sim.set_gesture_track(&steady);
+        std::vector<double> a(24000), b(24000);
+        ASSERT_EQ(a_sim.run(a), a.size()) << what;
+        ASSERT_EQ(b_sim.run(b), b.size()) << what;
+        EXPECT_GT(*std::max_element(b.begin(), b.end()), 0.01) << what << ": it was bowed";
+        EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0) << what;
+    }
 }
 
 TEST(ModalString, ValidationNamesABadModalPoint) {

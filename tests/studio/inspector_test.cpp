@@ -68,8 +68,8 @@ TEST(Inspector, AnEditIsCheckedByTheDocumentAndUndoes) {
 
 // The bow's module, its contact point and its mass show where the bow meets the string (β), and
 // a new β moves the bow to the string mass nearest it in one undoable step, which listeners
-// hear as a bow move; a β out of range is refused with the reason and moves nothing. A string
-// in modal form has no masses to move to, so no field.
+// hear as a bow move; a β out of range is refused with the reason and moves nothing. On a
+// string in modal form the bow moves along its points.
 TEST(Inspector, MovesTheBowAlongTheString) {
     ModelDocument document;
     document.reset(load_model_file(test::resource("models/bowed-string-220.json")));
@@ -114,7 +114,14 @@ TEST(Inspector, MovesTheBowAlongTheString) {
     modal.pitch = 220, modal.masses = 40, modal.structure = Structure::Modal;
     document.reset(build_bowed_string(modal));
     inspector.show_element("friction");
-    EXPECT_EQ(inspector.findChild<QLineEdit*>("bow.position"), nullptr);
+    const auto* field = inspector.findChild<QLineEdit*>("bow.position");
+    ASSERT_NE(field, nullptr) << "a string in modal form";
+    EXPECT_NEAR(QLocale::c().toDouble(field->text()), bow_position(document.model()), 1e-6);
+    ASSERT_TRUE(inspector.move_bow(0.3)) << inspector.warning().toStdString();
+    const std::string centre = "s" + std::to_string(std::lround(0.3 * (40 + 1)));
+    EXPECT_EQ(bowed_centre(document.model(), *document.model().find_lia("friction")), centre);
+    EXPECT_EQ(document.model().find_mat("bow_contact")->display->first,
+              document.model().find_mat(centre)->display->first);
 }
 
 }  // namespace

@@ -105,7 +105,7 @@ QLineEdit* Inspector::number_field(const QString& name, const QString& text,
 }
 
 // β on the bow's module, its contact point and its own mass, for a bowed chain of masses
-// s1…sN (bow_position() is 0 for any other: a modal string has no masses to move to).
+// s1…sN or of points there in modal form (bow_position() is 0 for any other model).
 void Inspector::add_bow_position(const std::string& id) {
     const Model& model = document_.model();
     const Lia* bow = first_bow(model);

@@ -285,11 +285,11 @@ double force_for_press(const Model& model, double press) {
 
 double bow_position(const Model& model) {
     const std::string centre = bowed_centre(model, bow_module(model));
-    const std::vector<std::string> masses = string_masses(model);
-    const auto bowed = std::find(masses.begin(), masses.end(), centre);
-    return bowed == masses.end() ? 0.0
-                                 : static_cast<double>(bowed - masses.begin() + 1) /
-                                       static_cast<double>(masses.size() + 1);
+    const std::vector<std::string> stations = bow_stations(model);
+    const auto bowed = std::find(stations.begin(), stations.end(), centre);
+    return bowed == stations.end() ? 0.0
+                                   : static_cast<double>(bowed - stations.begin() + 1) /
+                                         static_cast<double>(stations.size() + 1);
 }
 
 SchellengLines schelleng_lines(const Model& model) {

@@ -14,6 +14,7 @@
 #include "archet/builders/string_chain.hpp"
 #include "archet/builders/stroke_in_band.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/model/bow_contact.hpp"
 #include "archet/model/linear_system.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/model/stability.hpp"
@@ -50,11 +51,13 @@ bool wide_bow(const BowedStringOptions& o) {
 }
 
 // The contact point of a bow with a width: ¼, ½, ¼ of the bowed mass and its neighbours (in
-// the modal structure the bowed point's mode shapes are mixed the same way, make_modal).
+// the modal structure make_modal() has added it, mixing their points' mode shapes).
 std::string add_contact(Model& model, const BowedStringOptions& o, int bowed) {
-    if (!wide_bow(o) || o.structure == Structure::Modal) return mass_id(bowed);
+    if (!wide_bow(o)) return mass_id(bowed);
+    if (o.structure == Structure::Modal)
+        return model.find_mat(kBowContact) ? kBowContact : mass_id(bowed);
     Mat contact;
-    contact.id = "bow_contact", contact.kind = MatKind::ModalPoint, contact.rate = "audio";
+    contact.id = kBowContact, contact.kind = MatKind::ModalPoint, contact.rate = "audio";
     contact.modes = {mass_id(bowed - 1), mass_id(bowed), mass_id(bowed + 1)};
     contact.weights = {0.25, 0.5, 0.25};
     contact.display = {{40.0 * bowed, -30.0}};

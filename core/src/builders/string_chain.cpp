@@ -9,6 +9,7 @@
 #include "archet/analysis/string_partials.hpp"
 #include "archet/builders/string_body.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/model/bow_contact.hpp"
 #include "archet/model/linear_system.hpp"
 
 namespace archet {
@@ -284,12 +285,17 @@ void make_modal(Model& model, int n, int bowed, const StringLosses& losses, bool
         p.id = mass_id(i), p.kind = MatKind::ModalPoint, p.rate = "audio";
         for (int mode = 0; mode < n; ++mode) p.modes.push_back("mode" + std::to_string(mode + 1));
         p.weights = shapes[i - 1];
-        if (i == bowed && wide_bow && i > 1 && i < n)
-            for (int mode = 0; mode < n; ++mode)
-                p.weights[mode] =
-                    0.25 * shapes[i - 2][mode] + 0.5 * shapes[i - 1][mode] + 0.25 * shapes[i][mode];
         p.display = {{40.0 * i, 0.0}};
         points.push_back(p);
+    }
+    // A bow with a width touches the string through a point of its own, before the bowed
+    // point (bow_contact.hpp): the bowed point keeps its shape, so the bow can move on.
+    if (wide_bow && bowed > 1 && bowed < n) {
+        Mat contact = points[bowed - 1];
+        contact.id = kBowContact;
+        contact.weights = contact_weights(points[bowed - 2], points[bowed - 1], points[bowed]);
+        contact.display = {{40.0 * bowed, -30.0}};
+        points.insert(points.begin() + (bowed - 1), contact);
     }
     // The bridge first, then the modes and points in place of s1..sN, then whatever follows
     // (the nut, a body); the inner links go, the end links k0 and kN stay.

@@ -7,6 +7,7 @@
 
 #include "archet/common/input_error.hpp"
 #include "archet/common/input_limits.hpp"
+#include "archet/model/bow_contact.hpp"
 #include "archet/model/model_parameters.hpp"
 #include "archet/model/string_points.hpp"
 
@@ -87,22 +88,32 @@ void set_variant_parameter(Model& model, const std::string& name, double value) 
     }
     if (name == "bow.position") {
         if (!(value > 0 && value < 0.5)) throw InputError(name, "β must be in (0, 0.5)");
-        const auto masses = string_masses(model);
+        const auto stations = bow_stations(model);
         Lia* bow = first_bow(model);
-        if (!bow || masses.size() < 3)
-            throw InputError(name, "needs a bowed chain of masses s1…sN (a built bowed string)");
-        const int n = static_cast<int>(masses.size());
+        if (!bow || stations.size() < 3)
+            throw InputError(name,
+                             "needs a bowed string of masses s1…sN, or of points there in modal "
+                             "form (a built bowed string)");
+        const int n = static_cast<int>(stations.size());
         const int index = std::clamp(static_cast<int>(std::lround(value * (n + 1))), 1, n);
         Mat* contact = model.find_mat(bow->bowed_string());
         const std::string was_centred = bowed_centre(model, *bow);
-        if (contact && was_centred != bow->bowed_string()) {
+        const bool modal = model.find_mat(stations.front())->kind == MatKind::ModalPoint;
+        if (contact && was_centred != bow->bowed_string() && modal) {
+            // A bow with a width on a string in modal form: its contact mixes the points
+            // around the new centre (bow_contact.hpp).
+            const int centre = std::clamp(index, 2, n - 1);
+            contact->weights = contact_weights(*model.find_mat(stations[centre - 2]),
+                                               *model.find_mat(stations[centre - 1]),
+                                               *model.find_mat(stations[centre]));
+        } else if (contact && was_centred != bow->bowed_string()) {
             // A bow with a width: its contact point reads the masses around the new centre.
             const int half = static_cast<int>(contact->modes.size()) / 2;
             const int centre = std::clamp(index, 1 + half, n - half);
             for (int k = 0; k < static_cast<int>(contact->modes.size()); ++k)
-                contact->modes[k] = masses[centre - half + k - 1];
+                contact->modes[k] = stations[centre - half + k - 1];
         } else {
-            const std::string old = bow->bowed_string(), bowed = masses[index - 1];
+            const std::string old = bow->bowed_string(), bowed = stations[index - 1];
             bow->to = bowed;  // the bowed string mass (see Lia::bowed_string)
             for (auto& p : model.probes)
                 if (p.element == old) p.element = bowed;

@@ -4,6 +4,8 @@
 #include <map>
 #include <set>
 
+#include "archet/model/bow_contact.hpp"
+
 namespace archet {
 
 namespace {
@@ -18,23 +20,62 @@ bool is_contact_point(const Model& model, const Mat& m) {
     }
     return true;
 }
+
+// The point a contact of a string in modal form is centred on: the one whose weights and its
+// neighbours' mix to the contact's, bit for bit as the builder mixes them; or null.
+const Mat* modal_contact_centre(const Model& model, const Mat& contact,
+                                const std::vector<std::string>& stations) {
+    std::vector<const Mat*> points;
+    for (const auto& id : stations) points.push_back(model.find_mat(id));
+    auto alike = [&](const Mat* p) {
+        return p->kind == MatKind::ModalPoint && p->modes == contact.modes &&
+               p->weights.size() == contact.weights.size();
+    };
+    for (std::size_t i = 1; i + 1 < points.size(); ++i)
+        if (alike(points[i - 1]) && alike(points[i]) && alike(points[i + 1]) &&
+            contact_weights(*points[i - 1], *points[i], *points[i + 1]) == contact.weights)
+            return points[i];
+    return nullptr;
+}
+
 }  // namespace
+
+std::vector<std::string> bow_stations(const Model& model) {
+    std::vector<std::string> stations;
+    const Mat* first = model.find_mat("s1");
+    const bool modal = first && first->kind == MatKind::ModalPoint;
+    for (int i = 1;; ++i) {
+        const Mat* m = model.find_mat("s" + std::to_string(i));
+        const bool inertial = m && (m->kind == MatKind::Mass || m->kind == MatKind::Oscillator);
+        if (!m || (modal ? m->kind != MatKind::ModalPoint : !inertial)) break;
+        stations.push_back(m->id);
+    }
+    return stations;
+}
 
 std::string bowed_centre(const Model& model, const Lia& bow) {
     const Mat* end = model.find_mat(bow.bowed_string());
-    if (!end || !is_contact_point(model, *end)) return bow.bowed_string();
-    std::size_t best = 0;
-    for (std::size_t k = 0; k < end->modes.size() && k < end->weights.size(); ++k)
-        if (end->weights[k] > end->weights[best]) best = k;
-    return end->modes[best];
+    if (!end) return bow.bowed_string();
+    if (is_contact_point(model, *end)) {
+        std::size_t best = 0;
+        for (std::size_t k = 0; k < end->modes.size() && k < end->weights.size(); ++k)
+            if (end->weights[k] > end->weights[best]) best = k;
+        return end->modes[best];
+    }
+    if (end->kind != MatKind::ModalPoint) return end->id;
+    const std::vector<std::string> stations = bow_stations(model);
+    if (std::find(stations.begin(), stations.end(), end->id) != stations.end()) return end->id;
+    const Mat* centre = modal_contact_centre(model, *end, stations);
+    return centre ? centre->id : end->id;
 }
 
 std::vector<std::string> string_points(const Model& model) {
-    std::set<std::string> bow_parts, bowed;
+    std::set<std::string> bow_parts, bowed, contacts;
     for (const auto& l : model.lias)
         if (l.kind == LiaKind::BowFriction) {
             bow_parts.insert({l.bow(), l.press, l.surface});
             bowed.insert(bowed_centre(model, l));
+            if (bowed_centre(model, l) != l.bowed_string()) contacts.insert(l.bowed_string());
         }
     std::set<std::string> reached;
     if (bowed.empty()) {
@@ -56,7 +97,7 @@ std::vector<std::string> string_points(const Model& model) {
             if (const Mat* m = model.find_mat(id); m && m->kind == MatKind::ModalPoint)
                 bowed_modes.insert(m->modes.begin(), m->modes.end());
         for (const auto& m : model.mats)
-            if (m.kind == MatKind::ModalPoint &&
+            if (m.kind == MatKind::ModalPoint && !contacts.count(m.id) &&
                 std::any_of(m.modes.begin(), m.modes.end(),
                             [&](const std::string& mode) { return bowed_modes.count(mode); }))
                 reached.insert(m.id);

@@ -42,8 +42,8 @@ StringElements string_elements(int n);
 /// with a modal point at each mass s1..sN (the step moves those at s1, the bowed mass and sN,
 /// which links and the bow read; the others only show the string's shape). `losses` are the
 /// string's (σ0 from the masses' dampers to their rest points, σ1 from the links', both
-/// proportional: modal). With `wide_bow` the bowed point reads ¼, ½, ¼ of the shapes at the bowed
-/// mass and its neighbours.
+/// proportional: modal). With `wide_bow` a contact point (kBowContact, before the bowed point)
+/// reads ¼, ½, ¼ of the shapes at the bowed mass and its neighbours.
 void make_modal(Model& model, int n, int bowed, const StringLosses& losses, bool wide_bow);
 
 /// The string mass the bow sits on for bow position β (with a neighbour on each side).

@@ -14,8 +14,13 @@ namespace archet {
 
 std::vector<std::string> string_points(const Model& model);
 
-/// The MAT a bow module is centred on: its string end, or, when that end is a contact point
-/// spread over neighbouring string masses (a bow with a width), the mass it weighs most.
+/// Where a bow can stand on a string as the bowed-string builder names it: its masses s1…sN,
+/// or, for a string in modal form, its points there.
+std::vector<std::string> bow_stations(const Model& model);
+
+/// The MAT a bow module is centred on: its string end, or, when that end is a contact point (a
+/// bow with a width, bow_contact.hpp), the mass it weighs most or the modal point it mixes
+/// with its neighbours.
 std::string bowed_centre(const Model& model, const Lia& bow);
 
 }  // namespace archet
