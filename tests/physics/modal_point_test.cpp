@@ -16,6 +16,7 @@
 #include "archet/common/scheme_revision.hpp"
 #include "archet/model/gesture.hpp"
 #include "archet/model/model_validation.hpp"
+#include "archet/model/model_variants.hpp"
 #include "archet/physics/compiled_model.hpp"
 #include "archet/physics/modal_point_position.hpp"
 #include "archet/physics/scheme_changes.hpp"
@@ -197,6 +198,56 @@ TEST(ModalPoint, AContinuedModalStringPlaysOnToTheSameBits) {
     for (int i = 0; i < 9600; ++i) {
         played.step(), continued.step();
         ASSERT_EQ(bits(played.output()), bits(continued.output())) << "sample " << i;
+    }
+}
+
+// Moving the bow of a playing string in modal form (the engine swaps in the moved model and
+// continues from the played one's state): the string goes on from the motion it had, every
+// point where its modes put it, whether the bow's point changed (a hair-wide bow: a point the
+// step did not move before) or its contact's mix of the points there (a bow with a width).
+TEST(ModalPoint, AModalStringsBowMovedWhilePlayingGoesOnFromItsMotion) {
+    for (bool paper : {true, false}) {
+        BowedStringOptions o = modal_string();
+        o.paper = paper, o.masses = paper ? 60 : 0, o.pitch = paper ? 220 : 440;
+        const Model model = build_bowed_string(o);
+        Model moved = model;
+        set_variant_parameter(moved, "bow.position", 0.25);
+        Simulation played(compile(model)), continued(compile(moved));
+        for (int i = 0; i < 9600; ++i) played.step();
+        std::vector<double> scratch(played.state_size());
+        ASSERT_TRUE(continued.continue_from(played, scratch));
+        const std::string what = paper ? "hair-wide bow" : "bow with a width";
+        const std::string bowed = moved.find_lia("friction")->bowed_string();
+        if (paper)
+            EXPECT_NE(bowed, model.find_lia("friction")->bowed_string()) << "another point";
+        else
+            EXPECT_NE(moved.find_mat(bowed)->weights, model.find_mat(bowed)->weights)
+                << "another mix";
+        double peak = 0, apart = 0;
+        for (const Mat& m : model.mats) {
+            if (m.kind == MatKind::Gesture || m.id == bowed) continue;
+            const double x = played.position(played.model().mat_slots.at(m.id));
+            peak = std::max(peak, std::abs(x));
+            apart = std::max(
+                apart, std::abs(continued.position(continued.model().mat_slots.at(m.id)) - x));
+        }
+        EXPECT_GT(peak, 1e-6) << what << ": it was bowed";
+        EXPECT_LE(apart, 1e-12 * peak) << what;
+        // The bow's point (or contact), moved: where its modes put it now, in the step's own
+        // store and in x[n−1] as well.
+        const MatSlot contact = continued.model().mat_slots.at(bowed);
+        const CompiledLevel& audio = continued.model().levels[contact.level];
+        double sum = 0, sum_prev = 0;
+        const Mat& point = *moved.find_mat(bowed);
+        for (std::size_t k = 0; k < point.modes.size(); ++k) {
+            const int mode = continued.model().mat_slots.at(point.modes[k]).index;
+            sum += point.weights[k] * audio.x()[mode];
+            sum_prev += point.weights[k] * audio.x_prev()[mode];
+        }
+        EXPECT_NEAR(audio.x()[contact.index], sum, 1e-12 * peak) << what;
+        EXPECT_NEAR(audio.x_prev()[contact.index], sum_prev, 1e-12 * peak) << what;
+        for (int i = 0; i < 4800; ++i) continued.step();
+        EXPECT_TRUE(std::isfinite(continued.output())) << what;
     }
 }
 
