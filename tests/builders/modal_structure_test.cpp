@@ -227,6 +227,34 @@ TEST(ModalString, MovingTheBowPlaysAsTheStringBuiltThere) {
     }
 }
 
+// A contact that is not the builder's mix of three points (edited by hand), or points around
+// the new place that read other modes than the contact: the move is refused with the element
+// named, and the model is left as it was (the bow is not made hair-wide behind the user's back).
+TEST(ModalString, ABowMoveItCannotMakeIsRefusedAndChangesNothing) {
+    BowedStringOptions o;
+    o.pitch = 440, o.structure = Structure::Modal, o.with_gesture = false, o.output_gain = 1;
+    const Model built = build_bowed_string(o);
+    auto refused = [&](Model model, const std::string& named) {
+        const std::string before = format_model(model);
+        try {
+            set_variant_parameter(model, "bow.position", 0.25);
+            ADD_FAILURE() << "moved with " << named;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("\"" + named + "\""), std::string::npos)
+                << e.what();
+        }
+        EXPECT_EQ(format_model(model), before) << named;
+    };
+    Model edited = built;
+    edited.find_mat("bow_contact")->weights[0] *= 1.01;
+    refused(edited, "bow_contact");
+    Model other_modes = built;
+    const int n = static_cast<int>(bow_stations(built).size());
+    Mat& point = *other_modes.find_mat("s" + std::to_string(std::lround(0.25 * (n + 1)) + 1));
+    point.modes.pop_back(), point.weights.pop_back();
+    refused(other_modes, point.id);
+}
+
 TEST(ModalString, ValidationNamesABadModalPoint) {
     const Model good = build(Tuning::Homogeneous, Structure::Modal, 220, true);
     auto refused = [&](auto change, const std::string& expected) {

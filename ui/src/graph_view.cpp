@@ -2,13 +2,11 @@
 
 #include <QGraphicsEllipseItem>
 #include <QGraphicsSceneMouseEvent>
-#include <QGraphicsSimpleTextItem>
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QScrollBar>
 #include <algorithm>
 #include <map>
-#include <optional>
 
 #include "archet/model/finger_contact.hpp"
 #include "archet/ui/model_document.hpp"

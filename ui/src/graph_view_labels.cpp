@@ -2,7 +2,6 @@
 // where they fit (thin_labels()). Drawing and editing the graph are in graph_view.cpp.
 
 #include <QGraphicsSimpleTextItem>
-#include <QScrollBar>
 #include <algorithm>
 #include <optional>
 
@@ -132,7 +131,8 @@ void GraphView::thin_labels() {
         }
         const bool id_above = labels_[id]->isVisible() && label_sides_[id] == LabelSide::Above;
         const double gap = id_above ? kLabelBelow : kRadius;
-        const double lift = id_above ? labels_[id]->boundingRect().height() : 0.0;
+        // One pixel more than the id's height: the two boxes, rounded apart, never touch.
+        const double lift = id_above ? labels_[id]->boundingRect().height() + 1 : 0.0;
         if (lift != badge_lifts_[b])
             place_label(badge, LabelSide::Above, gap, lift), badge_lifts_[b] = lift;
         const QRectF box = spaced(label_box(badge, to_screen[node], LabelSide::Above, gap, lift));

@@ -49,13 +49,10 @@ double drawn_apart(const Model& model, const std::string& from, const std::strin
 // The chain's masses s1…sN, in order, as the bowed-string builder names them (a string in
 // modal form has points there, not masses: none).
 std::vector<std::string> string_masses(const Model& model) {
-    std::vector<std::string> masses;
-    for (int i = 1;; ++i) {
-        const Mat* m = model.find_mat("s" + std::to_string(i));
-        if (!m || (m->kind != MatKind::Mass && m->kind != MatKind::Oscillator)) break;
-        masses.push_back(m->id);
-    }
-    return masses;
+    std::vector<std::string> stations = bow_stations(model);
+    if (!stations.empty() && model.find_mat(stations.front())->kind == MatKind::ModalPoint)
+        return {};
+    return stations;
 }
 
 std::vector<std::string> string_links(const Model& model) {
@@ -99,13 +96,27 @@ void set_variant_parameter(Model& model, const std::string& name, double value) 
         Mat* contact = model.find_mat(bow->bowed_string());
         const std::string was_centred = bowed_centre(model, *bow);
         const bool modal = model.find_mat(stations.front())->kind == MatKind::ModalPoint;
+        const bool on_station =
+            std::find(stations.begin(), stations.end(), bow->bowed_string()) != stations.end();
+        if (modal && !on_station && was_centred == bow->bowed_string())
+            throw InputError(name, "the bow's contact \"" + bow->bowed_string() +
+                                       "\" is not the mix of three of the string's points "
+                                       "that the builder makes; build the string again to move "
+                                       "its bow");
         if (contact && was_centred != bow->bowed_string() && modal) {
             // A bow with a width on a string in modal form: its contact mixes the points
             // around the new centre (bow_contact.hpp).
             const int centre = std::clamp(index, 2, n - 1);
-            contact->weights = contact_weights(*model.find_mat(stations[centre - 2]),
-                                               *model.find_mat(stations[centre - 1]),
-                                               *model.find_mat(stations[centre]));
+            const Mat& before = *model.find_mat(stations[centre - 2]);
+            const Mat& at = *model.find_mat(stations[centre - 1]);
+            const Mat& after = *model.find_mat(stations[centre]);
+            for (const Mat* p : {&before, &at, &after})
+                if (!mixes_into(*p, *contact))
+                    throw InputError(name, "the string's point \"" + p->id +
+                                               "\" reads other modes than the bow's contact "
+                                               "\"" +
+                                               contact->id + "\"; give it the same modes");
+            contact->weights = contact_weights(before, at, after);
         } else if (contact && was_centred != bow->bowed_string()) {
             // A bow with a width: its contact point reads the masses around the new centre.
             const int half = static_cast<int>(contact->modes.size()) / 2;

@@ -27,14 +27,17 @@ const Mat* modal_contact_centre(const Model& model, const Mat& contact,
                                 const std::vector<std::string>& stations) {
     std::vector<const Mat*> points;
     for (const auto& id : stations) points.push_back(model.find_mat(id));
-    auto alike = [&](const Mat* p) {
-        return p->kind == MatKind::ModalPoint && p->modes == contact.modes &&
-               p->weights.size() == contact.weights.size();
+    auto mixes_to_contact = [&](const Mat& before, const Mat& at, const Mat& after) {
+        if (!mixes_into(before, contact) || !mixes_into(at, contact) || !mixes_into(after, contact))
+            return false;
+        for (std::size_t k = 0; k < contact.weights.size(); ++k)
+            if (contact_weight(before.weights[k], at.weights[k], after.weights[k]) !=
+                contact.weights[k])
+                return false;
+        return true;
     };
     for (std::size_t i = 1; i + 1 < points.size(); ++i)
-        if (alike(points[i - 1]) && alike(points[i]) && alike(points[i + 1]) &&
-            contact_weights(*points[i - 1], *points[i], *points[i + 1]) == contact.weights)
-            return points[i];
+        if (mixes_to_contact(*points[i - 1], *points[i], *points[i + 1])) return points[i];
     return nullptr;
 }
 
@@ -74,8 +77,9 @@ std::vector<std::string> string_points(const Model& model) {
     for (const auto& l : model.lias)
         if (l.kind == LiaKind::BowFriction) {
             bow_parts.insert({l.bow(), l.press, l.surface});
-            bowed.insert(bowed_centre(model, l));
-            if (bowed_centre(model, l) != l.bowed_string()) contacts.insert(l.bowed_string());
+            const std::string centre = bowed_centre(model, l);
+            bowed.insert(centre);
+            if (centre != l.bowed_string()) contacts.insert(l.bowed_string());
         }
     std::set<std::string> reached;
     if (bowed.empty()) {

@@ -39,9 +39,9 @@ UpdateRoots retune_damped(Model& model, const BowedStringOptions& o, int n);
 StringElements string_elements(int n);
 
 /// Replaces the chain s1..sN by its exact modal equivalent: one damped oscillator per mode,
-/// with a modal point at each mass s1..sN (the step moves those at s1, the bowed mass and sN,
-/// which links and the bow read; the others only show the string's shape). `losses` are the
-/// string's (σ0 from the masses' dampers to their rest points, σ1 from the links', both
+/// with a modal point at each mass s1..sN (the step moves those the links and the bow read: s1,
+/// sN and the bowed mass's or the bow's contact; the others only show the string's shape). `losses`
+/// are the string's (σ0 from the masses' dampers to their rest points, σ1 from the links', both
 /// proportional: modal). With `wide_bow` a contact point (kBowContact, before the bowed point)
 /// reads ¼, ½, ¼ of the shapes at the bowed mass and its neighbours.
 void make_modal(Model& model, int n, int bowed, const StringLosses& losses, bool wide_bow);

@@ -18,8 +18,15 @@ inline double contact_weight(double before, double at, double after) {
     return 0.25 * before + 0.5 * at + 0.25 * after;
 }
 
+/// Whether modal point `p` reads the modes `contact` reads, weight for weight: a contact mixes
+/// only such points.
+inline bool mixes_into(const Mat& p, const Mat& contact) {
+    return p.kind == MatKind::ModalPoint && p.modes == contact.modes &&
+           p.weights.size() == contact.weights.size() && p.weights.size() == p.modes.size();
+}
+
 /// The weights of a contact point centred on modal point `at`, between `before` and `after`
-/// (three points on the same modes).
+/// (three points on the same modes, mixes_into() the contact).
 inline std::vector<double> contact_weights(const Mat& before, const Mat& at, const Mat& after) {
     std::vector<double> weights(at.weights.size());
     for (std::size_t k = 0; k < weights.size(); ++k)
