@@ -147,8 +147,8 @@ int run_bench(const BenchArguments& a) {
     const double ns = round_ns[kRounds / 2];
     const double best = round_ns.front();
     const double load = ns * sim.sample_rate() * 1e-9;
-    // A string in modal form has a point at every mass that the step never moves (its modes
-    // draw it when read): those are not counted in the cost per mass.
+    // The modal points nothing reads (a string in modal form has one at every mass, to draw
+    // its shape) are never stepped: they are not counted in the cost per mass.
     std::size_t derived = 0;
     for (const CompiledLevel& level : sim.model().levels) derived += level.derived_points.size();
     const std::size_t stepped = model.mats.size() - derived;
