@@ -1,4 +1,5 @@
-// Cost of step() on the paper's strings and on large chains, and of compiling a large model.
+// Cost of step() on the paper's strings and on large chains, of compiling a large model, and
+// of building a string.
 
 #include <benchmark/benchmark.h>
 
@@ -166,6 +167,15 @@ void BM_ParseModel(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(archet::parse_model(text));
 }
 BENCHMARK(BM_ParseModel)->Arg(5000)->Arg(10000)->Unit(benchmark::kMillisecond);
+
+// `archet new bowed-string --pitch P`: the count search, tuning, losses and the stroke's
+// Helmholtz band, at a violin's G (196 Hz), a cello's C (65 Hz) and a double bass's E (41 Hz).
+void BM_NewString(benchmark::State& state) {
+    archet::BowedStringOptions o;
+    o.pitch = static_cast<double>(state.range(0));
+    for (auto _ : state) benchmark::DoNotOptimize(archet::build_bowed_string(o));
+}
+BENCHMARK(BM_NewString)->Arg(196)->Arg(65)->Arg(41)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

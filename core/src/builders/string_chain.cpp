@@ -7,6 +7,7 @@
 #include "archet/analysis/discrete_modes.hpp"
 #include "archet/analysis/modal_analysis.hpp"
 #include "archet/analysis/string_partials.hpp"
+#include "archet/analysis/update_root_near.hpp"
 #include "archet/builders/string_body.hpp"
 #include "archet/common/input_error.hpp"
 #include "archet/model/bow_contact.hpp"
@@ -220,10 +221,23 @@ Model undamped_tuned_string(const BowedStringOptions& o, int n) {
 
 UpdateRoots retune_damped(Model& model, const BowedStringOptions& o, int n) {
     const StringElements string = string_elements(n);
+    const auto on_pitch = [&](double f) { return std::abs(f / o.pitch - 1.0) < 1e-10; };
+    // The scalings look at the first mode alone (update_root_near(), a millisecond where the
+    // whole solve takes seconds on a low string); the whole solve, which the caller keeps,
+    // then checks it, and takes over where it finds the mode elsewhere.
+    for (int scaling = 0; scaling < 4; ++scaling) {
+        const LinearSystem system = assemble_linear_system(model, "audio");
+        const auto z =
+            update_root_near(system, std::polar(1.0, 2.0 * std::numbers::pi * o.pitch * system.dt));
+        if (!z) break;
+        const double f = root_frequency(*z, system.dt);
+        if (!(f > 0) || on_pitch(f)) break;
+        scale_links(model, string, (o.pitch / f) * (o.pitch / f));
+    }
     for (int iteration = 0;; ++iteration) {  // at most four scalings; each look is a solve
         UpdateRoots roots = update_roots(assemble_linear_system(model, "audio"));
         const double f = nearest_frequency(discrete_modes(roots), o.pitch);
-        if (iteration == 4 || !(f > 0) || std::abs(f / o.pitch - 1.0) < 1e-10) return roots;
+        if (iteration == 4 || !(f > 0) || on_pitch(f)) return roots;
         scale_links(model, string, (o.pitch / f) * (o.pitch / f));
     }
 }
