@@ -14,13 +14,8 @@ using SparseComplex = Eigen::SparseMatrix<Complex>;
 
 std::optional<std::vector<Complex>> sparse_mode_shape(const LinearSystem& sys, Complex z) {
     const int n = sys.size();
-    const double t = sys.dt;
-    SparseComplex q = (z * (t * t)) * sys.stiffness.cast<Complex>() +
-                      ((z - 1.0) * t) * sys.damping.cast<Complex>();
-    for (int i = 0; i < n; ++i) q.coeffRef(i, i) += (z - 1.0) * (z - 1.0) * sys.mass[i];
-    q.makeCompressed();
     Eigen::SparseLU<SparseComplex> lu;
-    lu.compute(q);
+    lu.compute(quadratic_pencil(sys, z));
     if (lu.info() != Eigen::Success) return std::nullopt;
     // The root is exact to rounding, so the matrix is singular to rounding: two solves from an
     // even start leave the null vector alone (as chain_mode_shape()).
@@ -35,6 +30,15 @@ std::optional<std::vector<Complex>> sparse_mode_shape(const LinearSystem& sys, C
 }
 
 }  // namespace
+
+SparseComplex quadratic_pencil(const LinearSystem& sys, Complex z) {
+    const double t = sys.dt;
+    SparseComplex p = (z * (t * t)) * sys.stiffness.cast<Complex>() +
+                      ((z - 1.0) * t) * sys.damping.cast<Complex>();
+    for (int i = 0; i < sys.size(); ++i) p.coeffRef(i, i) += (z - 1.0) * (z - 1.0) * sys.mass[i];
+    p.makeCompressed();
+    return p;
+}
 
 std::optional<std::vector<Complex>> mode_shape(const LinearSystem& sys, Complex z) {
     if (sys.size() == 0) return std::nullopt;

@@ -224,17 +224,19 @@ UpdateRoots retune_damped(Model& model, const BowedStringOptions& o, int n) {
     const auto on_pitch = [&](double f) { return std::abs(f / o.pitch - 1.0) < 1e-10; };
     // The scalings look at the first mode alone (update_root_near(), a millisecond where the
     // whole solve takes seconds on a low string); the whole solve, which the caller keeps,
-    // then checks it, and takes over where it finds the mode elsewhere.
+    // then checks it, and takes over where it finds the mode elsewhere. The losses move the
+    // first mode by a fraction of a cent: a root further off is another mode, left to the
+    // whole solve.
     for (int scaling = 0; scaling < 4; ++scaling) {
         const LinearSystem system = assemble_linear_system(model, "audio");
         const auto z =
             update_root_near(system, std::polar(1.0, 2.0 * std::numbers::pi * o.pitch * system.dt));
         if (!z) break;
         const double f = root_frequency(*z, system.dt);
-        if (!(f > 0) || on_pitch(f)) break;
+        if (!(f > 0) || on_pitch(f) || std::abs(f / o.pitch - 1.0) > 0.01) break;
         scale_links(model, string, (o.pitch / f) * (o.pitch / f));
     }
-    for (int iteration = 0;; ++iteration) {  // at most four scalings; each look is a solve
+    for (int iteration = 0;; ++iteration) {  // up to four more scalings, each after a solve
         UpdateRoots roots = update_roots(assemble_linear_system(model, "audio"));
         const double f = nearest_frequency(discrete_modes(roots), o.pitch);
         if (iteration == 4 || !(f > 0) || on_pitch(f)) return roots;

@@ -12,6 +12,12 @@
 
 namespace archet {
 
+/// (z − 1)²·M + z·T²·K + (z − 1)·T·Z: the matrix whose null vectors are the shapes of the
+/// scheme's modes with root z (update_matrix() without fingers, multiplied out), complex
+/// symmetric as K and Z are. Its pattern is the same for every z.
+Eigen::SparseMatrix<std::complex<double>> quadratic_pencil(const LinearSystem& system,
+                                                           std::complex<double> z);
+
 /// The shape of the scheme's mode with root z on a system without fingers: a null vector of
 /// (z − 1)²·M + z·T²·K + (z − 1)·T·Z by inverse iteration, with the pivoting tridiagonal solve
 /// on a chain (chain_mode_shape()) and a sparse LU where links join more than neighbours (a

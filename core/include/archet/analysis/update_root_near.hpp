@@ -13,8 +13,9 @@ namespace archet {
 /// `guess`, found on the quadratic problem P(z)·x = ((z − 1)²·M + z·T²·K + (z − 1)·T·Z)·x = 0
 /// with a sparse LU: inverse iteration from `guess`, then the shift moved to each new estimate
 /// (P is complex symmetric, so xᵀ·P(z)·x = 0 gives z to about the square of the shape's error).
-/// Nothing for a system with fingers (their correction is not in P) or when the iteration does
-/// not settle; a caller that must be sure of the mode checks it against update_roots().
+/// The guess itself when P is singular there to the last bit. Nothing for a system with
+/// fingers (their correction is not in P) or when the iteration does not settle; a caller that
+/// must be sure of the mode checks it against update_roots().
 std::optional<std::complex<double>> update_root_near(const LinearSystem& system,
                                                      std::complex<double> guess);
 
