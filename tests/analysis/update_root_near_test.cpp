@@ -46,9 +46,9 @@ double residual(const LinearSystem& system, Complex z) {
 }
 
 // The dense solve's roots carry an error of a few hundred roundings of |U| ≈ 4, so their
-// frequencies, arg(z)·fs/2π, one of about 1e-13 over the angle θ = 2πf·T: the root found near
-// the guess is the dense solve's nearest one to that, and as near a root as it (a factor 2
-// for rounding).
+// frequencies (arg(z)·fs/2π) one of about 1e-13 over the angle θ = 2πf·T, relative: the root
+// found near the guess is the dense solve's nearest the guess, its frequency agrees to that,
+// and it is as near a root (within a factor 2 for rounding).
 void expect_the_dense_root(const LinearSystem& system, const UpdateRoots& all, double frequency,
                            const std::string& what) {
     const auto z = update_root_near(system, on_the_circle(frequency, system.dt));
