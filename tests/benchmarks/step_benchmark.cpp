@@ -177,6 +177,17 @@ void BM_NewString(benchmark::State& state) {
 }
 BENCHMARK(BM_NewString)->Arg(196)->Arg(65)->Arg(41)->Unit(benchmark::kMillisecond);
 
+// `archet new bowed-string --tuning harmonic --pitch P`, a cello's string at 65 Hz (its C, 323
+// masses) and 131 Hz (its G): the harmonic tuning reads every partial of the damped string at
+// each of its corrections.
+void BM_NewHarmonicString(benchmark::State& state) {
+    archet::BowedStringOptions o;
+    o.pitch = static_cast<double>(state.range(0)), o.tuning = archet::Tuning::Harmonic;
+    o.tension = 130, o.linear_density = 0.0148;
+    for (auto _ : state) benchmark::DoNotOptimize(archet::build_bowed_string(o));
+}
+BENCHMARK(BM_NewHarmonicString)->Arg(131)->Arg(65)->Unit(benchmark::kMillisecond);
+
 }  // namespace
 
 BENCHMARK_MAIN();

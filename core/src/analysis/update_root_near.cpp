@@ -3,8 +3,11 @@
 #include <Eigen/SparseLU>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "archet/analysis/mode_shape.hpp"
+#include "archet/analysis/string_partials.hpp"
+#include "chain_pencil.hpp"
 
 namespace archet {
 
@@ -43,15 +46,47 @@ Complex rayleigh_root(const LinearSystem& sys, const Eigen::VectorXcd& x, Comple
     return std::abs(z1 - near) <= std::abs(z2 - near) ? z1 : z2;
 }
 
+// P(shift)⁻¹·b: on a chain by its O(n) solve, else by the sparse LU (its pattern analysed once).
+class PencilSolver {
+  public:
+    explicit PencilSolver(const LinearSystem& sys) : sys_(sys) {
+        if (is_tridiagonal(sys))
+            chain_.emplace(sys);
+        else
+            lu_.analyzePattern(quadratic_pencil(sys, 1.0));  // the same pattern at every shift
+    }
+    /// Nothing where P(shift) is singular to the last bit.
+    std::optional<Eigen::VectorXcd> solve(Complex shift, const Eigen::VectorXcd& b) {
+        if (chain_) {
+            const std::vector<Complex> x =
+                chain_->solve(shift, std::vector<Complex>(b.data(), b.data() + b.size()));
+            Eigen::VectorXcd result = Eigen::Map<const Eigen::VectorXcd>(x.data(), b.size());
+            if (!result.allFinite()) return std::nullopt;  // a zero pivot, taken as tiny
+            return result;
+        }
+        lu_.factorize(quadratic_pencil(sys_, shift));
+        if (lu_.info() != Eigen::Success) return std::nullopt;
+        return Eigen::VectorXcd(lu_.solve(b));
+    }
+
+  private:
+    const LinearSystem& sys_;
+    std::optional<ChainPencil> chain_;
+    Eigen::SparseLU<SparseComplex> lu_;
+};
+
 }  // namespace
 
-std::optional<Complex> update_root_near(const LinearSystem& sys, Complex guess) {
+std::optional<Complex> update_root_near(const LinearSystem& sys, Complex guess,
+                                        std::span<const double> start) {
     const int n = sys.size();
     if (n == 0 || !sys.fingers.empty()) return std::nullopt;
-    // A ramp to start from: a string's even modes are odd about its middle, which an even
+    // Without a start, a ramp: a string's even modes are odd about its middle, which an even
     // start (all ones) would leave out.
     Eigen::VectorXcd x(n);
-    for (int i = 0; i < n; ++i) x[i] = 1.0 + static_cast<double>(i) / n;
+    for (int i = 0; i < n; ++i)
+        x[i] = start.size() == static_cast<std::size_t>(n) ? start[i]
+                                                           : 1.0 + static_cast<double>(i) / n;
     // Steps from the guess itself settle on the root nearest it (each shrinks the others' share
     // by about their distance ratio); once the estimate holds still, the shift follows it and
     // the estimate converges fast, until rounding stops it: it is taken when it moves by a few
@@ -61,17 +96,17 @@ std::optional<Complex> update_root_near(const LinearSystem& sys, Complex guess) 
     constexpr double kShiftFollowsBelow = 1e-9,
                      kFewRoundings = 4.0 * std::numeric_limits<double>::epsilon(),
                      kNearlySettled = 1e-12;
-    Eigen::SparseLU<SparseComplex> lu;
-    lu.analyzePattern(quadratic_pencil(sys, guess));  // the same pattern at every shift
+    PencilSolver pencil(sys);
     Complex z = guess, shift = guess;
     bool following = false;
     double last_move = std::numeric_limits<double>::infinity();
     for (int step = 0; step < kMostSteps; ++step) {
         if (following) shift = z;
-        lu.factorize(quadratic_pencil(sys, shift));
+        std::optional<Eigen::VectorXcd> solved =
+            pencil.solve(shift, derivative_times(sys, shift, x));
         // Singular to the last bit: the shift is a root (the guess itself, when not following).
-        if (lu.info() != Eigen::Success) return following ? z : guess;
-        x = lu.solve(derivative_times(sys, shift, x));
+        if (!solved) return following ? z : guess;
+        x = std::move(*solved);
         const double largest = x.cwiseAbs().maxCoeff();  // the solve can near overflow
         if (!(largest > 0) || !std::isfinite(largest)) return std::nullopt;
         x /= largest;
