@@ -13,6 +13,7 @@
 #include <set>
 #include <string>
 
+#include "archet/analysis/chain_update_roots.hpp"
 #include "archet/analysis/discrete_modes.hpp"
 #include "archet/analysis/modal_analysis.hpp"
 #include "archet/analysis/mode_shape.hpp"
@@ -51,12 +52,27 @@ double residual(const LinearSystem& system, std::complex<double> z) {
     return (p * x).norm() / system.mass.maxCoeff();
 }
 
+// What rounding alone leaves of |P(z)·x| for a unit x, in the same units: a few roundings of
+// P's largest column.
+double rounding_residual(const LinearSystem& system, std::complex<double> z) {
+    const Eigen::SparseMatrix<std::complex<double>> p = quadratic_pencil(system, z);
+    double largest_column = 0;
+    for (int column = 0; column < p.outerSize(); ++column) {
+        double sum = 0;
+        for (Eigen::SparseMatrix<std::complex<double>>::InnerIterator it(p, column); it; ++it)
+            sum += std::abs(it.value());
+        largest_column = std::max(largest_column, sum);
+    }
+    return 4.0 * std::numeric_limits<double>::epsilon() * largest_column / system.mass.maxCoeff();
+}
+
 // The dense solve's roots carry an error of a modest multiple of n·ε·‖U‖ (U the 2n × 2n
 // update; 16 of them is the bound here): each root found from its undamped mode is the dense
-// solve's nearest it to that, a distinct one, and as near a root (the residual is at rounding
-// for both: within a factor 2, or below 1e-18), and the partials agree to that. (Refined in long
-// double, the roots found from the modes were within 1e-16 of the refined ones on the 65 Hz string,
-// the dense solve's within 1e-13 to 1e-15: the dense solve is the less exact.)
+// solve's nearest it to that, a distinct one, and as near a root (the residuals are at rounding
+// for both: within twice the dense solve's and a few roundings of P), and the partials agree to
+// that. (Refined in long double, the roots found from the modes were within 1e-16 of the
+// refined ones on the 65 Hz string, the dense solve's within 1e-13 to 1e-15: the dense solve is
+// the less exact.)
 TEST(StringPartials, AreTheDenseSolvesOnTunedStrings) {
     const StringCase cases[] = {
         {220, Tuning::Harmonic, 96, {}},
@@ -92,7 +108,8 @@ TEST(StringPartials, AreTheDenseSolvesOnTunedStrings) {
             const std::complex<double> twin = dense.roots[nearest];
             EXPECT_TRUE(matched.insert(nearest).second) << what << ": two roots on one";
             EXPECT_LE(std::abs(z - twin), bound) << what;
-            EXPECT_LE(residual(sys, z), std::max(2.0 * residual(sys, twin), 1e-18)) << what;
+            EXPECT_LE(residual(sys, z), 2.0 * residual(sys, twin) + rounding_residual(sys, z))
+                << what;
         }
         const std::vector<double> expected = partials_of_analyse_modes(sys, model);
         const std::vector<double> partials = string_partial_frequencies(sys, model);
@@ -109,15 +126,12 @@ TEST(StringPartials, AreTheDenseSolvesOnTunedStrings) {
 // from its shape: the dense solve takes over, and the partials are analyse_modes()' own.
 TEST(StringPartials, LeaveAnOverdampedChainToTheDenseSolve) {
     Model model = test::chain(6, 1e-4, 100.0, 0.0);
-    Mat* heavy = model.find_mat("m3");
-    heavy->kind = MatKind::Oscillator, heavy->stiffness = 1.0, heavy->damping = 10.0;
+    Mat* grounded = model.find_mat("m3");
+    grounded->kind = MatKind::Oscillator, grounded->stiffness = 1.0, grounded->damping = 10.0;
     const LinearSystem sys = assemble_linear_system(model);
     EXPECT_FALSE(chain_update_roots(sys).has_value());
-    const std::vector<double> partials = string_partial_frequencies(sys, model);
-    const std::vector<double> expected = partials_of_analyse_modes(sys, model);
-    ASSERT_EQ(partials.size(), expected.size());
-    for (std::size_t k = 0; k < partials.size(); ++k)
-        EXPECT_NEAR(partials[k], expected[k], 1e-9 * expected[k]) << "partial " << k + 1;
+    // The dense solve's roots are analyse_modes()' to the bit (the same reduction and steps).
+    EXPECT_EQ(string_partial_frequencies(sys, model), partials_of_analyse_modes(sys, model));
 }
 
 TEST(StringPartials, AStringWithABodyIsNotAChainAndIsAnalysedWhole) {

@@ -81,12 +81,26 @@ TEST(UpdateRootNear, IsTheDenseSolvesRootNearestTheGuess) {
         expect_the_dense_roots(load_model_file(test::resource("models/" + name + ".json")),
                                std::stod(pitch), name);
     }
-    expect_the_dense_roots(load_model_file(test::resource("models/bowed-string-110-paper.json")),
-                           110, "bowed-string-110-paper");
-    // A string without a body: its losses to the rest points, heavy damped bridges.
+    // On chains (the refinement's tridiagonal solve): the paper's, and a string without a body
+    // (its losses to the rest points, heavy damped bridges).
+    const Model paper = load_model_file(test::resource("models/bowed-string-110-paper.json"));
+    ASSERT_TRUE(is_tridiagonal(assemble_linear_system(paper, "audio")));
+    expect_the_dense_roots(paper, 110, "bowed-string-110-paper");
     BowedStringOptions o;
     o.pitch = 98, o.masses = 120, o.body = "none", o.with_gesture = false;
-    expect_the_dense_roots(build_bowed_string(o), o.pitch, "98 Hz without a body");
+    const Model bare = build_bowed_string(o);
+    ASSERT_TRUE(is_tridiagonal(assemble_linear_system(bare, "audio")));
+    expect_the_dense_roots(bare, o.pitch, "98 Hz without a body");
+}
+
+// A coefficient that is not a number gives no root, on a chain as elsewhere: not the guess, as
+// a shift exactly on a root would.
+TEST(UpdateRootNear, FindsNoRootWhereACoefficientIsNotANumber) {
+    const Model model = load_model_file(test::resource("models/bowed-string-110-paper.json"));
+    LinearSystem system = assemble_linear_system(model, "audio");
+    ASSERT_TRUE(is_tridiagonal(system));
+    system.stiffness.coeffRef(5, 5) = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_FALSE(update_root_near(system, on_the_circle(110, system.dt)).has_value());
 }
 
 TEST(UpdateRootNear, LeavesAFingeredStringToTheDenseSolve) {

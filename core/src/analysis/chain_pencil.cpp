@@ -1,6 +1,7 @@
 #include "chain_pencil.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace archet {
@@ -17,6 +18,9 @@ ChainPencil::ChainPencil(const LinearSystem& sys)
         if (i + 1 < sys.size())
             k_off_[i] = sys.stiffness.coeff(i + 1, i), z_off_[i] = sys.damping.coeff(i + 1, i);
     }
+    for (const std::vector<double>* v : {&mass_, &k_diagonal_, &k_off_, &z_diagonal_, &z_off_})
+        for (double c : *v) finite_ = finite_ && std::isfinite(c);
+    finite_ = finite_ && std::isfinite(dt_);
 }
 
 std::vector<ChainPencil::Complex> ChainPencil::solve(Complex z, std::vector<Complex> b) const {

@@ -7,8 +7,8 @@
 #include <complex>
 #include <vector>
 
-#include "archet/analysis/tridiagonal_solve.hpp"
 #include "archet/model/linear_system.hpp"
+#include "tridiagonal_solve.hpp"
 
 namespace archet {
 
@@ -20,12 +20,15 @@ class ChainPencil {
     explicit ChainPencil(const LinearSystem& system);
 
     int size() const { return static_cast<int>(mass_.size()); }
+    /// Whether its coefficients are all finite (a solve that overflows is then one at a root).
+    bool finite() const { return finite_; }
     /// x with P(z)·x = b (solve_tridiagonal()).
     std::vector<Complex> solve(Complex z, std::vector<Complex> b) const;
 
   private:
     std::vector<double> mass_, k_diagonal_, k_off_, z_diagonal_, z_off_;  ///< off: (i + 1, i)
     double dt_;
+    bool finite_ = true;
 };
 
 }  // namespace archet

@@ -6,7 +6,6 @@
 #include <optional>
 
 #include "archet/analysis/mode_shape.hpp"
-#include "archet/analysis/string_partials.hpp"
 #include "chain_pencil.hpp"
 
 namespace archet {
@@ -46,27 +45,35 @@ Complex rayleigh_root(const LinearSystem& sys, const Eigen::VectorXcd& x, Comple
     return std::abs(z1 - near) <= std::abs(z2 - near) ? z1 : z2;
 }
 
-// P(shift)⁻¹·b: on a chain by its O(n) solve, else by the sparse LU (its pattern analysed once).
+// P(shift)⁻¹·b: on a chain by its O(n) solve, else by the sparse LU (its pattern, which
+// quadratic_pencil() makes the same at every shift, analysed once).
 class PencilSolver {
   public:
+    enum class Outcome { Solved, Singular, Failed };
+
     explicit PencilSolver(const LinearSystem& sys) : sys_(sys) {
         if (is_tridiagonal(sys))
             chain_.emplace(sys);
         else
-            lu_.analyzePattern(quadratic_pencil(sys, 1.0));  // the same pattern at every shift
+            lu_.analyzePattern(quadratic_pencil(sys, 1.0));
     }
-    /// Nothing where P(shift) is singular to the last bit.
-    std::optional<Eigen::VectorXcd> solve(Complex shift, const Eigen::VectorXcd& b) {
+    /// Singular: P(shift) is singular to the last bit (the LU finds a zero pivot; the chain's
+    /// solve, which takes one as the smallest normal number, overflows on finite coefficients).
+    /// Failed: what is not finite (a coefficient, the shift) made the result so.
+    Outcome solve(Complex shift, const Eigen::VectorXcd& b, Eigen::VectorXcd& x) {
         if (chain_) {
-            const std::vector<Complex> x =
+            const std::vector<Complex> y =
                 chain_->solve(shift, std::vector<Complex>(b.data(), b.data() + b.size()));
-            Eigen::VectorXcd result = Eigen::Map<const Eigen::VectorXcd>(x.data(), b.size());
-            if (!result.allFinite()) return std::nullopt;  // a zero pivot, taken as tiny
-            return result;
+            x = Eigen::Map<const Eigen::VectorXcd>(y.data(), b.size());
+            if (x.allFinite()) return Outcome::Solved;
+            const bool finite_input = chain_->finite() && std::isfinite(shift.real()) &&
+                                      std::isfinite(shift.imag()) && b.allFinite();
+            return finite_input ? Outcome::Singular : Outcome::Failed;
         }
         lu_.factorize(quadratic_pencil(sys_, shift));
-        if (lu_.info() != Eigen::Success) return std::nullopt;
-        return Eigen::VectorXcd(lu_.solve(b));
+        if (lu_.info() != Eigen::Success) return Outcome::Singular;
+        x = lu_.solve(b);
+        return Outcome::Solved;
     }
 
   private:
@@ -102,11 +109,13 @@ std::optional<Complex> update_root_near(const LinearSystem& sys, Complex guess,
     double last_move = std::numeric_limits<double>::infinity();
     for (int step = 0; step < kMostSteps; ++step) {
         if (following) shift = z;
-        std::optional<Eigen::VectorXcd> solved =
-            pencil.solve(shift, derivative_times(sys, shift, x));
+        Eigen::VectorXcd solved;
+        const PencilSolver::Outcome outcome =
+            pencil.solve(shift, derivative_times(sys, shift, x), solved);
         // Singular to the last bit: the shift is a root (the guess itself, when not following).
-        if (!solved) return following ? z : guess;
-        x = std::move(*solved);
+        if (outcome == PencilSolver::Outcome::Singular) return following ? z : guess;
+        if (outcome == PencilSolver::Outcome::Failed) return std::nullopt;
+        x = std::move(solved);
         const double largest = x.cwiseAbs().maxCoeff();  // the solve can near overflow
         if (!(largest > 0) || !std::isfinite(largest)) return std::nullopt;
         x /= largest;

@@ -1,6 +1,7 @@
 #include "archet/model/linear_system.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <optional>
@@ -248,6 +249,14 @@ bool same_bits(const FingerTerm& a, const FingerTerm& b) {
 }
 
 }  // namespace
+
+bool is_tridiagonal(const LinearSystem& sys) {
+    for (const Eigen::SparseMatrix<double>* m : {&sys.stiffness, &sys.damping})
+        for (int column = 0; column < m->outerSize(); ++column)
+            for (Eigen::SparseMatrix<double>::InnerIterator it(*m, column); it; ++it)
+                if (it.value() != 0.0 && std::abs(it.row() - it.col()) > 1) return false;
+    return true;
+}
 
 bool identical(const LinearSystem& a, const LinearSystem& b) {
     if (a.rate != b.rate || !same_bits(a.dt, b.dt) || a.dofs != b.dofs ||

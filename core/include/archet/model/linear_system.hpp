@@ -40,6 +40,10 @@ enum class Fingers { Include, Exclude };
 LinearSystem assemble_linear_system(const Model& model, const std::string& rate = "",
                                     Fingers fingers = Fingers::Include);
 
+/// Whether every link of the system joins neighbours in the order of its DOFs (a chain: its
+/// stiffness and damping tridiagonal).
+bool is_tridiagonal(const LinearSystem& system);
+
 /// Whether two systems are the same to the bit: rate, period, DOFs, matrices and fingers (an
 /// analysis of one is the other's).
 bool identical(const LinearSystem& a, const LinearSystem& b);

@@ -1,10 +1,11 @@
 #pragma once
-// The solve of a tridiagonal system, real or complex: what inverse iteration on a chain's modes
-// needs, in O(n) where a dense LU takes O(n³).
+// The solve of a tridiagonal system of doubles or complex doubles: what inverse iteration on a
+// chain's modes needs, in O(n) where a dense LU takes O(n³). Private to the analysis sources.
 
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -17,6 +18,7 @@ namespace archet {
 template <class T>
 std::vector<T> solve_tridiagonal(std::vector<T> sub, std::vector<T> diagonal, std::vector<T> super,
                                  std::vector<T> b) {
+    static_assert(std::is_same_v<T, double> || std::is_same_v<T, std::complex<double>>);
     const int n = static_cast<int>(diagonal.size());
     if (n == 0) return b;
     std::vector<T> second(n, T{});  // fill-in two places right of the diagonal
