@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "archet/model/linear_system.hpp"
-#include "tridiagonal_solve.hpp"
 
 namespace archet {
 
@@ -22,7 +21,8 @@ class ChainPencil {
     int size() const { return static_cast<int>(mass_.size()); }
     /// Whether its coefficients are all finite (a solve that overflows is then one at a root).
     bool finite() const { return finite_; }
-    /// x with P(z)·x = b (solve_tridiagonal()).
+    /// x with P(z)·x = b, by Gaussian elimination with row interchanges (LAPACK's gtsv); an
+    /// exactly zero pivot is taken as the smallest normal number.
     std::vector<Complex> solve(Complex z, std::vector<Complex> b) const;
 
   private:

@@ -110,6 +110,12 @@ void check_analysable(const LinearSystem& sys) {
                                  format_number(sys.mass[i]) + " kg); give it a positive mass");
 }
 
+void refuse_unconverged_analysis() {
+    throw InputError("model",
+                     "its modal analysis did not converge (the QR iteration ran "
+                     "out of steps): check the model's masses and links");
+}
+
 ModalAnalysis analyse_modes(const Model& model) {
     return analyse_modes(sounding_part(model), model);
 }
@@ -123,9 +129,7 @@ ModalSolve solve_modes(const LinearSystem& sys) {
     const int n = sys.size();
     Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), true);
     if (solver.info() != Eigen::Success)  // Eigen then leaves no roots to read
-        throw InputError("model",
-                         "its modal analysis did not converge (the QR iteration ran "
-                         "out of steps): check the model's masses and links");
+        refuse_unconverged_analysis();
     // Built once: eigenvectors() converts the whole real Schur basis to a complex matrix at
     // every call, which inside a loop cost a quarter of a long string's retuning.
     const Eigen::MatrixXcd vectors = solver.eigenvectors();

@@ -11,7 +11,6 @@
 #include "archet/analysis/discrete_modes.hpp"
 #include "archet/analysis/modal_analysis.hpp"
 #include "archet/analysis/mode_shape.hpp"
-#include "archet/common/input_error.hpp"
 #include "chain_pencil.hpp"
 
 namespace archet {
@@ -65,15 +64,13 @@ std::vector<double> string_partial_frequencies(const LinearSystem& sys, const Mo
     const double dt = sys.dt;
     std::optional<std::vector<Complex>> roots = chain_update_roots(sys);
     if (!roots) {
-        // The dense solve of every root, as analyse_modes() makes it (without eigenvectors
-        // Eigen runs the same reduction and QR steps and only leaves out their basis).
-        const Eigen::EigenSolver<Eigen::MatrixXd> solver(update_matrix(sys), false);
-        if (solver.info() != Eigen::Success)  // as analyse_modes()
-            throw InputError("model",
-                             "its modal analysis did not converge (the QR iteration ran out of "
-                             "steps): check the model's masses and links");
+        // The dense solve of every root, analyse_modes()' roots to the bit (without
+        // eigenvectors Eigen runs the same reduction and QR steps and only leaves out their
+        // basis).
+        const UpdateRoots dense = update_roots(sys);
+        if (!dense.converged) refuse_unconverged_analysis();
         roots.emplace();
-        for (const Complex& root : solver.eigenvalues())
+        for (const Complex& root : dense.roots)
             if (root.imag() > 0.0) roots->push_back(root);  // one of each pair, no real roots
     }
     // The shapes come from a solve of their own, so a mode whose energy is split within

@@ -62,6 +62,9 @@ ModalAnalysis class_modes(const ModalSolve& solve, const LinearSystem& system, c
 /// than kMaxModalDofs, or a mass that is not positive.
 void check_analysable(const LinearSystem& system);
 
+/// Throws the InputError analyse_modes() throws when the eigenvalue solve does not converge.
+[[noreturn]] void refuse_unconverged_analysis();
+
 /// Which DOFs are supports (oscillators standing on their own such as the bridges, the modes a
 /// body's bridge point reads, the string behind a finger): a mode with most of its kinetic energy
 /// in them is a support mode.
