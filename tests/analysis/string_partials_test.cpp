@@ -134,6 +134,43 @@ TEST(StringPartials, LeaveAnOverdampedChainToTheDenseSolve) {
     EXPECT_EQ(string_partial_frequencies(sys, model), partials_of_analyse_modes(sys, model));
 }
 
+// Two halves of a chain, eight masses, joined by a link far weaker than the others: their modes
+// come in close pairs. Damped alike (the dampers in proportion to the springs), the undamped
+// shapes are the damped modes' own, each root lies on its guess, and all are found. Damped on
+// one half only, each damped mode keeps to one half while a pair's undamped shapes spread over
+// both, so a pair's guesses fall between its roots:
+// - with identical halves (the coupling a millionth of the other springs), half way: the
+//   refinement from there cannot choose between the two roots and does not settle;
+// - with the right half's masses a thousandth heavier (the coupling a hundredth), nearer one
+//   root than the other but not nearer its own than half way to the other guess: the roots
+//   may have settled each on its own, but nothing shows that two did not settle on one.
+// Both are refused, and the dense solve takes over.
+TEST(StringPartials, LeaveRootsTheirGuessesDoNotTellApartToTheDenseSolve) {
+    auto halves = [](double coupling, double heavier, double left_damping, double right_damping) {
+        Model model = test::chain(8, 1e-4, 100.0, 0.0);
+        for (int i = 0; i <= 8; ++i)
+            model.find_lia("l" + std::to_string(i))->damping = i < 4 ? left_damping : right_damping;
+        for (int i = 5; i <= 8; ++i) model.find_mat("m" + std::to_string(i))->mass *= heavier;
+        model.find_lia("l4")->stiffness = coupling;
+        model.find_lia("l4")->damping = 0.0;
+        return model;
+    };
+    const LinearSystem alike = assemble_linear_system(halves(1e-4, 1.0, 1e-3, 1e-3));
+    ASSERT_TRUE(is_tridiagonal(alike));
+    const auto found = chain_update_roots(alike);
+    ASSERT_TRUE(found.has_value());
+    EXPECT_EQ(found->size(), 8u);
+
+    for (const Model& one_sided : {halves(1e-4, 1.0, 1e-3, 0.0), halves(1.0, 1.001, 1e-3, 0.0)}) {
+        const LinearSystem system = assemble_linear_system(one_sided);
+        EXPECT_FALSE(chain_update_roots(system).has_value());
+        // The dense solve's roots are analyse_modes()' to the bit (the same reduction and steps).
+        const std::vector<double> partials = string_partial_frequencies(system, one_sided);
+        EXPECT_EQ(partials, partials_of_analyse_modes(system, one_sided));
+        EXPECT_EQ(partials.size(), 8u);
+    }
+}
+
 TEST(StringPartials, AStringWithABodyIsNotAChainAndIsAnalysedWhole) {
     BowedStringOptions o;
     o.pitch = 440, o.body = "violin";
