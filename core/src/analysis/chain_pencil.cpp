@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <utility>
+
+#include "archet/common/tridiagonal_solve.hpp"
 
 namespace archet {
 
@@ -38,32 +39,7 @@ std::vector<ChainPencil::Complex> ChainPencil::solve(Complex z, std::vector<Comp
         if (i + 1 < n)
             sub[i] = super[i] = stiffness_factor * k_off_[i] + damping_factor * z_off_[i];
     }
-    // Gaussian elimination with row interchanges (LAPACK's gtsv): stable whatever the pivots. A
-    // pivot that is exactly zero, the singular matrix inverse iteration aims at, is taken as the
-    // smallest normal number.
-    std::vector<Complex> second(n, Complex{});  // fill-in two places right of the diagonal
-    for (int i = 0; i + 1 < n; ++i) {
-        if (std::abs(sub[i]) > std::abs(diagonal[i])) {  // row i + 1 pivots: swap the rows
-            std::swap(diagonal[i], sub[i]);
-            std::swap(super[i], diagonal[i + 1]);
-            if (i + 2 < n) std::swap(second[i], super[i + 1]);
-            std::swap(b[i], b[i + 1]);
-        }
-        if (diagonal[i] == Complex{}) diagonal[i] = std::numeric_limits<double>::min();
-        const Complex factor = sub[i] / diagonal[i];
-        diagonal[i + 1] -= factor * super[i];
-        if (i + 2 < n) super[i + 1] -= factor * second[i];
-        b[i + 1] -= factor * b[i];
-    }
-    if (diagonal[n - 1] == Complex{}) diagonal[n - 1] = std::numeric_limits<double>::min();
-    std::vector<Complex> x(n);
-    for (int i = n - 1; i >= 0; --i) {
-        Complex v = b[i];
-        if (i + 1 < n) v -= super[i] * x[i + 1];
-        if (i + 2 < n) v -= second[i] * x[i + 2];
-        x[i] = v / diagonal[i];
-    }
-    return x;
+    return tridiagonal_solve(std::move(diagonal), std::move(sub), std::move(super), std::move(b));
 }
 
 }  // namespace archet

@@ -62,20 +62,4 @@ std::vector<DiscreteMode> discrete_modes(const UpdateRoots& update) {
     return modes;
 }
 
-std::vector<double> undamped_discrete_frequencies(const LinearSystem& sys) {
-    const int n = sys.size();
-    std::vector<double> result;
-    if (n == 0) return result;
-    const Eigen::VectorXd scale = sys.mass.cwiseSqrt().cwiseInverse();
-    const Eigen::MatrixXd a =
-        scale.asDiagonal() * Eigen::MatrixXd(sys.stiffness) * scale.asDiagonal();
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(a, Eigen::EigenvaluesOnly);
-    for (double lambda : solver.eigenvalues()) {
-        // sin(Ω·T/2) = √λ·T/2 under the explicit scheme.
-        const double s = std::sqrt(std::max(lambda, 0.0)) * sys.dt / 2.0;
-        if (s < 1.0) result.push_back(std::asin(s) / (std::numbers::pi * sys.dt));
-    }
-    return result;
-}
-
 }  // namespace archet

@@ -6,10 +6,13 @@
 #include <cmath>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 
 #include "archet/analysis/discrete_modes.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/common/tridiagonal_solve.hpp"
 #include "archet/model/linear_system.hpp"
+#include "archet/model/symmetric_eigen.hpp"
 
 namespace archet {
 
@@ -53,10 +56,10 @@ UndampedModes undamped_modes(const Model& model, const StringElements& string) {
     UndampedModes u{assemble_linear_system(model, "audio"), {}, {}, {}};
     const int n = u.system.size();
     const Eigen::VectorXd scale = u.system.mass.cwiseSqrt().cwiseInverse();
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(
-        scale.asDiagonal() * dense(u.system.stiffness, n) * scale.asDiagonal());
-    u.lambda = solver.eigenvalues();
-    u.shapes = scale.asDiagonal() * solver.eigenvectors();
+    const SymmetricEigen solved = undamped_eigen(u.system, Eigen::ComputeEigenvectors);
+    if (!solved.converged) throw std::runtime_error("the string's undamped modes did not converge");
+    u.lambda = solved.values;
+    u.shapes = scale.asDiagonal() * solved.vectors;
     Eigen::VectorXd in_string = Eigen::VectorXd::Zero(n);
     for (int d = 0; d < n; ++d)
         for (const auto& id : string.masses)
@@ -64,6 +67,93 @@ UndampedModes undamped_modes(const Model& model, const StringElements& string) {
     u.share = (u.shapes.array().square().colwise() * in_string.array()).colwise().sum();
     return u;
 }
+
+// The null vector of A − λ·I for λ just off one of A = M^(−1/2)·K·M^(−1/2)'s eigenvalues: two
+// solves from an even start, on a chain each O(n) (tridiagonal_solve()), where the dense LU is
+// O(n³).
+class ShiftedSolve {
+  public:
+    explicit ShiftedSolve(const LinearSystem& system) : chain_(is_tridiagonal(system)) {
+        const Eigen::VectorXd scale = system.mass.cwiseSqrt().cwiseInverse();
+        const int n = system.size();
+        if (!chain_) {
+            dense_ = scale.asDiagonal() * dense(system.stiffness, n) * scale.asDiagonal();
+            return;
+        }
+        auto entry = [&](int r, int c) {
+            return (scale[r] * system.stiffness.coeff(r, c)) * scale[c];
+        };
+        for (int i = 0; i < n; ++i) {
+            diagonal_.push_back(entry(i, i));
+            if (i + 1 < n) below_.push_back(entry(i + 1, i)), above_.push_back(entry(i, i + 1));
+        }
+    }
+
+    Eigen::VectorXd null_vector(double shift) const {
+        if (!chain_) {
+            const Eigen::Index n = dense_.rows();
+            const Eigen::PartialPivLU<Eigen::MatrixXd> lu(dense_ -
+                                                          shift * Eigen::MatrixXd::Identity(n, n));
+            Eigen::VectorXd y = Eigen::VectorXd::Ones(n);
+            for (int pass = 0; pass < 2; ++pass) y = lu.solve(y).normalized();
+            return y;
+        }
+        std::vector<double> shifted = diagonal_, y(diagonal_.size(), 1.0);
+        for (double& d : shifted) d -= shift;
+        for (int pass = 0; pass < 2; ++pass) {
+            y = tridiagonal_solve(shifted, below_, above_, std::move(y));
+            const double norm = Eigen::Map<const Eigen::VectorXd>(y.data(), y.size()).norm();
+            for (double& v : y) v /= norm;
+        }
+        return Eigen::Map<const Eigen::VectorXd>(y.data(), y.size());
+    }
+
+  private:
+    bool chain_;
+    std::vector<double> diagonal_, below_, above_;
+    Eigen::MatrixXd dense_;
+};
+
+// The undamped modes' λ without their shapes, and each mode's share of inertia in the string
+// from its shape found by inverse iteration: what undamped_modes() gives, without the O(n³) of
+// the eigenvectors.
+class StringShares {
+  public:
+    StringShares(const LinearSystem& system, const StringElements& string)
+        : system_(system), shifted_(system), in_string_(system.size(), false) {
+        // Without eigenvectors Eigen runs the same reduction and QR steps: undamped_modes()' λ,
+        // bit for bit.
+        const SymmetricEigen solved = undamped_eigen(system, Eigen::EigenvaluesOnly);
+        if (!solved.converged)
+            throw std::runtime_error("the string's undamped modes did not converge");
+        modes_ = UndampedModes{system, solved.values, {}, {}};
+        for (int d = 0; d < system.size(); ++d)
+            for (const auto& id : string.masses)
+                if (system.dofs[d] == id) in_string_[d] = true;
+        if (modes_.lambda.size() > 0) largest_ = std::max(1.0, modes_.lambda.cwiseAbs().maxCoeff());
+    }
+
+    const UndampedModes& modes() const { return modes_; }
+
+    /// Σ m·φ² over the string's masses, φ = M^(−1/2)·y the mode's shape, |y| = 1: NaN where the
+    /// solve failed. Shifted off λ by far less than any gap between modes, so that the solve
+    /// stays finite; two solves from an even start leave the mode's shape (a close pair's mix,
+    /// should two be that close: both a bridge's, or both the string's).
+    double share(int mode) const {
+        const Eigen::VectorXd y = shifted_.null_vector(modes_.lambda[mode] + 1e-12 * largest_);
+        double share = 0;
+        for (int d = 0; d < system_.size(); ++d)
+            if (in_string_[d]) share += y[d] * y[d];
+        return share;
+    }
+
+  private:
+    const LinearSystem& system_;
+    ShiftedSolve shifted_;
+    UndampedModes modes_;
+    std::vector<bool> in_string_;
+    double largest_ = 1.0;
+};
 
 // First-order perturbation of the undamped modes (φᵀMφ = 1): a mode's rate is ½·φᵀZφ. The
 // string's links' part of K is what removing their stiffness takes away.
@@ -201,27 +291,32 @@ void apply_string_losses(Model& model, const StringElements& string, const Strin
 }
 
 std::vector<double> string_mode_frequencies(const Model& model, const StringElements& string) {
-    const UndampedModes u = undamped_modes(model, string);
     std::vector<double> f;
+    const LinearSystem system = assemble_linear_system(model, "audio");
+    // On a chain each shape's solve is O(n): cheaper than all the eigenvectors.
+    if (is_tridiagonal(system)) {
+        const StringShares shares(system, string);
+        bool finite = true;
+        for (int mode = 0; finite && mode < system.size(); ++mode) {
+            const double share = shares.share(mode);
+            finite = std::isfinite(share);
+            if (share >= 0.5) f.push_back(shares.modes().frequency(mode));
+        }
+        if (finite) return f;  // the solver sorts λ ascending
+        f.clear();
+    }
+    const UndampedModes u = undamped_modes(model, string);
     for (int mode = 0; mode < u.system.size(); ++mode)
         if (u.share[mode] >= 0.5) f.push_back(u.frequency(mode));
-    return f;  // the solver sorts λ ascending
+    return f;
 }
 
 double string_mode_frequency(const Model& model, const StringElements& string, double frequency) {
     const LinearSystem system = assemble_linear_system(model, "audio");
     const int n = system.size();
     if (n == 0) return 0.0;  // no mode at all
-    const Eigen::VectorXd scale = system.mass.cwiseSqrt().cwiseInverse();
-    const Eigen::MatrixXd a = scale.asDiagonal() * dense(system.stiffness, n) * scale.asDiagonal();
-    // Without eigenvectors Eigen runs the same reduction and QR steps: undamped_modes()' λ, bit
-    // for bit. A mode's shape is then the null vector of A − λ·I, by inverse iteration.
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(a, Eigen::EigenvaluesOnly);
-    const UndampedModes u{system, solver.eigenvalues(), {}, {}};
-    std::vector<bool> in_string(n, false);
-    for (int d = 0; d < n; ++d)
-        for (const auto& id : string.masses)
-            if (system.dofs[d] == id) in_string[d] = true;
+    const StringShares shares(system, string);
+    const UndampedModes& u = shares.modes();
     // The modes by distance from `frequency`, the lower first among equals (as
     // mode_coefficients() picks): the first that lives in the string is the one it picks.
     std::vector<int> nearest(n);
@@ -229,19 +324,8 @@ double string_mode_frequency(const Model& model, const StringElements& string, d
     std::stable_sort(nearest.begin(), nearest.end(), [&](int x, int y) {
         return std::abs(u.frequency(x) - frequency) < std::abs(u.frequency(y) - frequency);
     });
-    const double largest = std::max(1.0, u.lambda.cwiseAbs().maxCoeff());
     for (int mode : nearest) {
-        // Shifted off λ by far less than any gap between modes, so that the solve stays finite;
-        // two solves from an even start leave the mode's shape (a close pair's mix, should two be
-        // that close: both a bridge's, or both the string's).
-        const double shift = u.lambda[mode] + 1e-12 * largest;
-        const Eigen::PartialPivLU<Eigen::MatrixXd> lu(a - shift * Eigen::MatrixXd::Identity(n, n));
-        Eigen::VectorXd y = Eigen::VectorXd::Ones(n);
-        for (int pass = 0; pass < 2; ++pass) y = lu.solve(y).normalized();
-        // Its share of inertia in the string: Σ m·φ² with φ = M^(−1/2)·y and |y| = 1.
-        double share = 0;
-        for (int d = 0; d < n; ++d)
-            if (in_string[d]) share += y[d] * y[d];
+        const double share = shares.share(mode);
         if (!std::isfinite(share)) return string_mode_decay(model, string, frequency).frequency;
         if (share >= 0.5) return u.frequency(mode);
     }

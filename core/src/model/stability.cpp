@@ -3,15 +3,16 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "archet/model/symmetric_eigen.hpp"
+
 namespace archet {
 
 double largest_eigenvalue(const Eigen::SparseMatrix<double>& a) {
     const int n = static_cast<int>(a.rows());
     if (n == 0) return 0.0;
     if (n <= 400) {
-        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(Eigen::MatrixXd(a),
-                                                              Eigen::EigenvaluesOnly);
-        return solver.eigenvalues().maxCoeff();
+        const SymmetricEigen solved = symmetric_eigen(a, Eigen::EigenvaluesOnly);
+        if (solved.converged) return solved.values.maxCoeff();
     }
     // Lanczos converges fastest at the ends of the spectrum; a few dozen steps suffice.
     const int steps = std::min(n, 120);

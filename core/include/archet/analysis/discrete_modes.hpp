@@ -51,8 +51,4 @@ UpdateRoots update_roots(LinearSystem system);
 std::vector<DiscreteMode> discrete_modes(const LinearSystem& system);
 std::vector<DiscreteMode> discrete_modes(const UpdateRoots& roots);
 
-/// Undamped discrete frequencies from the symmetric problem (fast, for tuning; fingers left
-/// out).
-std::vector<double> undamped_discrete_frequencies(const LinearSystem& system);
-
 }  // namespace archet

@@ -1,0 +1,30 @@
+#pragma once
+// Symmetric eigenproblems as Eigen's dense solver solves them, bit for bit, without reducing a
+// matrix that is already tridiagonal (a chain's): the string tunings and the stability check
+// solve them at each of their corrections, and every shipped string's bytes depend on them.
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+
+#include "archet/model/linear_system.hpp"
+
+namespace archet {
+
+struct SymmetricEigen {
+    Eigen::VectorXd values;   ///< ascending
+    Eigen::MatrixXd vectors;  ///< unit columns; empty unless asked for
+    bool converged = false;
+};
+
+/// The eigenvalues (and, with `options` Eigen::ComputeEigenvectors, the eigenvectors) of a
+/// symmetric matrix given whole. A tridiagonal one's two diagonals go to the tridiagonal
+/// solver, scaled as the dense solver scales the whole matrix: the dense solver's Householder
+/// reflections are then each the identity (the column below the subdiagonal is zero), so the
+/// result is its own to the bit (symmetric_eigen_test.cpp holds it to that).
+SymmetricEigen symmetric_eigen(const Eigen::SparseMatrix<double>& symmetric, int options);
+
+/// The system's undamped modes: M^(−1/2)·K·M^(−1/2)·y = λ·y (their shapes are φ = M^(−1/2)·y),
+/// the matrix's entries (m_r^(−1/2)·K_rc)·m_c^(−1/2) as the dense product computes them.
+SymmetricEigen undamped_eigen(const LinearSystem& system, int options);
+
+}  // namespace archet
