@@ -243,5 +243,53 @@ TEST(StringModeFrequency, IsTheBitsTheWholeEigenbasisGives) {
     }
 }
 
+// The modes that live in the string by their shares of inertia from the whole eigenbasis.
+std::vector<double> string_modes_of_the_eigenbasis(const Model& model,
+                                                   const StringElements& string) {
+    const LinearSystem sys = assemble_linear_system(model, "audio");
+    const int n = sys.size();
+    const Eigen::VectorXd scale = sys.mass.cwiseSqrt().cwiseInverse();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(
+        scale.asDiagonal() * Eigen::MatrixXd(sys.stiffness) * scale.asDiagonal());
+    std::vector<double> frequencies;
+    for (int mode = 0; mode < n; ++mode) {
+        double share = 0;
+        for (int d = 0; d < n; ++d)
+            for (const std::string& id : string.masses)
+                if (sys.dofs[d] == id) share += std::pow(solver.eigenvectors()(d, mode), 2);
+        const double s = std::sqrt(std::max(0.0, solver.eigenvalues()[mode])) * sys.dt / 2;
+        if (share >= 0.5)
+            frequencies.push_back(std::asin(std::min(1.0, s)) / (std::numbers::pi * sys.dt));
+    }
+    return frequencies;
+}
+
+// A string between like bridges is mirror-symmetric: its odd modes are all but orthogonal to an
+// even start, from which two solves of inverse iteration left a shape a twentieth off. Light
+// bridges resonant among the string's partials (a third of its mass, at 158.5 Hz) put a bridge's
+// mode at a share of 0.478, which that shape counted as the string's (0.530; bridges as heavy as
+// the string resonant at 441.6 Hz likewise). The string's modes,
+// read from each shape alone, are the whole eigenbasis' (as string_mode_frequency()'s nearest).
+TEST(StringModeFrequencies, AreTheWholeEigenbasisStringModesOnAMirrorSymmetricString) {
+    struct Bridges {
+        double mass_ratio, resonance;
+    };
+    for (const Bridges& b :
+         {Bridges{0.3, 158.4893192461098}, Bridges{1.0, 441.5704473532985}, Bridges{20.0, 20.0}}) {
+        BowedStringOptions o;
+        o.pitch = 220, o.body = "none", o.bridge_mass_ratio = b.mass_ratio,
+        o.bridge_frequency = b.resonance;
+        const Model model = undamped_tuned_string(o, 150);
+        const StringElements string = string_elements(150);
+        const std::vector<double> expected = string_modes_of_the_eigenbasis(model, string);
+        EXPECT_EQ(string_mode_frequencies(model, string), expected)
+            << "bridges of " << b.mass_ratio;
+        for (double f : {expected[0], expected[1], expected[2], 2000.0})
+            EXPECT_EQ(string_mode_frequency(model, string, f),
+                      string_mode_decay(model, string, f).frequency)
+                << "bridges of " << b.mass_ratio << ", near " << f << " Hz";
+    }
+}
+
 }  // namespace
 }  // namespace archet

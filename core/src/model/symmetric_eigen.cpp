@@ -18,10 +18,15 @@ SymmetricEigen result(const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>& solv
     return out;
 }
 
-bool is_tridiagonal(const Eigen::SparseMatrix<double>& a) {
+// Tridiagonal with finite entries: a NaN or an infinity the dense solver spreads through its
+// reduction (and reports as no convergence), where the tridiagonal solver may leave it in a
+// block of its own.
+bool is_finite_tridiagonal(const Eigen::SparseMatrix<double>& a) {
     for (int column = 0; column < a.outerSize(); ++column)
         for (Eigen::SparseMatrix<double>::InnerIterator it(a, column); it; ++it)
-            if (it.value() != 0.0 && std::abs(it.row() - it.col()) > 1) return false;
+            if (!std::isfinite(it.value()) ||
+                (it.value() != 0.0 && std::abs(it.row() - it.col()) > 1))
+                return false;
     return true;
 }
 
@@ -30,16 +35,16 @@ bool is_tridiagonal(const Eigen::SparseMatrix<double>& a) {
 SymmetricEigen symmetric_eigen(const Eigen::SparseMatrix<double>& a, int options) {
     const int n = static_cast<int>(a.rows());
     if (n == 0) return {{}, {}, true};  // (the dense solver reads the largest entry)
-    if (n < 2 || !is_tridiagonal(a))
+    if (n < 2 || !is_finite_tridiagonal(a))
         return result(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(a), options),
                       options, 1.0);
-    // The dense solver divides the matrix by its largest magnitude (over both triangles, which
-    // may differ in their last bits) before reducing its lower triangle, and multiplies λ after.
+    // The dense solver divides its lower triangle by the largest magnitude in it (the upper one
+    // may differ in its last bits, and is never read) before reducing it, and multiplies λ after.
     Eigen::VectorXd diagonal = Eigen::VectorXd::Zero(n), sub = Eigen::VectorXd::Zero(n - 1);
     double largest = 0;
     for (int column = 0; column < a.outerSize(); ++column)
         for (Eigen::SparseMatrix<double>::InnerIterator it(a, column); it; ++it) {
-            largest = std::max(largest, std::abs(it.value()));
+            if (it.row() >= it.col()) largest = std::max(largest, std::abs(it.value()));
             if (it.row() == it.col()) diagonal[it.col()] = it.value();
             if (it.row() == it.col() + 1) sub[it.col()] = it.value();
         }

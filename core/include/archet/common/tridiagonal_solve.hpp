@@ -18,6 +18,7 @@ namespace archet {
 template <class T>
 std::vector<T> tridiagonal_solve(std::vector<T> diagonal, std::vector<T> sub, std::vector<T> super,
                                  std::vector<T> b) {
+    using Real = decltype(std::abs(T{}));
     const int n = static_cast<int>(diagonal.size());
     if (n == 0) return b;
     std::vector<T> second(n, T{});  // fill-in two places right of the diagonal
@@ -28,13 +29,13 @@ std::vector<T> tridiagonal_solve(std::vector<T> diagonal, std::vector<T> sub, st
             if (i + 2 < n) std::swap(second[i], super[i + 1]);
             std::swap(b[i], b[i + 1]);
         }
-        if (diagonal[i] == T{}) diagonal[i] = std::numeric_limits<double>::min();
+        if (diagonal[i] == T{}) diagonal[i] = std::numeric_limits<Real>::min();
         const T factor = sub[i] / diagonal[i];
         diagonal[i + 1] -= factor * super[i];
         if (i + 2 < n) super[i + 1] -= factor * second[i];
         b[i + 1] -= factor * b[i];
     }
-    if (diagonal[n - 1] == T{}) diagonal[n - 1] = std::numeric_limits<double>::min();
+    if (diagonal[n - 1] == T{}) diagonal[n - 1] = std::numeric_limits<Real>::min();
     std::vector<T> x(n);
     for (int i = n - 1; i >= 0; --i) {
         T v = b[i];

@@ -17,10 +17,11 @@ struct SymmetricEigen {
 };
 
 /// The eigenvalues (and, with `options` Eigen::ComputeEigenvectors, the eigenvectors) of a
-/// symmetric matrix given whole. A tridiagonal one's two diagonals go to the tridiagonal
-/// solver, scaled as the dense solver scales the whole matrix: the dense solver's Householder
-/// reflections are then each the identity (the column below the subdiagonal is zero), so the
-/// result is its own to the bit (symmetric_eigen_test.cpp holds it to that).
+/// symmetric matrix, of which the lower triangle is read. A tridiagonal one with finite entries
+/// goes to the tridiagonal solver as its two diagonals, scaled as the dense solver scales the
+/// lower triangle: the dense solver's Householder reflections are then each the identity (the
+/// column below the subdiagonal is zero), so the result is its own to the bit
+/// (symmetric_eigen_test.cpp holds it to that).
 SymmetricEigen symmetric_eigen(const Eigen::SparseMatrix<double>& symmetric, int options);
 
 /// The system's undamped modes: M^(−1/2)·K·M^(−1/2)·y = λ·y (their shapes are φ = M^(−1/2)·y),
