@@ -75,19 +75,16 @@ UndampedModes undamped_modes(const Model& model, const StringElements& string) {
 // solves (a bridge's mode then counted as the string's).
 class ShiftedSolve {
   public:
-    explicit ShiftedSolve(const LinearSystem& system) : chain_(is_tridiagonal(system)) {
-        const Eigen::VectorXd scale = system.mass.cwiseSqrt().cwiseInverse();
-        const int n = system.size();
+    /// For A given (mass_normalised_stiffness()), tridiagonal where `chain`.
+    ShiftedSolve(const Eigen::SparseMatrix<double>& a, bool chain) : chain_(chain) {
         if (!chain_) {
-            dense_ = scale.asDiagonal() * dense(system.stiffness, n) * scale.asDiagonal();
+            dense_ = Eigen::MatrixXd(a);
             return;
         }
-        auto entry = [&](int r, int c) {
-            return (scale[r] * system.stiffness.coeff(r, c)) * scale[c];
-        };
+        const int n = static_cast<int>(a.rows());
         for (int i = 0; i < n; ++i) {
-            diagonal_.push_back(entry(i, i));
-            if (i + 1 < n) below_.push_back(entry(i + 1, i)), above_.push_back(entry(i, i + 1));
+            diagonal_.push_back(a.coeff(i, i));
+            if (i + 1 < n) below_.push_back(a.coeff(i + 1, i)), above_.push_back(a.coeff(i, i + 1));
         }
     }
 
@@ -130,18 +127,7 @@ class ShiftedSolve {
 class StringShares {
   public:
     StringShares(const LinearSystem& system, const StringElements& string)
-        : shifted_(system), in_string_(system.size(), false) {
-        // Without eigenvectors Eigen runs the same reduction and QR steps: undamped_modes()' λ,
-        // bit for bit.
-        const SymmetricEigen solved = undamped_eigen(system, Eigen::EigenvaluesOnly);
-        if (!solved.converged)
-            throw std::runtime_error("the string's undamped modes did not converge");
-        modes_ = UndampedModes{system, solved.values, {}, {}};
-        for (int d = 0; d < system.size(); ++d)
-            for (const auto& id : string.masses)
-                if (system.dofs[d] == id) in_string_[d] = true;
-        if (modes_.lambda.size() > 0) largest_ = std::max(1.0, modes_.lambda.cwiseAbs().maxCoeff());
-    }
+        : StringShares(system, string, mass_normalised_stiffness(system)) {}
 
     const UndampedModes& modes() const { return modes_; }
 
@@ -158,6 +144,21 @@ class StringShares {
     }
 
   private:
+    StringShares(const LinearSystem& system, const StringElements& string,
+                 const Eigen::SparseMatrix<double>& a)
+        : shifted_(a, is_tridiagonal(system)), in_string_(system.size(), false) {
+        // Without eigenvectors Eigen runs the same reduction and QR steps: undamped_modes()' λ,
+        // bit for bit.
+        const SymmetricEigen solved = symmetric_eigen(a, Eigen::EigenvaluesOnly);
+        if (!solved.converged)
+            throw std::runtime_error("the string's undamped modes did not converge");
+        modes_ = UndampedModes{system, solved.values, {}, {}};
+        for (int d = 0; d < system.size(); ++d)
+            for (const auto& id : string.masses)
+                if (system.dofs[d] == id) in_string_[d] = true;
+        if (modes_.lambda.size() > 0) largest_ = std::max(1.0, modes_.lambda.cwiseAbs().maxCoeff());
+    }
+
     ShiftedSolve shifted_;
     UndampedModes modes_;
     std::vector<bool> in_string_;

@@ -54,7 +54,7 @@ SymmetricEigen symmetric_eigen(const Eigen::SparseMatrix<double>& a, int options
     return result(solver, options, largest);
 }
 
-SymmetricEigen undamped_eigen(const LinearSystem& sys, int options) {
+Eigen::SparseMatrix<double> mass_normalised_stiffness(const LinearSystem& sys) {
     const int n = sys.size();
     const Eigen::VectorXd scale = sys.mass.cwiseSqrt().cwiseInverse();
     std::vector<Eigen::Triplet<double>> entries;
@@ -64,7 +64,11 @@ SymmetricEigen undamped_eigen(const LinearSystem& sys, int options) {
                                  (scale[it.row()] * it.value()) * scale[it.col()]);
     Eigen::SparseMatrix<double> normalised(n, n);
     normalised.setFromTriplets(entries.begin(), entries.end());
-    return symmetric_eigen(normalised, options);
+    return normalised;
+}
+
+SymmetricEigen undamped_eigen(const LinearSystem& sys, int options) {
+    return symmetric_eigen(mass_normalised_stiffness(sys), options);
 }
 
 }  // namespace archet

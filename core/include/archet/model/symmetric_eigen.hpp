@@ -24,8 +24,11 @@ struct SymmetricEigen {
 /// (symmetric_eigen_test.cpp holds it to that).
 SymmetricEigen symmetric_eigen(const Eigen::SparseMatrix<double>& symmetric, int options);
 
-/// The system's undamped modes: M^(−1/2)·K·M^(−1/2)·y = λ·y (their shapes are φ = M^(−1/2)·y),
-/// the matrix's entries (m_r^(−1/2)·K_rc)·m_c^(−1/2) as the dense product computes them.
+/// M^(−1/2)·K·M^(−1/2), its entries (m_r^(−1/2)·K_rc)·m_c^(−1/2) as the dense product computes
+/// them.
+Eigen::SparseMatrix<double> mass_normalised_stiffness(const LinearSystem& system);
+
+/// The system's undamped modes: M^(−1/2)·K·M^(−1/2)·y = λ·y (their shapes are φ = M^(−1/2)·y).
 SymmetricEigen undamped_eigen(const LinearSystem& system, int options);
 
 }  // namespace archet
