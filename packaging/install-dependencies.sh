@@ -1,7 +1,25 @@
 #!/usr/bin/env bash
 # Installs the Debian (bookworm) packages Archet builds and tests with, only those missing.
-# Runs apt-get as root, or through sudo when there is one.
+# Runs apt-get as root, or through sudo when there is one. With --peers, also the peers that
+# the bench-peers target times Archet against (Faust, for mi.lib's string, and STK).
 set -euo pipefail
+
+peers=0
+for arg in "$@"; do
+  case "$arg" in
+    --peers) peers=1 ;;
+    -h | --help)
+      echo "usage: packaging/install-dependencies.sh [--peers]"
+      echo "  installs the Debian packages Archet builds and tests with, only those missing;"
+      echo "  --peers also installs faust and libstk-dev for the bench-peers target"
+      exit 0
+      ;;
+    *)
+      echo "archet: install-dependencies.sh: unknown option '$arg' (the one option is --peers)" >&2
+      exit 2
+      ;;
+  esac
+done
 
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -12,6 +30,9 @@ packages=(
   liblo-dev liblo-tools librtmidi-dev lv2-dev liblilv-dev lilv-utils
   clang libclang-rt-14-dev dpkg-dev
 )
+if [ "$peers" -eq 1 ]; then
+  packages+=(faust libstk-dev)
+fi
 
 missing=()
 for p in "${packages[@]}"; do

@@ -75,5 +75,20 @@ TEST(Package, InstallsAndRunsFromATemporaryRoot) {
     }
 }
 
+// The set-up script of the README's two commands: its one option adds the peers the
+// bench-peers target times Archet against; anything else is refused before apt is touched.
+TEST(Package, TheSetUpScriptTakesItsOneOptionAndRefusesOthers) {
+    const std::string script = ARCHET_SOURCE_DIR "/packaging/install-dependencies.sh";
+    auto r = test::run_command({"bash", script, "--help"});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.out.find("--peers"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("faust and libstk-dev"), std::string::npos) << r.out;
+    r = test::run_command({"bash", script, "--peer"});
+    EXPECT_EQ(r.status, 2);
+    EXPECT_NE(r.err.find("unknown option '--peer'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--peers"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "") << "nothing installed";
+}
+
 }  // namespace
 }  // namespace archet
