@@ -1,5 +1,5 @@
-// Cost of step() on the paper's strings and on large chains, of compiling a large model, and
-// of building a string.
+// Cost of step() on the paper's strings and on large chains, of compiling a large model, of
+// building a string, and of its modal analysis.
 
 #include <benchmark/benchmark.h>
 
@@ -7,11 +7,13 @@
 #include <memory>
 #include <string>
 
+#include "archet/analysis/modal_analysis.hpp"
 #include "archet/builders/bowed_chain.hpp"
 #include "archet/builders/bowed_string.hpp"
 #include "archet/common/denormal_guard.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/gesture.hpp"
+#include "archet/model/linear_system.hpp"
 #include "archet/model/model_validation.hpp"
 #include "archet/model/parameter_name.hpp"
 #include "archet/physics/chain_build_choice.hpp"
@@ -187,6 +189,29 @@ void BM_NewHarmonicString(benchmark::State& state) {
     for (auto _ : state) benchmark::DoNotOptimize(archet::build_bowed_string(o));
 }
 BENCHMARK(BM_NewHarmonicString)->Arg(131)->Arg(65)->Unit(benchmark::kMillisecond);
+
+// The Modes tab's and `archet modes`' analysis of a full-bandwidth string at P Hz (with its
+// body): each mode's shape from its root, against the dense solve's eigenvectors (its reference).
+archet::LinearSystem string_system(double pitch, archet::Model& model) {
+    archet::BowedStringOptions o;
+    o.pitch = pitch;
+    model = archet::build_bowed_string(o);
+    return archet::sounding_part(model);
+}
+void BM_AnalyseModes(benchmark::State& state) {
+    archet::Model model;
+    const archet::LinearSystem sys = string_system(static_cast<double>(state.range(0)), model);
+    for (auto _ : state) benchmark::DoNotOptimize(archet::analyse_modes(sys, model));
+}
+BENCHMARK(BM_AnalyseModes)->Arg(110)->Arg(41)->Unit(benchmark::kMillisecond);
+void BM_AnalyseModesWithEigenvectors(benchmark::State& state) {
+    archet::Model model;
+    const archet::LinearSystem sys = string_system(static_cast<double>(state.range(0)), model);
+    for (auto _ : state)
+        benchmark::DoNotOptimize(
+            archet::class_modes(archet::solve_modes_with_eigenvectors(sys), sys, model));
+}
+BENCHMARK(BM_AnalyseModesWithEigenvectors)->Arg(110)->Arg(41)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

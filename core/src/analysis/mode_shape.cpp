@@ -12,7 +12,8 @@ namespace {
 using Complex = std::complex<double>;
 using SparseComplex = Eigen::SparseMatrix<Complex>;
 
-std::optional<std::vector<Complex>> sparse_mode_shape(const LinearSystem& sys, Complex z) {
+std::optional<std::vector<Complex>> sparse_mode_shape(const LinearSystem& sys, Complex z,
+                                                      int passes) {
     const int n = sys.size();
     Eigen::SparseLU<SparseComplex> lu;
     lu.compute(quadratic_pencil(sys, z));
@@ -20,7 +21,7 @@ std::optional<std::vector<Complex>> sparse_mode_shape(const LinearSystem& sys, C
     // The root is exact to rounding, so the matrix is singular to rounding: two solves from an
     // even start leave the null vector alone (as chain_mode_shape()).
     Eigen::VectorXcd shape = Eigen::VectorXcd::Ones(n);
-    for (int pass = 0; pass < 2; ++pass) {
+    for (int pass = 0; pass < passes; ++pass) {
         shape = lu.solve(shape);
         const double largest = shape.cwiseAbs().maxCoeff();  // the solve can near overflow
         if (!(largest > 0) || !std::isfinite(largest)) return std::nullopt;
@@ -40,10 +41,10 @@ SparseComplex quadratic_pencil(const LinearSystem& sys, Complex z) {
     return p;
 }
 
-std::optional<std::vector<Complex>> mode_shape(const LinearSystem& sys, Complex z) {
+std::optional<std::vector<Complex>> mode_shape(const LinearSystem& sys, Complex z, int passes) {
     if (sys.size() == 0) return std::nullopt;
-    if (is_tridiagonal(sys)) return chain_mode_shape(sys, z);
-    return sparse_mode_shape(sys, z);
+    if (is_tridiagonal(sys)) return chain_mode_shape(sys, z, passes);
+    return sparse_mode_shape(sys, z, passes);
 }
 
 bool EnergySplit::finite() const {

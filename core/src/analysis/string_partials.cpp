@@ -32,14 +32,14 @@ void normalise(std::vector<Complex>& v) {
 
 }  // namespace
 
-std::vector<Complex> chain_mode_shape(const LinearSystem& sys, Complex z) {
+std::vector<Complex> chain_mode_shape(const LinearSystem& sys, Complex z, int passes) {
     const int n = sys.size();
     if (n == 0) return {};
     const ChainPencil pencil(sys);
     // The root is exact to rounding, so the matrix is singular to rounding: two solves from an
     // even start leave the null vector alone.
     std::vector<Complex> shape(n, 1.0);
-    for (int pass = 0; pass < 2; ++pass) {
+    for (int pass = 0; pass < passes; ++pass) {
         shape = pencil.solve(z, shape);
         normalise(shape);
     }

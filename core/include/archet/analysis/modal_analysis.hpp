@@ -1,6 +1,7 @@
 #pragma once
 // Modes of a model's linear part, exact for the explicit scheme at its rate: frequency and
-// decay from the eigenvalues of the one-step update, shapes from its eigenvectors. Each mode
+// decay from the eigenvalues of the one-step update, shapes as its eigenvectors' (found from each
+// root by inverse iteration where that can tell them). Each mode
 // is classed as a partial of the string or a mode of its supports (most of its kinetic
 // energy in oscillator MATs, the bridges), and partials are measured against n·f1.
 
@@ -46,14 +47,18 @@ ModalAnalysis analyse_modes(const Model& model);
 ModalAnalysis analyse_modes(const LinearSystem& system, const Model& model);
 
 /// The eigenvalue solve of analyse_modes(), apart from what it reads of the model: the roots of
-/// the update that ring (one of each conjugate pair, in the solver's order) and the x[n] half of
-/// their eigenvectors, a column each.
+/// the update that ring (one of each conjugate pair, in the solver's order) and their shapes (the
+/// x[n] half of their eigenvectors, to a factor), a column each.
 struct ModalSolve {
     Eigen::VectorXcd roots;
     Eigen::MatrixXcd shapes;
 };
-/// Throws what analyse_modes() throws for the system.
+/// Throws what analyse_modes() throws for the system. The shapes come from the roots, a solve
+/// each (mode_shape()); where that cannot tell a shape (two roots at one frequency, fingers, a
+/// shape lost to overflow), from the dense eigenvectors.
 ModalSolve solve_modes(const LinearSystem& system);
+/// The same from the dense solve's eigenvectors alone, the shapes' reference (the same roots).
+ModalSolve solve_modes_with_eigenvectors(const LinearSystem& system);
 /// The modes of a solve, classed as analyse_modes() classes them for `model`: analyse_modes()
 /// is class_modes(solve_modes(system), system, model).
 ModalAnalysis class_modes(const ModalSolve& solve, const LinearSystem& system, const Model& model);

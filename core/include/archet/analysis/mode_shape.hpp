@@ -22,9 +22,10 @@ Eigen::SparseMatrix<std::complex<double>> quadratic_pencil(const LinearSystem& s
 /// (z − 1)²·M + z·T²·K + (z − 1)·T·Z by inverse iteration, with the pivoting tridiagonal solve
 /// on a chain (chain_mode_shape()) and a sparse LU where links join more than neighbours (a
 /// body's bridge point). Nothing when the LU finds the matrix singular to the last bit or the
-/// solve overflows.
+/// solve overflows. Two passes of the iteration unless asked for more (a root close to another,
+/// whose shape each pass separates from the other's by the ratio of their distances to z).
 std::optional<std::vector<std::complex<double>>> mode_shape(const LinearSystem& system,
-                                                            std::complex<double> z);
+                                                            std::complex<double> z, int passes = 2);
 
 /// A shape's kinetic energy Σ m·|v|², and the part of it in the DOFs `is_support` marks.
 struct EnergySplit {

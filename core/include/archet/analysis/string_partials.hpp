@@ -24,6 +24,6 @@ std::vector<double> string_partial_frequencies(const LinearSystem& system, const
 /// vector in the null space of (z − 1)²·M + z·T²·K + (z − 1)·T·Z, by inverse iteration with
 /// a pivoting tridiagonal solve (scaled to unit length).
 std::vector<std::complex<double>> chain_mode_shape(const LinearSystem& system,
-                                                   std::complex<double> z);
+                                                   std::complex<double> z, int passes = 2);
 
 }  // namespace archet
