@@ -39,7 +39,7 @@ for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "archet: all build dependencies are installed"
+  echo "archet: all build dependencies are installed$([ "$peers" -eq 1 ] && echo ', and the peers')"
   exit 0
 fi
 

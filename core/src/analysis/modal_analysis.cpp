@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <optional>
 #include <set>
 
@@ -151,66 +152,81 @@ ModalSolve solve_modes_with_eigenvectors(const LinearSystem& sys) {
 
 namespace {
 
+using Complex = std::complex<double>;
+
 // Passes of inverse iteration for a root that two leave short: on a paper string the bridge's
-// mode at some 20 Hz lies beside the nut's, and two passes left a shape a thousandth off (5e−8
-// of the matrix's size in its residual); each pass cuts the other mode's share by the ratio of
-// their roots' distances to z.
+// mode at some 20 Hz lies beside the nut's, and two passes left its shape a thousandth off.
 constexpr int kMostPasses = 6;
 
-// Whether `v` is a null vector of the pencil to within what rounding leaves of one: the dense
-// solve's eigenvectors leave up to about 1e−12 of the pencil's size times their own.
-bool is_null_vector(const Eigen::SparseMatrix<std::complex<double>>& pencil,
-                    const Eigen::VectorXcd& v) {
-    const double size = pencil.norm() * v.norm();
-    const double residual = (pencil * v).norm();
-    return std::isfinite(residual) && size > 0 && residual <= 1e-12 * size;
+// How much of the neighbouring mode a shape found for root z may still hold. A shape v = v₁ +
+// ε·v₂ (v₂ the mode of the nearest other root, `gap` away) leaves P(z)·v ≈ ε·gap·P′(z)·v₂, so
+// ε ≈ |P(z)·v| / (gap·|P′(z)·v|), with P′(z) = 2(z − 1)·M + T²·K + T·Z the pencil's derivative.
+// The root's own rounding leaves as much as 1e−15/gap of it: roots closer than about 1e−6 take
+// the dense eigenvectors.
+constexpr double kMostNeighbourShare = 1e-9;
+
+double neighbour_share(const LinearSystem& sys, Complex z, double gap, const Eigen::VectorXcd& v) {
+    const double t = sys.dt;
+    const Eigen::VectorXcd pv = quadratic_pencil(sys, z) * v;
+    Eigen::VectorXcd derivative =
+        (t * t) * (sys.stiffness.cast<Complex>() * v) + t * (sys.damping.cast<Complex>() * v);
+    for (int i = 0; i < sys.size(); ++i) derivative[i] += 2.0 * (z - 1.0) * sys.mass[i] * v[i];
+    return pv.norm() / (gap * derivative.norm());  // NaN or infinite where v is lost
 }
+
+// The distance from root r to the nearest other root of the update (its conjugate among them).
+double nearest_root(const Eigen::VectorXcd& roots, Eigen::Index r) {
+    double gap = std::numeric_limits<double>::infinity();
+    for (Eigen::Index j = 0; j < roots.size(); ++j)
+        if (j != r) gap = std::min(gap, std::abs(roots[r] - roots[j]));
+    return gap;
+}
+
+}  // namespace
 
 // Each ringing root's shape by inverse iteration on the pencil at that root (mode_shape()),
 // from the roots alone: the roots are the dense solve's to the bit (without eigenvectors Eigen
 // runs the same reduction and QR steps and only leaves out their basis), the shapes the same up
-// to rounding, and the solve costs about half as much. Nothing where a shape is not one root's
-// alone (two roots at one frequency), where the pencil leaves a force out (a finger's, which is
-// in the update alone), or where a shape is not a null vector of the pencil to rounding (lost to
-// overflow, or not converged).
+// to rounding, and the solve costs about half as much. Nothing where the pencil leaves a force
+// out (a finger's, which is in the update alone) or where a shape may hold more than
+// kMostNeighbourShare of another mode's (two roots too close, a shape lost to overflow).
 std::optional<ModalSolve> solve_modes_from_roots(const LinearSystem& sys) {
+    check_analysable(sys);
     if (!sys.fingers.empty()) return std::nullopt;
     const UpdateRoots update = update_roots(sys);
     if (!update.converged) refuse_unconverged_analysis();  // as the dense solve would
-    std::vector<std::complex<double>> ringing;
-    for (const std::complex<double>& z : update.roots)
-        if (z.imag() > 0.0) ringing.push_back(z);  // one of each conjugate pair
-    std::vector<double> frequencies;
-    for (const std::complex<double>& z : ringing) frequencies.push_back(root_frequency(z, sys.dt));
-    std::sort(frequencies.begin(), frequencies.end());
-    for (std::size_t r = 1; r < frequencies.size(); ++r)
-        if (frequencies[r] - frequencies[r - 1] <= 1e-12 * frequencies[r]) return std::nullopt;
+    std::vector<Eigen::Index> ringing;
+    for (Eigen::Index r = 0; r < update.roots.size(); ++r)
+        if (update.roots[r].imag() > 0.0) ringing.push_back(r);  // one of each conjugate pair
     ModalSolve solve;
     solve.roots.resize(static_cast<Eigen::Index>(ringing.size()));
     solve.shapes.resize(sys.size(), static_cast<Eigen::Index>(ringing.size()));
     for (std::size_t k = 0; k < ringing.size(); ++k) {
         const auto column = static_cast<Eigen::Index>(k);
-        solve.roots[column] = ringing[k];
-        const Eigen::SparseMatrix<std::complex<double>> pencil = quadratic_pencil(sys, ringing[k]);
+        const Complex z = update.roots[ringing[k]];
+        const double gap = nearest_root(update.roots, ringing[k]);
+        solve.roots[column] = z;
         bool found = false;
         for (int passes : {2, kMostPasses}) {
-            const std::optional<std::vector<std::complex<double>>> shape =
-                mode_shape(sys, ringing[k], passes);
+            const std::optional<std::vector<Complex>> shape = mode_shape(sys, z, passes);
             if (!shape) return std::nullopt;
-            for (int i = 0; i < sys.size(); ++i) solve.shapes(i, column) = (*shape)[i];
-            if ((found = is_null_vector(pencil, solve.shapes.col(column)))) break;
+            solve.shapes.col(column) =
+                Eigen::Map<const Eigen::VectorXcd>(shape->data(), sys.size());
+            found = neighbour_share(sys, z, gap, solve.shapes.col(column)) <= kMostNeighbourShare;
+            if (found) break;
         }
         if (!found) return std::nullopt;
     }
     return solve;
 }
 
-}  // namespace
-
 ModalSolve solve_modes(const LinearSystem& sys) {
-    check_analysable(sys);
     if (std::optional<ModalSolve> solve = solve_modes_from_roots(sys)) return std::move(*solve);
     return solve_modes_with_eigenvectors(sys);
+}
+
+ModalAnalysis analyse_modes_densely(const LinearSystem& sys, const Model& model) {
+    return class_modes(solve_modes_with_eigenvectors(sys), sys, model);
 }
 
 ModalAnalysis class_modes(const ModalSolve& solve, const LinearSystem& sys, const Model& model) {

@@ -18,8 +18,9 @@ std::optional<std::vector<Complex>> sparse_mode_shape(const LinearSystem& sys, C
     Eigen::SparseLU<SparseComplex> lu;
     lu.compute(quadratic_pencil(sys, z));
     if (lu.info() != Eigen::Success) return std::nullopt;
-    // The root is exact to rounding, so the matrix is singular to rounding: two solves from an
-    // even start leave the null vector alone (as chain_mode_shape()).
+    // The root is exact to rounding, so the matrix is singular to rounding: a few solves from an
+    // even start (two, unless a close root asks for more) leave the null vector alone (as
+    // chain_mode_shape()).
     Eigen::VectorXcd shape = Eigen::VectorXcd::Ones(n);
     for (int pass = 0; pass < passes; ++pass) {
         shape = lu.solve(shape);

@@ -39,14 +39,14 @@ StringFirstMode string_first_mode(const Model& model) {
 }
 
 StringFirstMode string_first_mode(const LinearSystem& sys, const Model& model) {
-    if (!sys.fingers.empty()) return string_first_mode(analyse_modes(sys, model));
+    if (!sys.fingers.empty()) return string_first_mode(analyse_modes_densely(sys, model));
     check_analysable(sys);  // before a solve that an unanalysable system could make endless
     return string_first_mode(update_roots(sys), model);
 }
 
 StringFirstMode string_first_mode(const UpdateRoots& update, const Model& model) {
     const LinearSystem& sys = update.system;
-    auto whole_analysis = [&] { return string_first_mode(analyse_modes(sys, model)); };
+    auto whole_analysis = [&] { return string_first_mode(analyse_modes_densely(sys, model)); };
     if (!sys.fingers.empty()) return whole_analysis();  // their correction is in U alone
     check_analysable(sys);
     const double dt = sys.dt;

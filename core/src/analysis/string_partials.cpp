@@ -36,8 +36,8 @@ std::vector<Complex> chain_mode_shape(const LinearSystem& sys, Complex z, int pa
     const int n = sys.size();
     if (n == 0) return {};
     const ChainPencil pencil(sys);
-    // The root is exact to rounding, so the matrix is singular to rounding: two solves from an
-    // even start leave the null vector alone.
+    // The root is exact to rounding, so the matrix is singular to rounding: a few solves from an
+    // even start (two, unless a close root asks for more) leave the null vector alone.
     std::vector<Complex> shape(n, 1.0);
     for (int pass = 0; pass < passes; ++pass) {
         shape = pencil.solve(z, shape);
@@ -50,7 +50,7 @@ namespace {
 
 std::vector<double> partials_of_the_whole_analysis(const LinearSystem& sys, const Model& model) {
     std::vector<double> partials;
-    for (const ModeInfo& mode : analyse_modes(sys, model).modes)
+    for (const ModeInfo& mode : analyse_modes_densely(sys, model).modes)
         if (!mode.support) partials.push_back(mode.frequency);
     return partials;
 }

@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -54,11 +55,17 @@ struct ModalSolve {
     Eigen::MatrixXcd shapes;
 };
 /// Throws what analyse_modes() throws for the system. The shapes come from the roots, a solve
-/// each (mode_shape()); where that cannot tell a shape (two roots at one frequency, fingers, a
-/// shape lost to overflow), from the dense eigenvectors.
+/// each (solve_modes_from_roots()), or else from the dense eigenvectors.
 ModalSolve solve_modes(const LinearSystem& system);
 /// The same from the dense solve's eigenvectors alone, the shapes' reference (the same roots).
 ModalSolve solve_modes_with_eigenvectors(const LinearSystem& system);
+/// The shapes from the roots by inverse iteration (solve_modes()' first way), or nothing where
+/// that cannot tell a mode's shape from its neighbour's to 1e-9 (see modal_analysis.cpp).
+std::optional<ModalSolve> solve_modes_from_roots(const LinearSystem& system);
+/// analyse_modes() classing the modes by the dense eigenvectors' shapes: what the builder's fast
+/// paths fall back to where they cannot class a mode themselves (string_first_mode(),
+/// string_partial_frequencies()), so that what they build does not hang on the inverse iteration.
+ModalAnalysis analyse_modes_densely(const LinearSystem& system, const Model& model);
 /// The modes of a solve, classed as analyse_modes() classes them for `model`: analyse_modes()
 /// is class_modes(solve_modes(system), system, model).
 ModalAnalysis class_modes(const ModalSolve& solve, const LinearSystem& system, const Model& model);
