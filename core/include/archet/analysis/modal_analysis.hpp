@@ -1,9 +1,9 @@
 #pragma once
 // Modes of a model's linear part, exact for the explicit scheme at its rate: frequency and
 // decay from the eigenvalues of the one-step update, shapes as its eigenvectors' (found from each
-// root by inverse iteration where that can tell them). Each mode
-// is classed as a partial of the string or a mode of its supports (most of its kinetic
-// energy in oscillator MATs, the bridges), and partials are measured against n·f1.
+// root by inverse iteration where that can tell them). Each mode is classed as a partial of the
+// string or a mode of its supports (most of its kinetic energy in oscillator MATs, the bridges),
+// and partials are measured against n·f1.
 
 #include <Eigen/Dense>
 #include <map>
