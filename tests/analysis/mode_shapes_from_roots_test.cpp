@@ -76,8 +76,8 @@ TEST(ModeShapesFromRoots, AreTheEigenvectorsModesOnEveryShippedString) {
 }
 
 TEST(ModeShapesFromRoots, AreTheEigenvectorsModesOnBuiltStrings) {
-    // A cello's C without and with its body (a chain, and a sparse pencil), a point bow near the
-    // bridge, a harmonic string and a stiff short one.
+    // A cello's C with its body and without (a sparse pencil, and a chain), a bow near the
+    // bridge, a harmonic string and the paper's 880 Hz chaplet.
     std::vector<BowedStringOptions> all;
     BowedStringOptions cello;
     cello.pitch = 65.41, cello.tension = 130, cello.linear_density = 0.0148;
