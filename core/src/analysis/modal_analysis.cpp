@@ -166,11 +166,13 @@ constexpr int kMostPasses = 6;
 constexpr double kMostNeighbourShare = 1e-9;
 
 double neighbour_share(const LinearSystem& sys, Complex z, double gap, const Eigen::VectorXcd& v) {
+    // P(z)·v and P′(z)·v from the same products K·v, Z·v and M·v.
     const double t = sys.dt;
-    const Eigen::VectorXcd pv = quadratic_pencil(sys, z) * v;
-    Eigen::VectorXcd derivative =
-        (t * t) * (sys.stiffness.cast<Complex>() * v) + t * (sys.damping.cast<Complex>() * v);
-    for (int i = 0; i < sys.size(); ++i) derivative[i] += 2.0 * (z - 1.0) * sys.mass[i] * v[i];
+    const Eigen::VectorXcd kv = sys.stiffness * v, zv = sys.damping * v;
+    const Eigen::VectorXcd mv = sys.mass.cwiseProduct(v);
+    const Eigen::VectorXcd pv =
+        ((z - 1.0) * (z - 1.0)) * mv + (z * (t * t)) * kv + ((z - 1.0) * t) * zv;
+    const Eigen::VectorXcd derivative = (2.0 * (z - 1.0)) * mv + (t * t) * kv + t * zv;
     return pv.norm() / (gap * derivative.norm());  // NaN or infinite where v is lost
 }
 
