@@ -107,8 +107,7 @@ class Player final : public AudioRenderer {
                 if (take_) {
                     const std::uint64_t tick = sim_.tick() - ran + k + 1;
                     take_->sample(static_cast<double>(tick) / sim_.sample_rate(), sound_[k],
-                                  rows_.data() + k * sim_.probe_count(),
-                                  std::min(sim_.probe_count(), ipc::kMaxProbes));
+                                  rows_.data() + k * sim_.probe_count(), sim_.probe_count());
                 }
                 const float y = limiter_.process(sound_[k]);
                 for (int c = 0; c < channels; ++c) out[i * channels + c] = y;
@@ -220,19 +219,20 @@ int run_play(const PlayArguments& a) {
             end - now, std::chrono::milliseconds(10)));
     const int signal = interruption_signal();
     output->stop();
+    std::string incomplete;  // why the take holds less than was played
     if (take) {
         take->finish(signal ? signal_name(signal) : "");
         std::cerr << "archet: take written to " << take->folder().string()
                   << " (take.wav, gesture.json, probes.csv; `archet render --take "
-                  << take->folder().string() << " -o FILE` re-renders it)"
-                  << (take->dropped() ? ", some samples dropped: the disk was too slow" : "")
-                  << "\n";
+                  << take->folder().string() << " -o FILE` re-renders it)\n";
         if (signal)
             std::cerr << "archet: the take was interrupted by " << signal_name(signal) << " after "
                       << static_cast<double>(take->frames()) / sim.sample_rate()
                       << " s; take.json says so\n";
         if (const std::string note = take->clipping_note(); !note.empty())
             std::cerr << "archet: warning: " << note << "\n";
+        incomplete = take->incomplete_note();
+        if (!incomplete.empty()) std::cerr << "archet: error: " << incomplete << "\n";
     }
     if (a.stats) {
         const AudioStats s = output->stats();
@@ -252,7 +252,7 @@ int run_play(const PlayArguments& a) {
         std::cerr << "archet: interrupted by " << signal_name(signal) << "\n";
         return 128 + signal;
     }
-    return 0;
+    return incomplete.empty() ? 0 : 1;  // a take that lost samples is not what was asked
 }
 
 }  // namespace

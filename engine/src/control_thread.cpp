@@ -328,6 +328,7 @@ std::string ControlThread::nrt_finish_take(TakeRecorder& take) {
         said += " (" + std::to_string(take.frames()) + " samples";
         if (!why.empty()) said += ", interrupted: " + why;
         said += ")";
+        if (const std::string note = take.incomplete_note(); !note.empty()) said += "; " + note;
         // The live limiter kept the monitor clean; the take holds the raw output.
         if (take.clipped_samples() > 0) {
             char peak[32];

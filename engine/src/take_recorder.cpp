@@ -13,6 +13,9 @@ namespace archet {
 
 namespace {
 constexpr std::uint32_t kSampleCapacity = 1u << 17;  // 2.7 s of samples at 48 kHz
+// The most memory the samples waiting for the writer take: a model with many probes waits for
+// less than 2.7 s (a hundred probes 0.68 s, the most a model has, 1,024, 43 ms).
+constexpr std::size_t kSampleBytes = std::size_t{1} << 25;
 constexpr std::uint32_t kGestureCapacity = 1u << 13;
 constexpr std::uint32_t kChangeCapacity = 1u << 10;
 // Samples written per round at most: a writer that falls behind still writes take.wav and
@@ -23,6 +26,18 @@ std::FILE* open_stream(const std::filesystem::path& path) {
     std::FILE* f = std::fopen(path.c_str(), "wx");  // new: a take never overwrites a file
     if (!f) throw InputError(path.string(), "cannot be created (is the folder writable?)");
     return f;
+}
+
+// Records of a sample: its time, the output, each probe.
+std::size_t sample_length(std::size_t probes) {
+    return 2 + probes;
+}
+
+std::uint32_t sample_capacity(std::size_t probes) {
+    std::uint32_t capacity = kSampleCapacity;
+    while (capacity > 1 && capacity * sample_length(probes) * sizeof(double) > kSampleBytes)
+        capacity /= 2;
+    return capacity;
 }
 
 void put(std::FILE* f, const std::string& line, const std::filesystem::path& path) {
@@ -36,7 +51,7 @@ TakeRecorder::TakeRecorder(std::filesystem::path folder, const Model& played, do
     : folder_(std::move(folder)),
       sample_rate_(sample_rate),
       probe_names_(std::move(probe_names)),
-      samples_(kSampleCapacity),
+      samples_(sample_length(probe_names_.size()), sample_capacity(probe_names_.size())),
       gestures_(kGestureCapacity),
       changes_(kChangeCapacity),
       state_(state_size) {
@@ -51,7 +66,6 @@ TakeRecorder::TakeRecorder(std::filesystem::path folder, const Model& played, do
     if (!lock_->held())
         throw InputError(folder_.string(),
                          "is being recorded into by another take; choose another");
-    if (probe_names_.size() > ipc::kMaxProbes) probe_names_.resize(ipc::kMaxProbes);
     // The instrument as it plays: at the device's rate, without a gesture of its own.
     Model model = played;
     model.sample_rate = sample_rate_;
@@ -98,12 +112,13 @@ void TakeRecorder::sample(double time, double output, const double* probes, std:
         blown_up_at_.store(time, std::memory_order_relaxed);
         return;
     }
-    Sample s;
-    s.time = time;
-    s.output = output;
-    s.count = static_cast<std::uint32_t>(std::min(count, ipc::kMaxProbes));
-    for (std::uint32_t i = 0; i < s.count; ++i) s.probes[i] = probes[i];
-    samples_.ring().try_push(s);
+    double* const record = samples_.claim();
+    if (!record) return;  // counted as dropped
+    record[0] = time;
+    record[1] = output;
+    const std::size_t columns = probe_names_.size();
+    for (std::size_t i = 0; i < columns; ++i) record[2 + i] = i < count ? probes[i] : 0.0;
+    samples_.publish();
 }
 
 void TakeRecorder::gesture(double time, GestureSample p) {
@@ -136,9 +151,12 @@ void TakeRecorder::glide_under_way(const ParameterSmoother::Glide& g) {
     unnamed_glides_.fetch_add(1, std::memory_order_relaxed);  // counted as lost: said at the end
 }
 
-std::uint64_t TakeRecorder::dropped() const {
-    return samples_.ring().dropped() + gestures_.ring().dropped() + changes_.ring().dropped() +
-           unnamed_glides_.load();
+std::uint64_t TakeRecorder::dropped_samples() const {
+    return samples_.dropped();
+}
+
+std::uint64_t TakeRecorder::dropped_events() const {
+    return gestures_.ring().dropped() + changes_.ring().dropped() + unnamed_glides_.load();
 }
 
 TakeDescription TakeRecorder::description() const {
@@ -176,11 +194,13 @@ void TakeRecorder::write_loop() {
         auto last_header = std::chrono::steady_clock::now();
         for (;;) {
             const bool last_round = stopping_.load();
-            Sample s;
             block.clear();
-            while (block.size() < kRoundSamples && samples_.ring().try_pop(s)) {
-                block.push_back(s.output);
-                csv.write_row(s.time, s.probes);
+            while (block.size() < kRoundSamples) {
+                const double* const s = samples_.front();  // time, output, probes
+                if (!s) break;
+                block.push_back(s[1]);
+                csv.write_row(s[0], s + 2);
+                samples_.release();
             }
             const bool behind = block.size() == kRoundSamples;
             // Begun before its first sample was pushed: where it began is known now.
@@ -249,6 +269,8 @@ void TakeRecorder::write_description(std::vector<GestureKeyframe> keyframes,
     take.interrupted_by = interrupted_by_;
     take.clipped_samples = clipped_;
     take.peak = peak_;
+    take.dropped_samples = dropped_samples();
+    take.dropped_events = dropped_events();
     write_file_atomically(folder_ / "take.json", format_take(take));  // whole from here on
     // The streams served a take that might not be finished; this one is.
     std::fclose(gesture_stream_);
@@ -276,6 +298,19 @@ void TakeRecorder::finish(const std::string& interrupted_by) {
     lock_.reset();
     if (!error_.empty())
         throw InputError(folder_.string(), "the take could not be written: " + error_);
+}
+
+std::string TakeRecorder::incomplete_note() const {
+    const std::uint64_t samples = dropped_samples(), events = dropped_events();
+    if (samples == 0 && events == 0) return {};
+    std::ostringstream s;
+    s << "the take is incomplete: its writer fell behind (a slow disk";
+    if (!probe_names_.empty())
+        s << ", or the " << probe_names_.size() << " probes probes.csv holds at every sample";
+    s << ") and lost " << samples << " samples and " << events
+      << " gesture positions or parameter changes, which take.json counts; take.wav does not "
+         "hold the whole performance, and `render --take` will not reproduce it";
+    return s.str();
 }
 
 std::string TakeRecorder::clipping_note() const {

@@ -11,6 +11,7 @@
 
 #include <fcntl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iomanip>
@@ -21,6 +22,7 @@
 
 #include "archet/builders/bowed_string.hpp"
 #include "archet/common/input_error.hpp"
+#include "archet/common/input_limits.hpp"
 #include "archet/common/scheme_revision.hpp"
 #include "archet/engine/take_recorder.hpp"
 #include "archet/files/take_file.hpp"
@@ -47,9 +49,25 @@ sf_count_t frames_of(const std::filesystem::path& wav) {
     return info.frames;
 }
 
-void expect_reproduced(const std::vector<std::string>& play_extra, const std::string& name) {
-    const auto dir = test::temp_dir(name);
-    const std::string model = test::resource("models/bowed-string-220.json").string();
+// Whether two files hold the same bytes; where not, their sizes and where they first differ
+// (GoogleTest's difference of two long texts takes memory in the product of their lengths).
+::testing::AssertionResult same_bytes(const std::filesystem::path& a,
+                                      const std::filesystem::path& b) {
+    const std::string x = test::read_file(a), y = test::read_file(b);
+    if (x == y) return ::testing::AssertionSuccess();
+    const auto at = static_cast<std::size_t>(
+        std::mismatch(x.begin(), x.end(), y.begin(), y.end()).first - x.begin());
+    const auto line = std::count(x.begin(), x.begin() + static_cast<std::ptrdiff_t>(at), '\n');
+    return ::testing::AssertionFailure()
+           << a.filename() << " (" << x.size() << " bytes) and " << b.filename() << " (" << y.size()
+           << " bytes) differ from byte " << at << " (line " << line + 1 << ")";
+}
+
+// Plays `played` (the shipped 220 Hz string by default) with a take into dir/take.
+void expect_reproduced(const std::vector<std::string>& play_extra, const std::filesystem::path& dir,
+                       const std::filesystem::path& played = {}) {
+    const std::string model =
+        (played.empty() ? test::resource("models/bowed-string-220.json") : played).string();
     std::vector<std::string> play{"play", model,    "--duration",
                                   "1",    "--take", (dir / "take").string()};
     play.insert(play.end(), play_extra.begin(), play_extra.end());
@@ -64,7 +82,7 @@ void expect_reproduced(const std::vector<std::string>& play_extra, const std::st
     r = test::run_archet({"render", model, "--gesture", (dir / "take" / "gesture.json").string(),
                           "--duration", duration.str(), "-o", (dir / "again.wav").string()});
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_EQ(test::read_file(dir / "again.wav"), test::read_file(dir / "take" / "take.wav"))
+    EXPECT_TRUE(same_bytes(dir / "again.wav", dir / "take" / "take.wav"))
         << "the re-rendered take differs";
     // And in one command, from the take's own description, every probe too: `play` runs the
     // string in runs up to the hand's next tick (Simulation::run()), the re-render tick by tick.
@@ -72,11 +90,13 @@ void expect_reproduced(const std::vector<std::string>& play_extra, const std::st
                           (dir / "replayed.wav").string(), "--probes",
                           (dir / "replayed.csv").string()});
     ASSERT_EQ(r.status, 0) << r.err;
-    EXPECT_EQ(test::read_file(dir / "replayed.wav"), test::read_file(dir / "take" / "take.wav"))
+    EXPECT_TRUE(same_bytes(dir / "replayed.wav", dir / "take" / "take.wav"))
         << "render --take differs";
-    EXPECT_EQ(test::read_file(dir / "replayed.csv"), test::read_file(dir / "take" / "probes.csv"))
+    EXPECT_TRUE(same_bytes(dir / "replayed.csv", dir / "take" / "probes.csv"))
         << "the take's probes re-render to the byte, times included";
     EXPECT_EQ(read_json(dir / "take" / "take.json")["scheme"], kSchemeRevision);
+    EXPECT_FALSE(read_json(dir / "take" / "take.json").contains("dropped_samples"))
+        << "a take that lost nothing reads in an Archet that knows no losses";
     EXPECT_EQ(r.err.find("scheme revision"), std::string::npos) << r.err;
     // And it was a real take: bowed, with probes for every sample.
     const std::string csv = test::read_file(dir / "take" / "probes.csv");
@@ -84,11 +104,79 @@ void expect_reproduced(const std::vector<std::string>& play_extra, const std::st
 }
 
 TEST(Take, WithTheSimulatedHandReRendersToTheByte) {
-    expect_reproduced({"--haptic", "sim"}, "take-hand");
+    expect_reproduced({"--haptic", "sim"}, test::temp_dir("take-hand"));
 }
 
 TEST(Take, FromAGestureFileReRendersToTheByte) {
-    expect_reproduced({"--gesture", test::resource("gestures/detache.json").string()}, "take-file");
+    expect_reproduced({"--gesture", test::resource("gestures/detache.json").string()},
+                      test::temp_dir("take-file"));
+}
+
+// The shipped 220 Hz string with position probes added on its masses, s1, s2, … in turn, until
+// it has `probes`, written into dir; returns its path and fills `header` with probes.csv's
+// first line.
+std::filesystem::path string_with_probes(const std::filesystem::path& dir, std::size_t probes,
+                                         std::string& header) {
+    nlohmann::json model = read_json(test::resource("models/bowed-string-220.json"));
+    header = "time";
+    for (const auto& p : model["probes"]) header += "," + p["id"].get<std::string>();
+    for (std::size_t i = model["probes"].size(); i < probes; ++i) {
+        const std::string element = "s" + std::to_string(1 + i % 60);
+        const std::string id = "x" + std::to_string(i);
+        model["probes"].push_back({{"id", id}, {"kind", "position"}, {"element", element}});
+        header += "," + id;
+    }
+    const auto path = dir / "probed.json";
+    std::ofstream(path) << model.dump(1);
+    return path;
+}
+
+// More probes than the engine streams to the studio (ipc::kMaxProbes): `play` records them all,
+// where it once wrote the first sixteen into probes.csv and said nothing.
+TEST(Take, RecordsEveryProbeOfAModelWithMoreThanTheStudioStreams) {
+    const auto dir = test::temp_dir("take-many-probes");
+    std::string header;
+    const auto model = string_with_probes(dir, ipc::kMaxProbes + 5, header);
+    expect_reproduced({"--haptic", "sim"}, dir, model);
+    const std::string csv = test::read_file(dir / "take" / "probes.csv");
+    EXPECT_EQ(csv.substr(0, csv.find('\n')), header) << "every probe has its column";
+}
+
+// A take whose writer falls behind (here with as many probes as a model may have: probes.csv
+// then holds 1,024 numbers a sample) never passes for whole. Whatever it lost, take.json counts,
+// the player fails (status 1) and says so, and `render --take` warns; what it kept is whole
+// rows. (Where the machine keeps up, it lost nothing and succeeds.)
+TEST(Take, ATakeThatLostSamplesFailsAndSaysSo) {
+    const auto dir = test::temp_dir("take-lost");
+    std::string header;
+    const auto model = string_with_probes(dir, limits::kProbes, header);
+    const auto take = dir / "take";
+    const auto r =
+        test::run_archet({"play", model.string(), "--duration", "1", "--take", take.string()});
+    const nlohmann::json description = read_json(take / "take.json");
+    ASSERT_TRUE(description.is_object()) << r.err;
+    const auto frames = description.value("frames", std::uint64_t{0});
+    const auto lost = description.value("dropped_samples", std::uint64_t{0});
+    ASSERT_GT(frames, 0u) << r.err;
+    EXPECT_EQ(frames_of(take / "take.wav"), static_cast<sf_count_t>(frames));
+    const std::string csv = test::read_file(take / "probes.csv");
+    EXPECT_EQ(csv.substr(0, csv.find('\n')), header);
+    EXPECT_EQ(static_cast<std::uint64_t>(std::count(csv.begin(), csv.end(), '\n')), frames + 1)
+        << "a row for each sample kept, none torn";
+    const auto again =
+        test::run_archet({"render", "--take", take.string(), "-o", (dir / "again.wav").string()});
+    ASSERT_EQ(again.status, 0) << again.err;
+    if (lost == 0) {
+        EXPECT_EQ(r.status, 0) << r.err;
+        EXPECT_EQ(r.err.find("incomplete"), std::string::npos) << r.err;
+        EXPECT_TRUE(same_bytes(dir / "again.wav", take / "take.wav"));
+        return;
+    }
+    EXPECT_EQ(r.status, 1) << r.err;
+    EXPECT_NE(r.err.find("the take is incomplete"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("lost " + std::to_string(lost) + " samples"), std::string::npos) << r.err;
+    EXPECT_NE(again.err.find("lost " + std::to_string(lost) + " samples"), std::string::npos)
+        << again.err;
 }
 
 // `archet play --take`, started in the background.

@@ -36,10 +36,11 @@ void expect_format(JsonObjectReader& r, const std::string& format) {
         throw InputError(r.where(), "\"version\" must be 1 (written by this Archet)");
 }
 
-std::uint64_t count(JsonObjectReader& r, const std::string& key) {
+std::uint64_t count(JsonObjectReader& r, const std::string& key,
+                    const std::string& of = "samples") {
     const double v = r.number(key);
     if (!(v >= 0) || v > 9.0e15 || std::floor(v) != v)
-        throw InputError(r.where() + "." + key, "must be a whole number of samples");
+        throw InputError(r.where() + "." + key, "must be a whole number of " + of);
     return static_cast<std::uint64_t>(v);
 }
 
@@ -59,6 +60,8 @@ std::string format_take(const TakeDescription& t) {
     if (t.interrupted) j["interrupted_by"] = t.interrupted_by;
     j["clipped_samples"] = t.clipped_samples;
     j["peak"] = t.peak;
+    if (t.dropped_samples > 0) j["dropped_samples"] = t.dropped_samples;
+    if (t.dropped_events > 0) j["dropped_events"] = t.dropped_events;
     j["scheme"] = t.scheme;
     return j.dump(2) + "\n";
 }
@@ -94,6 +97,8 @@ TakeDescription parse_take(const std::string& text, const std::string& source) {
         throw InputError(source + ".peak", "must be a finite level of 0 or more");
     if (t.clipped_samples > t.frames && t.complete)
         throw InputError(source + ".clipped_samples", "counts more samples than the take holds");
+    t.dropped_samples = r.has("dropped_samples") ? count(r, "dropped_samples") : 0;
+    t.dropped_events = r.has("dropped_events") ? count(r, "dropped_events", "events") : 0;
     t.scheme = r.integer("scheme", 1);
     if (t.scheme < 1 || t.scheme > kSchemeRevision)
         throw InputError(source + ".scheme", "must be 1 to " + std::to_string(kSchemeRevision) +

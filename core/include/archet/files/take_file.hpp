@@ -30,7 +30,13 @@ struct TakeDescription {
     std::string interrupted_by;    ///< why: "SIGTERM", "the studio exited", ...
     std::uint64_t clipped_samples = 0;  ///< samples of take.wav at or beyond full scale
     double peak = 0;                    ///< the largest |sample| the model played
-    int scheme = kSchemeRevision;       ///< the scheme revision it was played with
+    /// Samples played but lost by the recorder, whose writer fell behind (a slow disk, very
+    /// many probes): take.wav and probes.csv miss them, so the take does not re-render to its
+    /// take.wav. Written only when not 0 (an older Archet reads a take without).
+    std::uint64_t dropped_samples = 0;
+    /// Gesture positions and parameter changes lost the same way: the re-render lacks them.
+    std::uint64_t dropped_events = 0;
+    int scheme = kSchemeRevision;  ///< the scheme revision it was played with
 };
 
 /// A parameter change made while playing: it starts gliding at master tick `tick`, before
@@ -49,7 +55,8 @@ struct ParameterChange {
 std::string format_take(const TakeDescription& take);
 /// Reads take.json's text; `source` names it in errors. Older takes (without "complete",
 /// "interrupted", "clipped_samples", "peak", "scheme") read as complete and uninterrupted,
-/// played with scheme revision 1.
+/// played with scheme revision 1; a take without "dropped_samples" or "dropped_events" lost
+/// nothing.
 TakeDescription parse_take(const std::string& text, const std::string& source);
 TakeDescription read_take_file(const std::filesystem::path& path);
 

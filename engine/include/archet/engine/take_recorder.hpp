@@ -22,6 +22,7 @@
 
 #include "archet/files/take_file.hpp"
 #include "archet/files/take_recovery.hpp"
+#include "archet/ipc/record_ring.hpp"
 #include "archet/ipc/spsc_ring.hpp"
 #include "archet/model/gesture.hpp"
 #include "archet/model/model.hpp"
@@ -54,8 +55,9 @@ class TakeRecorder {
     double* state_buffer() { return state_.empty() ? nullptr : state_.data(); }
     /// The take's first sample will be master tick `tick` (call once, before sample()).
     void begin(std::uint64_t tick);
-    /// One audio-rate sample: the model's output and its probe values. A non-finite output
-    /// ends what the take holds there; finish() then says the simulation stopped being finite.
+    /// One audio-rate sample: the model's output and its `count` probe values (one for each
+    /// probe name). A non-finite output ends what the take holds there; finish() then says the
+    /// simulation stopped being finite.
     void sample(double time, double output, const double* probes, std::size_t count);
     /// A device position the gesture points took, at the time they took it.
     void gesture(double time, GestureSample position);
@@ -71,7 +73,11 @@ class TakeRecorder {
     /// why the take ended before it was meant to ("SIGTERM"): take.json records it. Throws if
     /// a file could not be written.
     void finish(const std::string& interrupted_by = {});
-    std::uint64_t dropped() const;  ///< samples lost because the writer fell behind
+    /// Samples lost because the writer fell behind (a slow disk, very many probes).
+    std::uint64_t dropped_samples() const;
+    /// Gesture positions and parameter changes lost the same way, and glides under way whose
+    /// parameter nobody named.
+    std::uint64_t dropped_events() const;
     std::uint64_t frames() const { return frames_.load(); }
     const std::filesystem::path& folder() const { return folder_; }
     /// After finish(): the samples at or beyond full scale, and the peak.
@@ -79,13 +85,11 @@ class TakeRecorder {
     double peak() const { return peak_; }
     /// After finish(): a sentence for the player when the take clipped, else empty.
     std::string clipping_note() const;
+    /// A sentence for the player when the take lost samples or events (take.json counts them),
+    /// else empty: such a take does not re-render to its take.wav.
+    std::string incomplete_note() const;
 
   private:
-    struct Sample {
-        double time, output;
-        std::uint32_t count;
-        double probes[ipc::kMaxProbes];
-    };
     struct Change {
         std::uint64_t tick;
         std::uint32_t name;
@@ -109,7 +113,8 @@ class TakeRecorder {
     std::unique_ptr<ProbeCsvWriter> csv_;
     std::FILE* gesture_stream_ = nullptr;    ///< gesture.jsonl, writer thread
     std::FILE* parameter_stream_ = nullptr;  ///< parameters.jsonl, opened at the first change
-    ipc::LocalRing<Sample> samples_;
+    /// Each sample as its time, the output and every probe's value, in the model's order.
+    ipc::RecordRing samples_;
     ipc::LocalRing<GestureKeyframe> gestures_;
     ipc::LocalRing<Change> changes_;
     std::vector<double> state_;
