@@ -56,9 +56,10 @@ std::unique_ptr<LoadedModel> nrt_prepare_model(const Model& model, double sample
     if (const CompiledLevel* hand = hand_level(loaded->resolver))
         loaded->haptic_divider = static_cast<std::uint64_t>(hand->divider),
         loaded->haptic_dt = hand->dt;
-    for (const std::string& id : string_points(model))
-        if (loaded->shape.size() < ipc::kMaxShapePoints)
-            loaded->shape.push_back(loaded->resolver.mat_slots.at(id));
+    const std::vector<std::string> points = string_points(model);
+    for (std::size_t i : drawn_points(points.size(), ipc::kMaxShapePoints))
+        loaded->shape.push_back(loaded->resolver.mat_slots.at(points[i]));
+    loaded->shape_spread_over = static_cast<std::uint32_t>(points.size());
     for (std::size_t p = 0; p < loaded->resolver.probes.size(); ++p)
         if (loaded->resolver.probes[p].kind == ProbeKind::Energy) {
             loaded->has_energy_probe = true, loaded->energy_probe = p;

@@ -22,9 +22,11 @@ namespace archet {
 struct LoadedModel {
     CompiledModel resolver;  ///< names → slots, on the control thread
     std::unique_ptr<Simulation> simulation;
-    std::vector<MatSlot> shape;        ///< the string's MATs (string_points), in model order
-    std::optional<HapticLoop> haptic;  ///< with a device: its loop and link for this model
-    std::uint64_t haptic_divider = 1;  ///< the gesture points' level, for takes
+    /// The string's MATs the studio draws (drawn_points() of string_points), in model order.
+    std::vector<MatSlot> shape;
+    std::uint32_t shape_spread_over = 0;  ///< how many string points those are drawn from
+    std::optional<HapticLoop> haptic;     ///< with a device: its loop and link for this model
+    std::uint64_t haptic_divider = 1;     ///< the gesture points' level, for takes
     double haptic_dt = 0;
     bool has_energy_probe = false;  ///< any probe of kind Energy
     std::size_t energy_probe = 0;   ///< the first of them, when there is one

@@ -295,7 +295,7 @@ void RealtimeThread::rt_publish_shape(const LoadedModel& m) {
     ShapeFrame s;
     s.tick = sim.tick();
     s.count = static_cast<std::uint32_t>(m.shape.size());
-    s.reserved = 0;
+    s.spread_over = m.shape_spread_over;
     for (std::size_t i = 0; i < m.shape.size(); ++i)
         s.positions[i] = static_cast<float>(sim.position(m.shape[i]));
     rt_shapes_.try_push(s);

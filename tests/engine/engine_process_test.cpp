@@ -93,16 +93,25 @@ std::optional<StatusKind> load_answer(EngineLink& link, std::uint32_t sequence,
 }
 
 // Starts the engine, loads a shipped model and plays it.
-bool start_playing(EngineLink& link, const std::string& model) {
+// Starts the engine and plays the model file, or says in `error` why it could not.
+bool start_playing_file(EngineLink& link, const std::filesystem::path& model, std::string& error) {
     link.start();
-    if (!wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, kGenerous))
+    if (!wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, kGenerous)) {
+        error = "the engine never ran";
         return false;
+    }
     std::vector<std::string> errors;
-    if (!wait_status(link, StatusKind::ModelLoaded, link.load_model(test::resource(model).string()),
-                     errors))
+    if (!wait_status(link, StatusKind::ModelLoaded, link.load_model(model.string()), errors)) {
+        error = errors.empty() ? "the model never loaded" : errors[0];
         return false;
+    }
     link.play();
     return true;
+}
+
+bool start_playing(EngineLink& link, const std::string& resource) {
+    std::string error;
+    return start_playing_file(link, test::resource(resource), error);
 }
 
 // A parameter sent right behind a model load (here while the model before it may still be
@@ -315,14 +324,8 @@ TEST(EngineProcess, DrawsTheShapeOfAStringInModalForm) {
     write_file_atomically(dir / "modal.json", format_model(modal));
 
     EngineLink link(options());
-    link.start();
-    ASSERT_TRUE(
-        wait_for([&] { return link.liveness() == EngineLink::Liveness::Running; }, kGenerous));
-    std::vector<std::string> errors;
-    ASSERT_TRUE(wait_status(link, StatusKind::ModelLoaded,
-                            link.load_model((dir / "modal.json").string()), errors))
-        << (errors.empty() ? "" : errors[0]);
-    link.play();
+    std::string error;
+    ASSERT_TRUE(start_playing_file(link, dir / "modal.json", error)) << error;
     auto probes = link.probes();
     std::uint64_t frames = 0;
     double max_friction = 0;
@@ -362,6 +365,49 @@ TEST(EngineProcess, DrawsTheShapeOfAStringInModalForm) {
     int moved = 0;
     for (std::uint32_t i = 1; i + 1 < shape.count; ++i) moved += shape.positions[i] != 0.0f;
     EXPECT_EQ(moved, 60) << "each mass's point, not only the three the step moves";
+}
+
+// A string longer than a shape frame holds (ipc::kMaxShapePoints) is drawn from points spread
+// evenly along it, from its first end to its last, where it was once cut off after its 512th.
+// A chain of 600 masses, plucked into a triangle and left to ring (no bow: every MAT is the
+// string), its ends fixed.
+TEST(EngineProcess, DrawsAStringLongerThanAFrameFromEndToEnd) {
+    constexpr int kMasses = 600;
+    Model plucked = test::chain(kMasses, 1e-4, 1e3, 1e-4);
+    for (int i = 1; i <= kMasses; ++i)
+        plucked.mats[static_cast<std::size_t>(i)].position =
+            1e-3 * std::min(i, kMasses + 1 - i) / (kMasses / 2);
+    plucked.outputs = {{"m1", Output::Signal::Position, 1.0}};
+    const std::vector<std::string> points = string_points(plucked);
+    ASSERT_EQ(points.size(), kMasses + 2u) << "the two ends and every mass";
+    ASSERT_GT(points.size(), kMaxShapePoints);
+    const auto dir = test::temp_dir("engine-long-shape");
+    write_file_atomically(dir / "plucked.json", format_model(plucked));
+
+    EngineLink link(options());
+    std::string error;
+    ASSERT_TRUE(start_playing_file(link, dir / "plucked.json", error)) << error;
+    auto shapes = link.shapes();
+    ShapeFrame shape{};
+    ASSERT_TRUE(wait_for(
+        [&] {
+            link.heartbeat();
+            return shapes.try_pop(shape);
+        },
+        kGenerous));
+    EXPECT_EQ(shape.count, kMaxShapePoints);
+    EXPECT_EQ(shape.spread_over, points.size());
+    // Drawn from the first end to the last: both fixed at 0, every mass drawn between them
+    // away from rest (cut off, the last point drawn was m511, mid-string).
+    const std::vector<std::size_t> drawn = drawn_points(points.size(), kMaxShapePoints);
+    ASSERT_EQ(drawn.size(), kMaxShapePoints);
+    EXPECT_EQ(drawn.front(), 0u);
+    EXPECT_EQ(drawn.back(), points.size() - 1);
+    EXPECT_EQ(shape.positions[0], 0.0f);
+    EXPECT_EQ(shape.positions[kMaxShapePoints - 1], 0.0f) << "the far end, fixed";
+    std::size_t moved = 0;
+    for (std::size_t i = 1; i + 1 < kMaxShapePoints; ++i) moved += shape.positions[i] != 0.0f;
+    EXPECT_EQ(moved, kMaxShapePoints - 2) << "the masses between the ends";
 }
 
 TEST(EngineProcess, ARunawayIsMutedWithinABlockAndTheModelReset) {

@@ -15,6 +15,8 @@
 #include <string>
 
 #include "archet/files/model_file.hpp"
+#include "archet/ipc/segment_layout.hpp"
+#include "archet/model/string_points.hpp"
 #include "archet/ui/graph_view.hpp"
 #include "archet/ui/main_window.hpp"
 #include "archet/ui/model_document.hpp"
@@ -225,15 +227,39 @@ TEST(LongChainScope, TheStringScopeDrawsEveryMass) {
     ScopePanel scopes;
     scopes.resize(1200, 700);
     std::vector<float> shape(222);
+    std::vector<double> along(222);
     for (std::size_t i = 0; i < shape.size(); ++i)
-        shape[i] = 1e-3f * std::sin(3.14159f * static_cast<float>(i) / 221.0f);
+        shape[i] = 1e-3f * std::sin(3.14159f * static_cast<float>(i) / 221.0f),
+        along[i] = static_cast<double>(i);
     ProbeHistory history;
-    scopes.refresh(history, shape, 48000);
+    scopes.refresh(history, shape, along, 48000);
     QCustomPlot& plot = scopes.plot(ScopePanel::Scope::Shape);
     EXPECT_EQ(plot.graph(0)->data()->size(), 222);
     EXPECT_LE(plot.xAxis->range().lower, 0);
     EXPECT_GE(plot.xAxis->range().upper, 221);
     EXPECT_GE(plot.yAxis->range().upper, 1.0) << "the middle's 1 mm is in view";
+}
+
+// A string longer than the engine's shape frame (ipc::kMaxShapePoints) comes as points spread
+// along it: each is drawn where it lies on the string, and the axis runs to the nut.
+TEST(LongChainScope, AStringLongerThanAFrameIsDrawnWhereItsPointsLie) {
+    ScopePanel scopes;
+    scopes.resize(1200, 700);
+    constexpr std::size_t kPoints = 1002;  // a 1,000-mass string with its bridge and nut
+    const std::vector<std::size_t> drawn = drawn_points(kPoints, ipc::kMaxShapePoints);
+    std::vector<float> shape;
+    std::vector<double> along;
+    for (std::size_t i : drawn)
+        along.push_back(static_cast<double>(i)),
+            shape.push_back(1e-3f * std::sin(3.14159f * static_cast<float>(i) / (kPoints - 1)));
+    ProbeHistory history;
+    scopes.refresh(history, shape, along, 48000);
+    QCustomPlot& plot = scopes.plot(ScopePanel::Scope::Shape);
+    ASSERT_EQ(plot.graph(0)->data()->size(), static_cast<int>(ipc::kMaxShapePoints));
+    EXPECT_EQ(plot.graph(0)->data()->at(0)->key, 0.0);
+    EXPECT_EQ(plot.graph(0)->data()->at(plot.graph(0)->data()->size() - 1)->key, kPoints - 1.0)
+        << "the nut, at its place on the string";
+    EXPECT_GE(plot.xAxis->range().upper, kPoints - 1.0);
 }
 
 }  // namespace

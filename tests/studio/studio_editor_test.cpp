@@ -768,7 +768,9 @@ TEST(ScopePanelTest, ANearlyConstantSignalKeepsEveryAxisReadable) {
     panel.set_trigger_on_slip(false);
     const ProbeHistory history = history_of(4000, 48000, two_partials);
     std::vector<float> shape(62, 1e-9f);
-    panel.refresh(history, shape, 48000);
+    std::vector<double> along(62);
+    for (std::size_t i = 0; i < along.size(); ++i) along[i] = static_cast<double>(i);
+    panel.refresh(history, shape, along, 48000);
     using Scope = ScopePanel::Scope;
     const struct {
         const char* name;
@@ -822,12 +824,12 @@ TEST(ScopePanelTest, TheSpectrumResolvesTheLowestStringsPartialsAndSaysItsResolu
         EXPECT_LE(resolution, 12) << "partials 110 Hz apart stay apart under a Hann window";
         QCustomPlot& spectrum = panel.plot(ScopePanel::Scope::Spectrum);
 
-        panel.refresh(history_of(window / 2, rate, two_partials), {}, rate);
+        panel.refresh(history_of(window / 2, rate, two_partials), {}, {}, rate);
         EXPECT_TRUE(spectrum.graph(0)->data()->isEmpty()) << "no spectrum from half a window";
         EXPECT_NE(spectrum.xAxis->label().indexOf("waiting"), -1)
             << spectrum.xAxis->label().toStdString();
 
-        panel.refresh(history_of(window + 100, rate, two_partials), {}, rate);
+        panel.refresh(history_of(window + 100, rate, two_partials), {}, {}, rate);
         const QString said = QString("resolution %1 Hz").arg(resolution, 0, 'f', 1);
         EXPECT_NE(spectrum.xAxis->label().indexOf(said), -1)
             << spectrum.xAxis->label().toStdString() << " should say " << said.toStdString();
@@ -849,7 +851,7 @@ TEST(ScopePanelTest, TheSpectrumsAxisLabelFitsUnderItInTheStudio) {
     QCustomPlot& spectrum = panel->plot(ScopePanel::Scope::Spectrum);
     const std::size_t samples = ScopePanel::spectrum_window(48000);
     for (const std::size_t heard : {samples / 2, samples + 100}) {
-        panel->refresh(history_of(heard, 48000, two_partials), {}, 48000);
+        panel->refresh(history_of(heard, 48000, two_partials), {}, {}, 48000);
         spectrum.replot();
         const QString label = spectrum.xAxis->label();
         const QFontMetrics metrics(spectrum.xAxis->labelFont());

@@ -8,6 +8,7 @@
 #include "archet/common/input_error.hpp"
 #include "archet/files/model_file.hpp"
 #include "archet/model/model_parameters.hpp"
+#include "archet/model/string_points.hpp"
 
 namespace archet::ui {
 
@@ -163,9 +164,15 @@ void EngineClient::poll() {
     ipc::ShapeFrame shape;
     bool fresh = false;
     while (shapes.try_pop(shape)) fresh = true;
-    if (fresh)
-        shape_.assign(shape.positions,
-                      shape.positions + std::min<std::uint32_t>(shape.count, ipc::kMaxShapePoints));
+    if (fresh) {
+        const std::uint32_t count = std::min<std::uint32_t>(shape.count, ipc::kMaxShapePoints);
+        shape_.assign(shape.positions, shape.positions + count);
+        const std::vector<std::size_t> drawn =
+            drawn_points(std::max(shape.spread_over, count), ipc::kMaxShapePoints);
+        shape_along_.resize(count);
+        for (std::uint32_t i = 0; i < count; ++i)
+            shape_along_[i] = static_cast<double>(drawn.size() == count ? drawn[i] : i);
+    }
     switch (link_->liveness()) {
         case link::EngineLink::Liveness::Exited:
             return restart("the engine exited (status " + QString::number(link_->exit_status()) +

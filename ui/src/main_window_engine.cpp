@@ -139,7 +139,7 @@ void MainWindow::toggle_take() {
 void MainWindow::refresh() {
     const double rate = engine_->status().sample_rate;  // the engine's, once it says
     if (rate <= 0) return;
-    scopes_->refresh(engine_->history(), engine_->shape(), rate);
+    scopes_->refresh(engine_->history(), engine_->shape(), engine_->shape_along(), rate);
     const ProbeHistory& h = engine_->history();
     pad_->set_feedback(h.latest(h.channel("hand_force_slide")),
                        h.latest(h.channel("hand_force_press")));

@@ -138,7 +138,7 @@ std::size_t ScopePanel::trigger_back(const ProbeHistory& h, std::size_t span) co
 }
 
 void ScopePanel::refresh(const ProbeHistory& h, const std::vector<float>& shape,
-                         double sample_rate) {
+                         const std::vector<double>& along, double sample_rate) {
     if (frozen()) return;
     const double time_base = time_base_->currentData().toDouble();
     const auto span = static_cast<std::size_t>(time_base * 1e-3 * sample_rate);
@@ -175,9 +175,10 @@ void ScopePanel::refresh(const ProbeHistory& h, const std::vector<float>& shape,
 
     QVector<double> index, position;
     for (std::size_t i = 0; i < shape.size(); ++i)
-        index.push_back(static_cast<double>(i)), position.push_back(1000.0 * shape[i]);
+        index.push_back(i < along.size() ? along[i] : static_cast<double>(i)),
+            position.push_back(1000.0 * shape[i]);
     shape_->graph(0)->setData(index, position, true);
-    shape_->xAxis->setRange(0, std::max<double>(1, static_cast<double>(index.size()) - 1));
+    shape_->xAxis->setRange(0, std::max(1.0, index.isEmpty() ? 0.0 : index.back()));
     fit_axis(*shape_->yAxis, std::vector<double>(position.begin(), position.end()), kShapeSpanMm);
 
     refresh_spectrum(h, sample_rate);

@@ -72,6 +72,18 @@ std::string bowed_centre(const Model& model, const Lia& bow) {
     return centre ? centre->id : end->id;
 }
 
+std::vector<std::size_t> drawn_points(std::size_t points, std::size_t most) {
+    std::vector<std::size_t> drawn;
+    if (points <= most || most < 2) {
+        for (std::size_t i = 0; i < std::min(points, most); ++i) drawn.push_back(i);
+        return drawn;
+    }
+    // i·(points − 1)/(most − 1) rounded to the nearest: steps of at least 1, both ends kept.
+    for (std::size_t i = 0; i < most; ++i)
+        drawn.push_back((i * (points - 1) + (most - 1) / 2) / (most - 1));
+    return drawn;
+}
+
 std::vector<std::string> string_points(const Model& model) {
     std::set<std::string> bow_parts, bowed, contacts;
     for (const auto& l : model.lias)

@@ -132,8 +132,11 @@ struct ProbeFrame {
 
 struct ShapeFrame {
     std::uint64_t tick;
-    std::uint32_t count;  ///< positions used (MATs of the fastest level, in model order)
-    std::uint32_t reserved;
+    std::uint32_t count;  ///< positions used (the string's MATs, in model order)
+    /// The string's points those are spread evenly over, from the bridge to the nut
+    /// (drawn_points()): `count` when each is drawn, more for a string longer than
+    /// kMaxShapePoints (0 from an engine before it said so: then as `count`).
+    std::uint32_t spread_over;
     float positions[kMaxShapePoints];
 };
 
@@ -236,7 +239,7 @@ static_assert(sizeof(ProbeFrame) == 152);
 
 static_assert(offsetof(ShapeFrame, tick) == 0);
 static_assert(offsetof(ShapeFrame, count) == 8);
-static_assert(offsetof(ShapeFrame, reserved) == 12);
+static_assert(offsetof(ShapeFrame, spread_over) == 12);
 static_assert(offsetof(ShapeFrame, positions) == 16);
 static_assert(sizeof(ShapeFrame) == 2064);
 

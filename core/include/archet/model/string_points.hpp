@@ -14,6 +14,11 @@ namespace archet {
 
 std::vector<std::string> string_points(const Model& model);
 
+/// Which of a string's `points` (string_points()) a drawing of at most `most` of them shows, as
+/// indices into them: all of them when they fit, else `most` spread evenly from the first to
+/// the last, so that the drawing still runs from the bridge to the nut.
+std::vector<std::size_t> drawn_points(std::size_t points, std::size_t most);
+
 /// Where a bow can stand on a string as the bowed-string builder names it: its masses s1…sN,
 /// or, for a string in modal form, its points there.
 std::vector<std::string> bow_stations(const Model& model);

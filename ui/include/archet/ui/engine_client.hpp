@@ -88,7 +88,11 @@ class EngineClient : public QObject {
     void stop_take();
 
     const ProbeHistory& history() const { return history_; }
+    /// The string's drawn points, and where each lies along it (its index among the string's
+    /// points, from the bridge: a string longer than ipc::kMaxShapePoints is drawn from points
+    /// spread along it).
     const std::vector<float>& shape() const { return shape_; }
+    const std::vector<double>& shape_along() const { return shape_along_; }
     const EngineStatus& status() const { return status_; }
     pid_t engine_pid() const { return link_ ? link_->engine_pid() : -1; }
 
@@ -123,6 +127,7 @@ class EngineClient : public QObject {
     double slide_ = 0, press_ = 0;
     ProbeHistory history_;
     std::vector<float> shape_;
+    std::vector<double> shape_along_;
     EngineStatus status_;
     std::chrono::steady_clock::time_point unresponsive_since_{};
 };

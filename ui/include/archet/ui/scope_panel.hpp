@@ -37,8 +37,10 @@ class ScopePanel : public QWidget {
     explicit ScopePanel(QWidget* parent = nullptr);
 
     /// `shape` is the string's points as the engine sends them (string_points(): the bow
-    /// and any mass not joined to the string are not in it).
-    void refresh(const ProbeHistory& history, const std::vector<float>& shape, double sample_rate);
+    /// and any mass not joined to the string are not in it), `along` where each lies along the
+    /// string (EngineClient::shape_along()).
+    void refresh(const ProbeHistory& history, const std::vector<float>& shape,
+                 const std::vector<double>& along, double sample_rate);
     void set_frozen(bool frozen);
     bool frozen() const;
     void set_trigger_on_slip(bool on);
