@@ -222,16 +222,19 @@ int run_play(const PlayArguments& a) {
     std::string incomplete;  // why the take holds less than was played
     if (take) {
         take->finish(signal ? signal_name(signal) : "");
+        incomplete = take->incomplete_note();
         std::cerr << "archet: take written to " << take->folder().string()
-                  << " (take.wav, gesture.json, probes.csv; `archet render --take "
-                  << take->folder().string() << " -o FILE` re-renders it)\n";
+                  << " (take.wav, gesture.json, probes.csv";
+        if (incomplete.empty())
+            std::cerr << "; `archet render --take " << take->folder().string()
+                      << " -o FILE` re-renders it";
+        std::cerr << ")\n";
         if (signal)
             std::cerr << "archet: the take was interrupted by " << signal_name(signal) << " after "
                       << static_cast<double>(take->frames()) / sim.sample_rate()
                       << " s; take.json says so\n";
         if (const std::string note = take->clipping_note(); !note.empty())
             std::cerr << "archet: warning: " << note << "\n";
-        incomplete = take->incomplete_note();
         if (!incomplete.empty()) std::cerr << "archet: error: " << incomplete << "\n";
     }
     if (a.stats) {

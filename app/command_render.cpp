@@ -113,9 +113,8 @@ RenderPlan plan_from_take(const RenderArguments& a) {
     if (take.dropped_samples > 0 || take.dropped_events > 0)
         std::cerr << "archet: warning: " << folder.string() << " lost " << take.dropped_samples
                   << " samples and " << take.dropped_events
-                  << " gesture positions or parameter changes while it was recorded (its "
-                     "writer fell behind): the render plays the gesture it kept, "
-                     "and take.wav misses what was lost, so the two differ\n";
+                  << " gesture positions or parameter changes while it was recorded: take.wav "
+                     "misses the samples, the render the events, so the two differ\n";
     too_long(take);
     if (take.frames == 0)
         throw InputError((folder / "take.json").string(),

@@ -41,8 +41,11 @@ class StatusReader {
                 std::cerr << "archet: " << (k == ipc::StatusKind::Take ? "take " : "") << text
                           << "\n";
             if (k == ipc::StatusKind::Take &&
-                (text.rfind("written ", 0) == 0 || text.rfind("take failed", 0) == 0))
+                (text.rfind("written ", 0) == 0 || text.rfind("take failed", 0) == 0)) {
                 take_done_ = true;  // whenever it comes: the engine may end a take itself
+                take_whole_ = text.rfind("written ", 0) == 0 &&
+                              text.find("; incomplete:") == std::string::npos;
+            }
             if (k == ipc::StatusKind::Heartbeat && device_.empty()) device_ = text;
             if (k == kind && (sequence ? f.sequence == sequence : text.rfind(prefix, 0) == 0))
                 seen = true, said_ = text;
@@ -70,6 +73,8 @@ class StatusReader {
     }
     const std::string& refused() const { return refused_; }
     bool take_done() const { return take_done_; }
+    /// Whether the take the engine finished holds all that was played (not lost, not failed).
+    bool take_whole() const { return take_whole_; }
     const std::string& said() const { return said_; }
     const std::string& device() const { return device_; }
 
@@ -79,7 +84,7 @@ class StatusReader {
     ipc::SpscRing<ipc::ProbeFrame> probes_;
     ipc::SpscRing<ipc::ShapeFrame> shapes_;
     std::string refused_, said_, device_;
-    bool take_done_ = false;
+    bool take_done_ = false, take_whole_ = false;
 };
 
 link::EngineLinkOptions engine_options(const LivePlayArguments& a) {
@@ -147,6 +152,7 @@ int run_live_play(const LivePlayArguments& a) {
         length);
     const bool engine_lost = link.liveness() == link::EngineLink::Liveness::Exited;
     const int signal = interruption_signal();
+    bool take_failed = false;
     if (!a.take.empty() && !engine_lost) {
         link.stop_take();
         // The engine finishes the take; waited for even after Ctrl-C (a second one kills).
@@ -160,11 +166,13 @@ int run_live_play(const LivePlayArguments& a) {
             std::this_thread::sleep_for(std::chrono::milliseconds(5));
         }
         if (!written) std::cerr << "archet: the take was not finished in time\n";
+        take_failed = !written || !engine.take_whole();
     }
     if (engine_lost)
         throw std::runtime_error("the engine exited (status " + std::to_string(link.exit_status()) +
                                  ")");
-    return signal ? 128 + signal : 0;
+    if (signal) return 128 + signal;
+    return take_failed ? 1 : 0;  // a take not written whole is not what was asked
 }
 
 }  // namespace archet::cli

@@ -328,7 +328,10 @@ std::string ControlThread::nrt_finish_take(TakeRecorder& take) {
         said += " (" + std::to_string(take.frames()) + " samples";
         if (!why.empty()) said += ", interrupted: " + why;
         said += ")";
-        if (const std::string note = take.incomplete_note(); !note.empty()) said += "; " + note;
+        // Short: a status frame holds ipc::kTextSize characters, the folder's name among them.
+        if (take.dropped_samples() > 0 || take.dropped_events() > 0)
+            said += "; incomplete: lost " + std::to_string(take.dropped_samples()) + " samples, " +
+                    std::to_string(take.dropped_events()) + " events";
         // The live limiter kept the monitor clean; the take holds the raw output.
         if (take.clipped_samples() > 0) {
             char peak[32];

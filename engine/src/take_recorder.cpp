@@ -1,5 +1,7 @@
 #include "archet/engine/take_recorder.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -13,8 +15,8 @@ namespace archet {
 
 namespace {
 constexpr std::uint32_t kSampleCapacity = 1u << 17;  // 2.7 s of samples at 48 kHz
-// The most memory the samples waiting for the writer take: a model with many probes waits for
-// less than 2.7 s (a hundred probes 0.68 s, the most a model has, 1,024, 43 ms).
+// The most memory the samples waiting for the writer take: at 48 kHz a model with many probes
+// waits for less than 2.7 s (a hundred probes 0.68 s, the most a model has, 1,024, 43 ms).
 constexpr std::size_t kSampleBytes = std::size_t{1} << 25;
 constexpr std::uint32_t kGestureCapacity = 1u << 13;
 constexpr std::uint32_t kChangeCapacity = 1u << 10;
@@ -34,10 +36,9 @@ std::size_t sample_length(std::size_t probes) {
 }
 
 std::uint32_t sample_capacity(std::size_t probes) {
-    std::uint32_t capacity = kSampleCapacity;
-    while (capacity > 1 && capacity * sample_length(probes) * sizeof(double) > kSampleBytes)
-        capacity /= 2;
-    return capacity;
+    const std::size_t fit = kSampleBytes / (sample_length(probes) * sizeof(double));
+    return static_cast<std::uint32_t>(
+        std::bit_floor(std::clamp<std::size_t>(fit, 1, kSampleCapacity)));
 }
 
 void put(std::FILE* f, const std::string& line, const std::filesystem::path& path) {
@@ -304,12 +305,16 @@ std::string TakeRecorder::incomplete_note() const {
     const std::uint64_t samples = dropped_samples(), events = dropped_events();
     if (samples == 0 && events == 0) return {};
     std::ostringstream s;
-    s << "the take is incomplete: its writer fell behind (a slow disk";
-    if (!probe_names_.empty())
-        s << ", or the " << probe_names_.size() << " probes probes.csv holds at every sample";
-    s << ") and lost " << samples << " samples and " << events
-      << " gesture positions or parameter changes, which take.json counts; take.wav does not "
-         "hold the whole performance, and `render --take` will not reproduce it";
+    s << "the take is incomplete: it lost " << samples << " samples and " << events
+      << " gesture positions or parameter changes, which take.json counts";
+    if (samples > 0) {
+        s << " (its writer fell behind: a slow disk";
+        if (!probe_names_.empty())
+            s << ", or the " << probe_names_.size() << " probes probes.csv holds at every sample";
+        s << ")";
+    }
+    s << "; take.wav does not hold the whole performance, and `render --take` will not "
+         "reproduce it";
     return s.str();
 }
 

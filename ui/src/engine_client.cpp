@@ -238,7 +238,7 @@ void EngineClient::read_status() {
                     history_ = ProbeHistory(
                         static_cast<std::size_t>(kHistorySeconds * status_.sample_rate));
                 history_.reset(names);
-                shape_.clear();
+                shape_.clear(), shape_along_.clear();
                 emit model_loaded(text);
                 break;
             }

@@ -51,10 +51,11 @@ void MainWindow::connect_engine() {
     connect(engine_, &EngineClient::status_changed, this,
             [this] { document_->set_running_rate(engine_->status().sample_rate); });
     connect(engine_, &EngineClient::message, this, [this](const QString& text) {
-        // A take that clipped or was cut short stays said: longer in the status bar, and in
-        // the Takes tab until the next take's news.
+        // A take that clipped, was cut short or lost samples stays said: longer in the status bar,
+        // and in the Takes tab until the next take's news.
         const bool take = text.startsWith("take ");
-        const bool warning = text.contains("clipped") || text.contains("interrupted");
+        const bool warning =
+            text.contains("clipped") || text.contains("interrupted") || text.contains("incomplete");
         statusBar()->showMessage(text, take && warning ? 30000 : 8000);
         if (text.startsWith("take written")) takes_->refresh();
         if (take) takes_->show_note(text);

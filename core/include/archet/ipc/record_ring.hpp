@@ -20,10 +20,7 @@ class RecordRing {
     RecordRing(std::size_t length, std::uint32_t capacity)
         : length_(length),
           mask_(capacity - 1),
-          records_(std::make_unique<double[]>(length * capacity)) {
-        if (length == 0 || capacity == 0 || (capacity & mask_) != 0)
-            throw std::invalid_argument("a record ring holds a power of two of non-empty records");
-    }
+          records_(std::make_unique<double[]>(checked_doubles(length, capacity))) {}
     RecordRing(const RecordRing&) = delete;
     RecordRing& operator=(const RecordRing&) = delete;
 
@@ -32,7 +29,7 @@ class RecordRing {
 
     // ---- producer ----
     /// The next record to fill, or null when the ring is full (the record is then counted as
-    /// dropped). publish() hands it over.
+    /// dropped). publish() hands it over: only after a claim that gave a record.
     double* claim() {
         const std::uint64_t w = control_.written.load(std::memory_order_relaxed);
         const std::uint64_t r = control_.read.load(std::memory_order_acquire);
@@ -63,6 +60,13 @@ class RecordRing {
     std::uint64_t dropped() const { return control_.dropped.load(std::memory_order_relaxed); }
 
   private:
+    static std::size_t checked_doubles(std::size_t length, std::uint32_t capacity) {
+        if (length == 0 || capacity == 0 || (capacity & (capacity - 1)) != 0 ||
+            length > SIZE_MAX / sizeof(double) / capacity)
+            throw std::invalid_argument(
+                "a record ring holds a power of two of non-empty records that fit in memory");
+        return length * capacity;
+    }
     double* record(std::uint64_t index) const { return records_.get() + (index & mask_) * length_; }
 
     std::size_t length_;

@@ -13,8 +13,10 @@ namespace archet::ipc {
 inline constexpr std::uint32_t kMagic = 0x54454843;  // "CHET" little-endian
 /// 2: takes (StartTake, StopTake); 3: the running sample rate in the header and status frames,
 /// the load as a share of the budget; 4: the block size in the header, which is then the one
-/// place both read the rate from (status frames no longer carry it).
-inline constexpr std::uint16_t kProtocolVersion = 4;
+/// place both read the rate from (status frames no longer carry it); 5: a shape frame says how
+/// many string points its positions are spread over (a field that was reserved: a studio of
+/// version 4 draws them as consecutive points, one of 5 takes an engine's 0 as "each point").
+inline constexpr std::uint16_t kProtocolVersion = 5;
 inline constexpr std::uint16_t kMinimumCompatibleVersion = 4;
 
 inline constexpr std::size_t kMaxProbes = 16;  ///< probe values per probe frame
