@@ -369,15 +369,11 @@ TEST(EngineProcess, DrawsTheShapeOfAStringInModalForm) {
 
 // A string longer than a shape frame holds (ipc::kMaxShapePoints) is drawn from points spread
 // evenly along it, from its first end to its last, where it was once cut off after its 512th.
-// A chain of 600 masses, plucked into a triangle and left to ring (no bow: every MAT is the
-// string), its ends fixed.
+// A chain of 600 masses, plucked and left to ring (no bow: every MAT is the string), its ends
+// fixed.
 TEST(EngineProcess, DrawsAStringLongerThanAFrameFromEndToEnd) {
     constexpr int kMasses = 600;
-    Model plucked = test::chain(kMasses, 1e-4, 1e3, 1e-4);
-    for (int i = 1; i <= kMasses; ++i)
-        plucked.mats[static_cast<std::size_t>(i)].position =
-            1e-3 * std::min(i, kMasses + 1 - i) / (kMasses / 2);
-    plucked.outputs = {{"m1", Output::Signal::Position, 1.0}};
+    const Model plucked = test::plucked_chain(kMasses);
     const std::vector<std::string> points = string_points(plucked);
     ASSERT_EQ(points.size(), kMasses + 2u) << "the two ends and every mass";
     ASSERT_GT(points.size(), kMaxShapePoints);

@@ -8,6 +8,7 @@
 
 #include <fstream>
 
+#include <qcustomplot.h>
 #include <QApplication>
 #include <QDir>
 #include <QFileInfo>
@@ -19,6 +20,7 @@
 #include <QWheelEvent>
 
 #include "archet/files/model_file.hpp"
+#include "archet/ipc/segment_layout.hpp"
 #include "archet/model/string_points.hpp"
 #include "archet/sound_examples.hpp"
 #include "archet/ui/elided_label.hpp"
@@ -100,6 +102,32 @@ TEST(Studio, PlaysTheShippedStringAndTheScopesFollowTheBow) {
             GTEST_SKIP() << xruns << " xruns: zero cannot be asked here; " << machine.describe();
     }
     EXPECT_EQ(xruns, 0u) << machine.describe();
+}
+
+// A string longer than the engine's shape frame holds (a plucked chain of 600 masses, 602
+// points with its ends) reaches the string scope from end to end, each of the 512 points it is
+// drawn from at its place along the string.
+TEST(Studio, DrawsAStringLongerThanAShapeFrameFromEndToEnd) {
+    const auto dir = test::temp_dir("studio-long-shape");
+    const Model plucked = test::plucked_chain(600);
+    write_file_atomically(dir / "plucked.json", format_model(plucked));
+    MainWindow window(engine_options());
+    ASSERT_TRUE(window.open_file((dir / "plucked.json").c_str()));
+    window.show();
+    ASSERT_TRUE(wait_until(
+        [&] { return window.engine().status().model == QString::fromStdString(plucked.name); },
+        60000));
+    ASSERT_TRUE(
+        wait_until([&] { return window.engine().shape().size() == ipc::kMaxShapePoints; }, 60000));
+    const std::vector<double>& along = window.engine().shape_along();
+    ASSERT_EQ(along.size(), ipc::kMaxShapePoints);
+    EXPECT_EQ(along.front(), 0.0);
+    EXPECT_EQ(along.back(), 601.0) << "the far end";
+    QCustomPlot& plot = window.scopes().plot(ScopePanel::Scope::Shape);
+    ASSERT_TRUE(wait_until([&] { return plot.graph(0)->data()->size() > 0; }, 60000));
+    EXPECT_EQ(plot.graph(0)->data()->size(), static_cast<int>(ipc::kMaxShapePoints));
+    EXPECT_EQ(plot.graph(0)->data()->at(plot.graph(0)->data()->size() - 1)->key, 601.0);
+    EXPECT_GE(plot.xAxis->range().upper, 601.0);
 }
 
 TEST(Studio, AKilledEngineIsRestartedWithTheSameModel) {

@@ -191,4 +191,14 @@ Model chain(int n, double m, double k, double z, double fs) {
     return model;
 }
 
+Model plucked_chain(int n) {
+    Model plucked = chain(n, 1e-4, 1e3, 1e-4);
+    plucked.name = "plucked-chain";
+    for (int i = 1; i <= n; ++i)
+        plucked.mats[static_cast<std::size_t>(i)].position =
+            1e-3 * std::min(i, n + 1 - i) / ((n + 1) / 2.0);
+    plucked.outputs = {{"m1", Output::Signal::Position, 1.0}};
+    return plucked;
+}
+
 }  // namespace archet::test

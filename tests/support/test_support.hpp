@@ -73,4 +73,9 @@ Lia spring_damper(const std::string& id, const std::string& from, const std::str
 /// A fixed–fixed homogeneous chain of n masses (ids m1..mn, ends end_a and end_b).
 Model chain(int n, double m, double k, double z, double fs = 48000);
 
+/// A chain of n masses of 0.1 g joined by 1 kN/m springs, plucked 1 mm at its middle into a
+/// triangle and left to ring; its sound is the first mass's position. Without a bow, every MAT
+/// of it is the string (string_points()).
+Model plucked_chain(int n);
+
 }  // namespace archet::test
