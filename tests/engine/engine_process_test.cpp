@@ -92,7 +92,6 @@ std::optional<StatusKind> load_answer(EngineLink& link, std::uint32_t sequence,
     return answer;
 }
 
-// Starts the engine, loads a shipped model and plays it.
 // Starts the engine and plays the model file, or says in `error` why it could not.
 bool start_playing_file(EngineLink& link, const std::filesystem::path& model, std::string& error) {
     link.start();
@@ -109,6 +108,7 @@ bool start_playing_file(EngineLink& link, const std::filesystem::path& model, st
     return true;
 }
 
+// Starts the engine, loads a shipped model and plays it.
 bool start_playing(EngineLink& link, const std::string& resource) {
     std::string error;
     return start_playing_file(link, test::resource(resource), error);
